@@ -1,0 +1,1 @@
+# The ROS layer: one conversion unit (src/ros/) and one executable per node (src/nodes/*.cpp).

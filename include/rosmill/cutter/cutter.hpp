@@ -1,0 +1,38 @@
+// Cutter shapes and the tools of the tool table. Dimensions in millimetres, feeds in mm/min.
+#pragma once
+#include <string>
+
+namespace rosmill {
+
+enum class CutterType { FlatEnd, BallEnd, BullNose };
+
+// The cutting shape: a cylinder of `diameter` whose bottom is flat (corner_radius 0), a hemisphere
+// (corner_radius = diameter / 2) or a torus corner in between. The tip is the lowest point on the axis.
+struct Cutter {
+  CutterType type = CutterType::FlatEnd;
+  double diameter = 6.0;
+  double corner_radius = 0.0;
+  double flute_length = 20.0;
+  double shank_diameter = 6.0;
+
+  double radius() const { return 0.5 * diameter; }
+  static Cutter flat(double d) { return {CutterType::FlatEnd, d, 0.0, 4 * d, d}; }
+  static Cutter ball(double d) { return {CutterType::BallEnd, d, 0.5 * d, 4 * d, d}; }
+  static Cutter bull(double d, double r) { return {CutterType::BullNose, d, r, 4 * d, d}; }
+};
+
+// A tool of the tool table (config/tools.yaml): a cutter plus how to run it.
+struct Tool {
+  int id = 1;
+  std::string name;
+  Cutter cutter;
+  double spindle_rpm = 10000.0;
+  double feed = 1000.0;         // mm/min
+  double plunge_feed = 300.0;   // mm/min
+  double stepover = 1.0;        // mm
+  double stepdown = 1.0;        // mm
+};
+
+const char* cutter_type_name(CutterType t);
+
+}  // namespace rosmill

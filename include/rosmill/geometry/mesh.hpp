@@ -1,0 +1,69 @@
+// An indexed triangle mesh with welded vertices, recomputed face normals and edge adjacency.
+//
+// Every consumer (slicing, segmentation, drop-cutter, ROS markers) reads this one structure; it is built once
+// from a triangle soup (three corners per triangle, as STL stores them) by build_mesh().
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rosmill/geometry/types.hpp"
+
+namespace rosmill {
+
+constexpr uint32_t kNone = 0xffffffffu;
+
+// An undirected edge between two welded vertices (a < b) and the faces that use it.
+struct MeshEdge {
+  uint32_t a = kNone, b = kNone;
+  // Index of the first face using this edge in Mesh::edge_faces; face_count entries follow.
+  uint32_t first_face = 0;
+  uint32_t face_count = 0;
+  // For a manifold edge (two faces): true when the two faces run it in opposite directions, as a consistently
+  // oriented surface does.
+  bool consistent = true;
+
+  bool boundary() const { return face_count == 1; }
+  bool manifold() const { return face_count == 2; }
+  bool nonmanifold() const { return face_count > 2; }
+};
+
+class Mesh {
+ public:
+  using Face = std::array<uint32_t, 3>;
+
+  std::vector<Vec3> vertices;
+  std::vector<Face> faces;
+  // Unit normal of each face from its corners (right-hand rule); zero for a degenerate face.
+  std::vector<Vec3> normals;
+  std::vector<double> areas;
+  // face_edges[f][i] is the edge from corner i to corner (i+1)%3 of face f.
+  std::vector<std::array<uint32_t, 3>> face_edges;
+  std::vector<MeshEdge> edges;
+  // Faces of each edge, grouped per edge (see MeshEdge::first_face).
+  std::vector<uint32_t> edge_faces;
+  Box3 bbox;
+
+  size_t face_count() const { return faces.size(); }
+  size_t vertex_count() const { return vertices.size(); }
+  const Vec3& corner(size_t f, int i) const { return vertices[faces[f][i]]; }
+
+  // The face across edge i of face f, or kNone when the edge is open or non-manifold.
+  uint32_t neighbour(size_t f, int i) const;
+  // True when every edge has exactly two faces.
+  bool closed() const;
+};
+
+struct WeldOptions {
+  // 0: corners weld only when bit-for-bit equal (after -0 == +0). > 0: corners closer than this weld.
+  double tolerance = 0.0;
+};
+
+// Builds a mesh from corners (3 per triangle). Degenerate triangles are kept (zero area, zero normal) so that
+// reports can count them; consumers skip faces whose area is zero.
+Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options = {});
+
+// Scales vertices in place (a unit change); areas and bbox are updated, normals are unchanged.
+void scale_mesh(Mesh& mesh, double factor);
+
+}  // namespace rosmill

@@ -1,0 +1,51 @@
+// The core toolpath: what every strategy produces and what the post-processor, the verifier and the ROS layer
+// consume. Positions are cutter locations (the tool tip) in millimetres in the workpiece frame (G54).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rosmill/cutter/cutter.hpp"
+#include "rosmill/geometry/types.hpp"
+
+namespace rosmill {
+
+enum class MoveType : uint8_t {
+  Rapid,   // G0, no cutting, only above the clearance height or along a known-free retract
+  Feed,    // G1 at the pass's cutting feed
+  Plunge,  // G1 downwards (or ramping) into material at the plunge feed
+};
+
+struct Move {
+  Vec3 to;
+  MoveType type = MoveType::Feed;
+  double feed = 0.0;  // mm/min; 0 for rapids
+};
+
+// One pass of a strategy (a layer, a raster line set, a contour set): named so that a viewer can show each alone.
+struct ToolpathPass {
+  std::string name;
+  std::vector<Move> moves;
+};
+
+struct Toolpath {
+  std::string strategy;  // "raster", "waterline", "rough", "contour", "cloud-rough", ...
+  Tool tool;
+  double safe_z = 0.0;       // retract height between cuts (mm)
+  double clearance_z = 0.0;  // height above which rapids are free everywhere (mm)
+  Vec3 start = Vec3::Zero(); // where the tool is before the first move (above the part at clearance_z)
+  std::vector<ToolpathPass> passes;
+
+  size_t move_count() const;
+  Box3 bounds() const;
+};
+
+// Figures of a toolpath: lengths in mm, time in seconds at the moves' feeds (rapids at `rapid_feed`).
+struct ToolpathStats {
+  size_t moves = 0;
+  double cutting_length = 0.0;
+  double rapid_length = 0.0;
+  double estimated_seconds = 0.0;
+};
+ToolpathStats toolpath_stats(const Toolpath& tp, double rapid_feed = 5000.0);
+
+}  // namespace rosmill

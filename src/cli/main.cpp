@@ -1,0 +1,31 @@
+// rosmill: the core pipeline from the command line, no ROS master needed.
+#include <cstdio>
+#include <exception>
+
+#include "command.hpp"
+#include "rosmill/error.hpp"
+
+namespace rosmill::cli {
+std::vector<CommandSetup>& command_setups() {
+  static std::vector<CommandSetup> setups;
+  return setups;
+}
+}  // namespace rosmill::cli
+
+int main(int argc, char** argv) {
+  CLI::App app{"rosmill: from an STL part or a 3D scan to a milling program"};
+  app.require_subcommand(1);
+  for (auto& setup : rosmill::cli::command_setups()) setup(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const rosmill::Error& e) {
+    std::fprintf(stderr, "rosmill: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rosmill: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,37 @@
+#include "rosmill/plan/toolpath.hpp"
+
+namespace rosmill {
+
+size_t Toolpath::move_count() const {
+  size_t n = 0;
+  for (const auto& p : passes) n += p.moves.size();
+  return n;
+}
+
+Box3 Toolpath::bounds() const {
+  Box3 b;
+  for (const auto& p : passes)
+    for (const auto& m : p.moves) b.add(m.to);
+  return b;
+}
+
+ToolpathStats toolpath_stats(const Toolpath& tp, double rapid_feed) {
+  ToolpathStats s;
+  Vec3 at = tp.start;
+  for (const auto& p : tp.passes)
+    for (const auto& m : p.moves) {
+      const double len = (m.to - at).norm();
+      ++s.moves;
+      if (m.type == MoveType::Rapid) {
+        s.rapid_length += len;
+        s.estimated_seconds += 60.0 * len / rapid_feed;
+      } else {
+        s.cutting_length += len;
+        if (m.feed > 0) s.estimated_seconds += 60.0 * len / m.feed;
+      }
+      at = m.to;
+    }
+  return s;
+}
+
+}  // namespace rosmill
