@@ -1,0 +1,149 @@
+#include "rosmill/plan/toolpath_io.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill {
+namespace {
+
+using nlohmann::json;
+
+double number(const json& j, const char* key, const std::string& where) {
+  auto it = j.find(key);
+  if (it == j.end() || !it->is_number()) throw Error(where, std::string("field '") + key + "' missing or not a number");
+  const double v = it->get<double>();
+  if (!std::isfinite(v)) throw Error(where, std::string("field '") + key + "' is not finite");
+  return v;
+}
+
+Vec3 vec3(const json& j, const std::string& where) {
+  if (!j.is_array() || j.size() < 3) throw Error(where, "expected [x, y, z]");
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    if (!j[i].is_number()) throw Error(where, "coordinate is not a number");
+    v[i] = j[i].get<double>();
+    if (!std::isfinite(v[i])) throw Error(where, "coordinate is not finite");
+  }
+  return v;
+}
+
+CutterType cutter_type(const std::string& name, const std::string& where) {
+  if (name == "flat") return CutterType::FlatEnd;
+  if (name == "ball") return CutterType::BallEnd;
+  if (name == "bull") return CutterType::BullNose;
+  throw Error(where, "unknown cutter type '" + name + "' (expected flat, ball or bull)");
+}
+
+}  // namespace
+
+json tool_to_json(const Tool& t) {
+  return json{{"id", t.id},
+              {"name", t.name},
+              {"type", cutter_type_name(t.cutter.type)},
+              {"diameter", t.cutter.diameter},
+              {"corner_radius", t.cutter.corner_radius},
+              {"flute_length", t.cutter.flute_length},
+              {"shank_diameter", t.cutter.shank_diameter},
+              {"spindle_rpm", t.spindle_rpm},
+              {"feed", t.feed},
+              {"plunge_feed", t.plunge_feed},
+              {"stepover", t.stepover},
+              {"stepdown", t.stepdown}};
+}
+
+Tool tool_from_json(const json& j, const std::string& where) {
+  if (!j.is_object()) throw Error(where, "tool is not an object");
+  Tool t;
+  t.id = static_cast<int>(number(j, "id", where));
+  t.name = j.value("name", "");
+  t.cutter.type = cutter_type(j.value("type", ""), where);
+  t.cutter.diameter = number(j, "diameter", where);
+  t.cutter.corner_radius = number(j, "corner_radius", where);
+  t.cutter.flute_length = number(j, "flute_length", where);
+  t.cutter.shank_diameter = number(j, "shank_diameter", where);
+  t.spindle_rpm = number(j, "spindle_rpm", where);
+  t.feed = number(j, "feed", where);
+  t.plunge_feed = number(j, "plunge_feed", where);
+  t.stepover = number(j, "stepover", where);
+  t.stepdown = number(j, "stepdown", where);
+  if (!(t.cutter.diameter > 0)) throw Error(where, "tool diameter must be positive");
+  return t;
+}
+
+json toolpath_to_json(const Toolpath& tp) {
+  json passes = json::array();
+  for (const ToolpathPass& p : tp.passes) {
+    json moves = json::array();
+    for (const Move& m : p.moves)
+      moves.push_back(json::array({m.to.x(), m.to.y(), m.to.z(), static_cast<int>(m.type), m.feed}));
+    passes.push_back(json{{"name", p.name}, {"moves", std::move(moves)}});
+  }
+  return json{{"format", "rosmill-toolpath"}, {"version", 1},  {"units", "mm"},
+              {"strategy", tp.strategy},      {"tool", tool_to_json(tp.tool)},
+              {"safe_z", tp.safe_z},          {"clearance_z", tp.clearance_z},
+              {"start", {tp.start.x(), tp.start.y(), tp.start.z()}},
+              {"passes", std::move(passes)}};
+}
+
+Toolpath toolpath_from_json(const json& doc, const std::string& where) {
+  if (!doc.is_object() || doc.value("format", "") != "rosmill-toolpath")
+    throw Error(where, "not a rosmill toolpath (field \"format\" must be \"rosmill-toolpath\")");
+  if (doc.value("units", "mm") != "mm") throw Error(where, "units must be \"mm\"");
+  Toolpath tp;
+  tp.strategy = doc.value("strategy", "");
+  tp.tool = tool_from_json(doc.value("tool", json()), where + ": tool");
+  tp.safe_z = number(doc, "safe_z", where);
+  tp.clearance_z = number(doc, "clearance_z", where);
+  tp.start = vec3(doc.value("start", json()), where + ": start");
+  const json& passes = doc.value("passes", json());
+  if (!passes.is_array()) throw Error(where, "field 'passes' missing or not an array");
+  for (size_t i = 0; i < passes.size(); ++i) {
+    const std::string pw = where + ": pass " + std::to_string(i);
+    ToolpathPass pass;
+    pass.name = passes[i].value("name", "");
+    const json& moves = passes[i].value("moves", json());
+    if (!moves.is_array()) throw Error(pw, "field 'moves' missing or not an array");
+    pass.moves.reserve(moves.size());
+    for (size_t k = 0; k < moves.size(); ++k) {
+      const std::string mw = pw + ", move " + std::to_string(k);
+      const json& m = moves[k];
+      if (!m.is_array() || m.size() != 5) throw Error(mw, "expected [x, y, z, type, feed]");
+      Move mv;
+      mv.to = vec3(m, mw);
+      if (!m[3].is_number_integer() || m[3].get<int>() < 0 || m[3].get<int>() > 2)
+        throw Error(mw, "move type must be 0 (rapid), 1 (feed) or 2 (plunge)");
+      mv.type = static_cast<MoveType>(m[3].get<int>());
+      if (!m[4].is_number() || !std::isfinite(m[4].get<double>()) || m[4].get<double>() < 0)
+        throw Error(mw, "feed must be a finite number >= 0");
+      mv.feed = m[4].get<double>();
+      if (mv.type != MoveType::Rapid && !(mv.feed > 0)) throw Error(mw, "a feed or plunge move needs a feed > 0");
+      pass.moves.push_back(mv);
+    }
+    tp.passes.push_back(std::move(pass));
+  }
+  return tp;
+}
+
+void write_toolpath_file(const std::string& path, const Toolpath& tp) {
+  std::ofstream out(path);
+  if (!out) throw Error(path, "cannot open for writing");
+  out << toolpath_to_json(tp).dump() << '\n';
+  if (!out) throw Error(path, "write failed");
+}
+
+Toolpath read_toolpath_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path, "cannot open toolpath file");
+  json doc;
+  try {
+    in >> doc;
+  } catch (const json::exception& e) {
+    throw Error(path, std::string("not valid JSON: ") + e.what());
+  }
+  return toolpath_from_json(doc, path);
+}
+
+}  // namespace rosmill
