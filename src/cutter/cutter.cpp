@@ -1,5 +1,12 @@
 #include "rosmill/cutter/cutter.hpp"
 
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <vector>
+
+#include "rosmill/error.hpp"
+
 namespace rosmill {
 
 const char* cutter_type_name(CutterType t) {
@@ -9,6 +16,38 @@ const char* cutter_type_name(CutterType t) {
     case CutterType::BullNose: return "bull";
   }
   return "flat";
+}
+
+namespace {
+
+double positive_number(const std::string& text, const std::string& where, const std::string& what) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v) || v <= 0)
+    throw Error(where, what + " '" + text + "' is not a positive number");
+  return v;
+}
+
+}  // namespace
+
+Cutter parse_cutter_spec(const std::string& spec, const std::string& where) {
+  std::vector<std::string> parts;
+  std::stringstream ss(spec);
+  for (std::string part; std::getline(ss, part, ':');) parts.push_back(part);
+  const std::string usage = " (expected ball:D, flat:D or bull:D:r)";
+  if (parts.empty()) throw Error(where, "empty cutter spec" + usage);
+  const std::string& type = parts[0];
+  if ((type == "ball" || type == "flat") && parts.size() == 2) {
+    const double d = positive_number(parts[1], where, "diameter");
+    return type == "ball" ? Cutter::ball(d) : Cutter::flat(d);
+  }
+  if (type == "bull" && parts.size() == 3) {
+    const double d = positive_number(parts[1], where, "diameter");
+    const double r = positive_number(parts[2], where, "corner radius");
+    if (r > 0.5 * d) throw Error(where, "corner radius " + parts[2] + " is larger than half the diameter " + parts[1]);
+    return Cutter::bull(d, r);
+  }
+  throw Error(where, "bad cutter spec '" + spec + "'" + usage);
 }
 
 }  // namespace rosmill

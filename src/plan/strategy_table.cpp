@@ -12,7 +12,7 @@ const std::vector<StrategyEntry>& strategies() {
   return table;
 }
 
-Toolpath plan(const std::string& name, const PlanInput& input, const PlanParams& params,
+Job plan(const std::string& name, const PlanInput& input, const PlanParams& params,
               const PlanProgress& progress) {
   for (const StrategyEntry& s : strategies()) {
     if (s.name != name) continue;

@@ -81,17 +81,14 @@ json toolpath_to_json(const Toolpath& tp) {
       moves.push_back(json::array({m.to.x(), m.to.y(), m.to.z(), static_cast<int>(m.type), m.feed}));
     passes.push_back(json{{"name", p.name}, {"moves", std::move(moves)}});
   }
-  return json{{"format", "rosmill-toolpath"}, {"version", 1},  {"units", "mm"},
-              {"strategy", tp.strategy},      {"tool", tool_to_json(tp.tool)},
+  return json{{"strategy", tp.strategy},      {"tool", tool_to_json(tp.tool)},
               {"safe_z", tp.safe_z},          {"clearance_z", tp.clearance_z},
               {"start", {tp.start.x(), tp.start.y(), tp.start.z()}},
               {"passes", std::move(passes)}};
 }
 
 Toolpath toolpath_from_json(const json& doc, const std::string& where) {
-  if (!doc.is_object() || doc.value("format", "") != "rosmill-toolpath")
-    throw Error(where, "not a rosmill toolpath (field \"format\" must be \"rosmill-toolpath\")");
-  if (doc.value("units", "mm") != "mm") throw Error(where, "units must be \"mm\"");
+  if (!doc.is_object()) throw Error(where, "toolpath is not an object");
   Toolpath tp;
   tp.strategy = doc.value("strategy", "");
   tp.tool = tool_from_json(doc.value("tool", json()), where + ": tool");
@@ -127,14 +124,17 @@ Toolpath toolpath_from_json(const json& doc, const std::string& where) {
   return tp;
 }
 
-void write_toolpath_file(const std::string& path, const Toolpath& tp) {
+void write_toolpath_file(const std::string& path, const std::vector<Toolpath>& job) {
+  json toolpaths = json::array();
+  for (const Toolpath& tp : job) toolpaths.push_back(toolpath_to_json(tp));
+  const json doc{{"format", "rosmill-toolpath"}, {"version", 1}, {"units", "mm"}, {"toolpaths", std::move(toolpaths)}};
   std::ofstream out(path);
   if (!out) throw Error(path, "cannot open for writing");
-  out << toolpath_to_json(tp).dump() << '\n';
+  out << doc.dump() << '\n';
   if (!out) throw Error(path, "write failed");
 }
 
-Toolpath read_toolpath_file(const std::string& path) {
+std::vector<Toolpath> read_toolpath_file(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw Error(path, "cannot open toolpath file");
   json doc;
@@ -143,7 +143,14 @@ Toolpath read_toolpath_file(const std::string& path) {
   } catch (const json::exception& e) {
     throw Error(path, std::string("not valid JSON: ") + e.what());
   }
-  return toolpath_from_json(doc, path);
+  if (!doc.is_object() || doc.value("format", "") != "rosmill-toolpath")
+    throw Error(path, "not a rosmill toolpath file (field \"format\" must be \"rosmill-toolpath\")");
+  if (doc.value("units", "mm") != "mm") throw Error(path, "units must be \"mm\"");
+  const json& list = doc.value("toolpaths", json());
+  if (!list.is_array() || list.empty()) throw Error(path, "field 'toolpaths' missing, empty or not an array");
+  std::vector<Toolpath> job;
+  for (size_t i = 0; i < list.size(); ++i) job.push_back(toolpath_from_json(list[i], path + ": toolpath " + std::to_string(i)));
+  return job;
 }
 
 }  // namespace rosmill

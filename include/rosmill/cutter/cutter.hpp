@@ -34,5 +34,8 @@ struct Tool {
 };
 
 const char* cutter_type_name(CutterType t);
+// Parses a cutter spec "ball:D", "flat:D" or "bull:D:r" (D diameter, r corner radius); throws Error naming
+// `where` on anything else (unknown type, missing or non-positive numbers, r > D/2).
+Cutter parse_cutter_spec(const std::string& spec, const std::string& where = "--tool");
 
 }  // namespace rosmill

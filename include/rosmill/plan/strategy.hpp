@@ -34,7 +34,9 @@ struct PlanParams {
 // Progress in [0, 1]; return false to cancel (the strategy then throws Error("plan", "cancelled")).
 using PlanProgress = std::function<bool(double fraction)>;
 
-using StrategyFunction = std::function<Toolpath(const PlanInput&, const PlanParams&, const PlanProgress&)>;
+// A job: one toolpath per tool, in machining order (most strategies return one; cloud-all returns three).
+using Job = std::vector<Toolpath>;
+using StrategyFunction = std::function<Job(const PlanInput&, const PlanParams&, const PlanProgress&)>;
 
 struct StrategyEntry {
   std::string name;
@@ -46,7 +48,7 @@ struct StrategyEntry {
 
 const std::vector<StrategyEntry>& strategies();
 // Throws Error listing the known names when `name` is unknown, or when the input kind does not fit.
-Toolpath plan(const std::string& name, const PlanInput& input, const PlanParams& params,
+Job plan(const std::string& name, const PlanInput& input, const PlanParams& params,
               const PlanProgress& progress = {});
 
 }  // namespace rosmill
