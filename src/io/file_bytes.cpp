@@ -6,6 +6,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
@@ -39,16 +40,25 @@ std::vector<char> read_stream(int fd, const std::string& path) {
   return bytes;
 }
 
+[[noreturn]] void throw_open_error(const std::string& path, int err) {
+  if (err == ENOENT) throw Error(path, "no such file");
+  throw Error(path, std::string("cannot open: ") + std::strerror(err));
+}
+
 }  // namespace
+
+void check_input_file(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw_open_error(path, errno);
+  if (S_ISDIR(st.st_mode)) throw Error(path, "is a directory, not a file");
+  if (::access(path.c_str(), R_OK) != 0) throw_open_error(path, errno);
+  if (S_ISREG(st.st_mode) && st.st_size == 0) throw Error(path, "empty file");
+}
 
 FileBytes::FileBytes(const std::string& path) {
   Fd file;
   file.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (file.fd < 0) {
-    const int err = errno;
-    if (err == ENOENT) throw Error(path, "no such file");
-    throw Error(path, std::string("cannot open: ") + std::strerror(err));
-  }
+  if (file.fd < 0) throw_open_error(path, errno);
   struct stat st {};
   if (::fstat(file.fd, &st) != 0) throw Error(path, std::string("cannot stat: ") + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) throw Error(path, "is a directory, not a file");

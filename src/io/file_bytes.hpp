@@ -28,6 +28,10 @@ class FileBytes {
   bool gzipped_ = false;
 };
 
+// Checks that path names a readable, non-empty file; throws Error naming it otherwise (for readers, like PCL's,
+// that open the file themselves and report problems poorly).
+void check_input_file(const std::string& path);
+
 // Inflates a gzip (or zlib) stream held in memory; `name` is used in error messages.
 std::vector<char> gunzip(const char* data, size_t size, const std::string& name);
 
