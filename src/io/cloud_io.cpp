@@ -27,15 +27,22 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-// "pcd" or "ply" from the file's first bytes, falling back on the extension.
-std::string cloud_format(const std::string& path) {
+// "pcd" or "ply" from the file's first bytes; empty when they are neither.
+std::string format_by_content(const std::string& path) {
   char head[16] = {};
   std::ifstream in(path, std::ios::binary);
   in.read(head, sizeof head);
   const std::string start(head, static_cast<size_t>(in.gcount()));
-  if (start.rfind("ply", 0) == 0) return "ply";
+  if (start.rfind("ply\n", 0) == 0 || start.rfind("ply\r\n", 0) == 0) return "ply";
   if (start.rfind("# .PCD", 0) == 0 || start.rfind("VERSION", 0) == 0 || start.rfind("FIELDS", 0) == 0)
     return "pcd";
+  return "";
+}
+
+// "pcd" or "ply" from the file's first bytes, falling back on the extension.
+std::string cloud_format(const std::string& path) {
+  const std::string by_content = format_by_content(path);
+  if (!by_content.empty()) return by_content;
   const std::string ext = lower_extension(path);
   if (ext == "pcd" || ext == "ply") return ext;
   throw Error(path, "not a point cloud file: neither PCD nor PLY (by content and extension)");
@@ -104,6 +111,8 @@ bool is_cloud_path(const std::string& path) {
   const std::string ext = lower_extension(path);
   return ext == "pcd" || ext == "ply";
 }
+
+bool is_cloud_file(const std::string& path) { return is_cloud_path(path) || !format_by_content(path).empty(); }
 
 PointCloud read_cloud(const std::string& path, const CloudReadOptions& options, CloudInfo* info) {
   io::check_input_file(path);

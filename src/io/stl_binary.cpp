@@ -1,4 +1,5 @@
 // Binary STL body: 50-byte records of little-endian float32 normal and corners, then a 16-bit attribute.
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
 
@@ -14,9 +15,10 @@ uint32_t binary_declared_count(const char* data) {
 }
 
 bool stored_normal_disagrees(const Vec3& stored, const Vec3& a, const Vec3& b, const Vec3& c) {
-  // Judged at 1 degree: exporters round normals to a few digits, and thin slivers' float corners give normals
-  // good to a fraction of a degree; a flipped or stale normal is far beyond that.
-  constexpr double kCosTolerance = 0.99984769515639;  // cos(1 degree)
+  // Judged at 10 degrees: exporters that write the CAD surface's normal at the facet differ from the flat
+  // facet's normal by a few degrees on curved faces (featuretype.STL: up to 4.7); a flipped, stale or garbage
+  // normal is far beyond that.
+  constexpr double kCosTolerance = 0.98480775301220802;  // cos(10 degrees)
   const double stored_len2 = stored.squaredNorm();
   if (!(stored_len2 > 0.0)) return !std::isfinite(stored_len2);  // zero: not stored; NaN: wrong
   const Vec3 n = (b - a).cross(c - a);
