@@ -53,7 +53,13 @@ class AsciiParser {
     while (q != end_ && !is_space(*q) && q - p_ < 20) ++q;
     return std::string(p_, q);
   }
-  std::string found() const { return p_ == end_ ? std::string("end of file (truncated?)") : "'" + next_word() + "'"; }
+  std::string found() const {
+    if (p_ == end_) return "the end of the file (truncated?)";
+    const std::string word = next_word();
+    // A word cut by the end of the file is the mark of a truncated file, not of a misspelling.
+    if (p_ + word.size() == end_) return "'" + word + "' at the end of the file (truncated?)";
+    return "'" + word + "'";
+  }
 
   // Consumes `word` (lower case) when it is the next word, in any case; leaves p_ otherwise.
   bool accept(const char* word) {

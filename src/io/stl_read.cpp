@@ -36,9 +36,13 @@ size_t checked_binary_count(const char* data, size_t size, const std::string& na
   const uint64_t count = io::binary_declared_count(data);
   const uint64_t needed = kStlBinaryPrefix + kStlRecordBytes * count;
   if (count == 0) throw Error(name, "binary STL declares zero triangles (no geometry)");
-  if (needed > size)
-    throw Error(name, "truncated binary STL: the header declares " + std::to_string(count) + " triangles (" +
-                          size_text(needed) + ") but the file has " + size_text(size));
+  if (needed > size) {
+    const std::string sizes = "the header's triangle count " + std::to_string(count) + " needs " +
+                              size_text(needed) + ", the file has " + size_text(size);
+    // Far beyond the file: the count field is not a count, the file is not STL at all.
+    if (needed / 16 > size) throw Error(name, "not an STL file, or a binary STL with a corrupt header: " + sizes);
+    throw Error(name, "truncated binary STL: " + sizes);
+  }
   return static_cast<size_t>(count);
 }
 
