@@ -7,7 +7,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/slice/slicer.hpp"
-#include "slice_test_meshes.hpp"
+#include "test_slice_meshes.hpp"
 
 using namespace rosmill;
 using slice_test::box_corners;
