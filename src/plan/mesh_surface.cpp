@@ -127,7 +127,8 @@ Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint3
         if (t.zmax <= best) continue;
         const double dx = std::max({0.0, t.xmin - x, x - t.xmax});
         const double dy = std::max({0.0, t.ymin - y, y - t.ymax});
-        if (dx * dx + dy * dy > cp.R2) continue;
+        const double d2 = dx * dx + dy * dy;
+        if (d2 > cp.R2 || t.zmax - cp.height_sq(d2) <= best) continue;
         const double z = triangle_contact(cp, x, y, t);
         if (z > best) best = z, winner = i;
       }
