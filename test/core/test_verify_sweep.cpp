@@ -28,20 +28,20 @@ MachineProgram one_move(const SimMove& m, const Cutter& c) {
 void expect_matches_reference(const SimMove& m, const Cutter& c, double slack = 1e-4) {
   Cutter inner = c;
   inner.diameter -= 2e-6;
-  const GridSpec g = GridSpec::covering(Vec2(-12, -12), Vec2(12, 12), 0.4);
+  const GridSpec g = GridSpec::covering(Vec2(-12, -12), Vec2(12, 12), 0.5);
   Stock s = Stock::box(g, -50, 50);
   simulate(one_move(m, c), s);
   int cut = 0;
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
-      const double ref = lowest_bottom_reference(m, c, g.cx(i), g.cy(j), 4000);
+      const double ref = lowest_bottom_reference(m, c, g.cx(i), g.cy(j), 2000);
       const double got = s.top[g.index(i, j)];
       if (std::isinf(ref) || ref > 50) {
-        if (std::isinf(lowest_bottom_reference(m, inner, g.cx(i), g.cy(j), 4000)) && got < 50.0f) continue;
+        if (got < 50.0f && std::isinf(lowest_bottom_reference(m, inner, g.cx(i), g.cy(j), 2000))) continue;
         ASSERT_FLOAT_EQ(got, 50.0f) << i << "," << j;
         continue;
       }
-      if (got == 50.0f && std::isinf(lowest_bottom_reference(m, inner, g.cx(i), g.cy(j), 4000))) continue;
+      if (got == 50.0f && std::isinf(lowest_bottom_reference(m, inner, g.cx(i), g.cy(j), 2000))) continue;
       ++cut;
       ASSERT_LE(got, ref + slack) << std::setprecision(9) << cutter_type_name(c.type) << " cell " << i << "," << j;
       ASSERT_GE(got, ref - 0.02) << cutter_type_name(c.type) << " cell " << i << "," << j;
