@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 
 namespace rosmill::slice_detail {
@@ -58,31 +61,38 @@ void pair_fan(const Mesh& mesh, const MeshEdge& edge, const std::vector<uint32_t
   }
 }
 
+// Links of one manifold edge whose two faces differ; false when the edge needs the general fan pairing.
+bool link_manifold(const Mesh& mesh, uint32_t e, std::vector<uint32_t>& links) {
+  const MeshEdge& edge = mesh.edges[e];
+  const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
+  if (f0 == f1) return false;
+  uint32_t h0 = kNone, h1 = kNone;
+  for (uint32_t j = 0; j < 3; ++j) {
+    if (mesh.face_edges[f0][j] == e) h0 = 3 * f0 + j;
+    if (mesh.face_edges[f1][j] == e) h1 = 3 * f1 + j;
+  }
+  links[h0] = h1;
+  links[h1] = h0;
+  return true;
+}
+
 }  // namespace
 
 std::vector<uint32_t> build_edge_links(const Mesh& mesh) {
   std::vector<uint32_t> links(3 * mesh.faces.size(), kNone);
-  std::vector<uint32_t> half;
-  std::vector<Fan> fan;
-  for (uint32_t e = 0; e < mesh.edges.size(); ++e) {
-    const MeshEdge& edge = mesh.edges[e];
-    if (edge.a == edge.b || edge.face_count < 2) continue;
-    if (edge.face_count == 2) {
-      const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
-      if (f0 != f1) {
-        uint32_t h0 = kNone, h1 = kNone;
-        for (uint32_t j = 0; j < 3; ++j) {
-          if (mesh.face_edges[f0][j] == e) h0 = 3 * f0 + j;
-          if (mesh.face_edges[f1][j] == e) h1 = 3 * f1 + j;
-        }
-        links[h0] = h1;
-        links[h1] = h0;
-        continue;
-      }
-    }
-    collect_half_edges(mesh, e, half);
-    pair_fan(mesh, edge, half, links, fan);
-  }
+  // Each edge writes only its own half-edges' links, so edges are linked in parallel.
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(mesh.edges.size()), 16384),
+                    [&](const tbb::blocked_range<uint32_t>& r) {
+                      std::vector<uint32_t> half;
+                      std::vector<Fan> fan;
+                      for (uint32_t e = r.begin(); e < r.end(); ++e) {
+                        const MeshEdge& edge = mesh.edges[e];
+                        if (edge.a == edge.b || edge.face_count < 2) continue;
+                        if (edge.face_count == 2 && link_manifold(mesh, e, links)) continue;
+                        collect_half_edges(mesh, e, half);
+                        pair_fan(mesh, edge, half, links, fan);
+                      }
+                    });
   return links;
 }
 

@@ -110,9 +110,9 @@ FlatFaces flat_faces(const Mesh& mesh) {
 // Walks the section of one plane through the faces that cross it.
 class PlaneWalker {
  public:
-  PlaneWalker(const Mesh& mesh, const std::vector<uint32_t>& links, std::vector<uint32_t>& visited, uint32_t stamp,
-              PlaneRule rule)
-      : mesh_(mesh), links_(links), visited_(visited), stamp_(stamp), rule_(rule) {}
+  PlaneWalker(const Mesh& mesh, const std::vector<double>& vertex_z, const std::vector<uint32_t>& links,
+              std::vector<uint32_t>& visited, uint32_t stamp, PlaneRule rule)
+      : mesh_(mesh), z_(vertex_z), links_(links), visited_(visited), stamp_(stamp), rule_(rule) {}
 
   void run(const uint32_t* faces, size_t count, std::vector<Contour>& out) {
     for (size_t i = 0; i < count; ++i) {
@@ -125,12 +125,13 @@ class PlaneWalker {
 
  private:
   const Mesh& mesh_;
+  const std::vector<double>& z_;  // vertex heights alone: the side tests touch a third of the memory
   const std::vector<uint32_t>& links_;
   std::vector<uint32_t>& visited_;
   uint32_t stamp_;
   PlaneRule rule_;
 
-  bool above(uint32_t v) const { return rule_.above(mesh_.vertices[v].z()); }
+  bool above(uint32_t v) const { return rule_.above(z_[v]); }
 
   // The crossing corner of face f other than `entry` (corner i crosses when its two ends are on both sides).
   uint32_t other_crossing(uint32_t f, uint32_t entry) const {
@@ -229,6 +230,8 @@ std::vector<SliceLayer> slice_mesh(const Mesh& mesh, const std::vector<double>& 
     for (size_t j = 0; j < order.size(); ++j) layers[order[j]] = std::move(done[j]);
     return layers;
   }
+  std::vector<double> vertex_z(mesh.vertices.size());
+  tbb::parallel_for(size_t(0), vertex_z.size(), [&](size_t v) { vertex_z[v] = mesh.vertices[v].z(); });
   const PlaneBuckets buckets = bucket_faces(mesh, planes);
   const std::vector<uint32_t> links = build_edge_links(mesh);
   const FlatFaces flat = flat_faces(mesh);
@@ -239,7 +242,7 @@ std::vector<SliceLayer> slice_mesh(const Mesh& mesh, const std::vector<double>& 
     std::vector<uint32_t>& visited = visited_per_thread.local();
     for (size_t j = r.begin(); j < r.end(); ++j) {
       SliceLayer& layer = layers[j];
-      PlaneWalker walker(mesh, links, visited, uint32_t(j + 1), PlaneRule{planes[j], planes[j] <= zmin});
+      PlaneWalker walker(mesh, vertex_z, links, visited, uint32_t(j + 1), PlaneRule{planes[j], planes[j] <= zmin});
       walker.run(buckets.faces.data() + buckets.offsets[j], buckets.offsets[j + 1] - buckets.offsets[j],
                  layer.contours);
       slice_detail::orient_and_nest(layer.contours);

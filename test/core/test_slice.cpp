@@ -299,3 +299,24 @@ TEST(Slice, DatExportHasOneBlockPerContour) {
   EXPECT_EQ(rows, summarize(layers).points + 3);  // each closed contour repeats its first point
   EXPECT_THROW(write_slices_dat("/nonexistent/dir/x.dat", layers), Error);
 }
+
+TEST(Slice, WavyHeightFieldIsClosedAndNestedAtEveryPlane) {
+  const Mesh m = slice_test::wavy_solid(120, 200.0);
+  ASSERT_TRUE(m.closed());
+  EXPECT_EQ(m.bbox.max.z(), 17.5);
+  const auto layers = slice_mesh(m, planes_by_step(m, 0.5));
+  ASSERT_EQ(layers.size(), 35u);
+  for (const SliceLayer& l : layers) {
+    double net = 0.0;
+    for (const Contour& c : l.contours) {
+      EXPECT_TRUE(c.closed) << "z = " << l.z;
+      net += c.hole ? -c.area : c.area;
+      EXPECT_EQ(signed_area(c.points) > 0, !c.hole);
+    }
+    // Below the lowest valley (2.5) the section is the whole 200 x 200 square.
+    if (l.z < 2.5) {
+      EXPECT_NEAR(net, 40000.0, 1e-6) << "z = " << l.z;
+    }
+    EXPECT_LE(net, 40000.0 + 1e-6);
+  }
+}
