@@ -2,6 +2,7 @@
 #include "rosmill/segment/egi.hpp"
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "rosmill/error.hpp"
