@@ -1,1 +1,75 @@
-# The ROS layer: one conversion unit (src/ros/) and one executable per node (src/nodes/*.cpp).
+# The ROS layer: one conversion library (src/ros/), one executable per node (src/nodes/*.cpp), the rostest
+# nodes and launch files (test/ros/), and the ROS benchmark (bench/ros/). ROS headers stay out of rosmill_core.
+
+# --- rosmill_ros: the one place where core values become messages (mm <-> m).
+file(GLOB ROSMILL_ROS_SOURCES CONFIGURE_DEPENDS src/ros/*.cpp)
+add_library(rosmill_ros STATIC ${ROSMILL_ROS_SOURCES})
+target_include_directories(rosmill_ros PUBLIC include ${CATKIN_DEVEL_PREFIX}/include SYSTEM ${catkin_INCLUDE_DIRS})
+target_link_libraries(rosmill_ros PUBLIC rosmill_core ${catkin_LIBRARIES})
+add_dependencies(rosmill_ros ${PROJECT_NAME}_generate_messages_cpp)
+
+# --- nodes: src/nodes/<name>.cpp becomes devel/lib/rosmill/<name> (what rosrun and launch files find).
+# A node that wraps a capability still on its way to main is built once its core sources exist (keeps every
+# commit green while the capabilities land).
+set(ROSMILL_NODE_NEEDS_stl_loader src/io/stl*.cpp)
+set(ROSMILL_NODE_NEEDS_segmenter src/segment/*.cpp)
+set(ROSMILL_NODE_NEEDS_slicer src/slice/*.cpp)
+set(ROSMILL_NODE_NEEDS_gcode_bridge src/gcode/*.cpp src/control/*.cpp)
+set(ROSMILL_NODES "")
+file(GLOB ROSMILL_NODE_SOURCES CONFIGURE_DEPENDS src/nodes/*.cpp)
+foreach(node_source ${ROSMILL_NODE_SOURCES})
+  get_filename_component(node_name ${node_source} NAME_WE)
+  set(node_ready TRUE)
+  foreach(pattern ${ROSMILL_NODE_NEEDS_${node_name}})
+    file(GLOB node_core_sources CONFIGURE_DEPENDS ${pattern})
+    if(NOT node_core_sources)
+      message(STATUS "rosmill: node ${node_name} waits for ${pattern} in the core; not built")
+      set(node_ready FALSE)
+    endif()
+  endforeach()
+  if(NOT node_ready)
+    continue()
+  endif()
+  list(APPEND ROSMILL_NODES ${node_name})
+  add_executable(${node_name} ${node_source})
+  target_link_libraries(${node_name} PRIVATE rosmill_ros)
+  set_target_properties(${node_name} PROPERTIES
+    RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
+endforeach()
+
+# --- rostest: test/ros/*.cpp are test nodes (gtest inside a ROS graph), test/ros/*.test the launch files that
+# start the nodes under test with them. catkin registers each .test as a ctest test (_ctest_rosmill_rostest_...),
+# run through catkin's wrapper, whose exit code is the test result.
+if(CATKIN_ENABLE_TESTING)
+  file(GLOB ROSMILL_ROSTEST_NODES CONFIGURE_DEPENDS test/ros/*.cpp)
+  foreach(test_source ${ROSMILL_ROSTEST_NODES})
+    get_filename_component(test_name ${test_source} NAME_WE)
+    add_executable(${test_name} ${test_source})
+    target_link_libraries(${test_name} PRIVATE rosmill_ros GTest::gtest)
+    target_compile_definitions(${test_name} PRIVATE ${ROSMILL_TEST_DEFS})
+    set_target_properties(${test_name} PROPERTIES
+      RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
+  endforeach()
+  file(GLOB ROSMILL_ROSTESTS CONFIGURE_DEPENDS test/ros/*.test)
+  foreach(rostest_file ${ROSMILL_ROSTESTS})
+    add_rostest(${rostest_file})
+  endforeach()
+  get_property(rosmill_all_tests DIRECTORY PROPERTY TESTS)
+  foreach(t ${rosmill_all_tests})
+    if(t MATCHES "^_ctest_rosmill_rostest_")
+      # Node output reaches the log at once; results and logs stay in the build folder; localhost resolves.
+      set_tests_properties(${t} PROPERTIES TIMEOUT 180 ENVIRONMENT
+        "ROS_HOME=${CMAKE_BINARY_DIR}/ros_home;ROS_HOSTNAME=localhost;ROSCONSOLE_STDOUT_LINE_BUFFERED=1;ROS_LOG_DIR=${CMAKE_BINARY_DIR}/ros_home/log")
+    endif()
+  endforeach()
+endif()
+
+# --- benchmark: bench/ros/*.cpp, ROS programs (bench/*.cpp links only the core).
+file(GLOB ROSMILL_ROS_BENCHES CONFIGURE_DEPENDS bench/ros/*.cpp)
+foreach(bench_source ${ROSMILL_ROS_BENCHES})
+  get_filename_component(bench_name ${bench_source} NAME_WE)
+  add_executable(bench_ros_${bench_name} ${bench_source})
+  set_target_properties(bench_ros_${bench_name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/bench)
+  target_link_libraries(bench_ros_${bench_name} PRIVATE rosmill_ros)
+  target_compile_definitions(bench_ros_${bench_name} PRIVATE ${ROSMILL_TEST_DEFS})
+endforeach()

@@ -1,0 +1,65 @@
+// The ROS edge: the ONE place where core values (millimetres, mm/min) become messages (metres, m/s, radians;
+// REP 103) and back. Nodes never scale a number themselves; they call these functions.
+//
+// Message types carry the suffix Msg (rosmill::ToolpathMsg) because catkin generates them into the package's
+// namespace, `rosmill`, where the core's own rosmill::Toolpath, rosmill::Tool, ... already live.
+#pragma once
+#include <geometry_msgs/Point.h>
+#include <geometry_msgs/Vector3.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <shape_msgs/Mesh.h>
+
+#include <Eigen/Geometry>
+#include <string>
+
+#include "rosmill/PlanParametersMsg.h"
+#include "rosmill/PlanStatisticsMsg.h"
+#include "rosmill/ToolMsg.h"
+#include "rosmill/ToolpathJobMsg.h"
+#include "rosmill/ToolpathMsg.h"
+#include "rosmill/geometry/mesh.hpp"
+#include "rosmill/geometry/point_cloud.hpp"
+#include "rosmill/plan/strategy.hpp"
+#include "rosmill/plan/toolpath.hpp"
+#include "rosmill/ros/setup_frame.hpp"
+
+namespace rosmill::edge {
+
+constexpr double kMetrePerMm = 1e-3;
+constexpr double kMmPerMetre = 1e3;
+constexpr double kMetrePerSecondPerMmPerMinute = 1e-3 / 60.0;  // feeds: mm/min -> m/s
+
+geometry_msgs::Point to_point_msg(const Vec3& mm);
+Vec3 from_point_msg(const geometry_msgs::Point& m);           // -> mm
+geometry_msgs::Vector3 to_direction_msg(const Vec3& unitless);
+Vec3 from_direction_msg(const geometry_msgs::Vector3& v);
+double to_metres(double mm);
+double to_mm(double metres);
+
+// Mesh (mm) <-> shape_msgs/Mesh (m). The message keeps the welded vertices and the face order, so a facet index
+// means the same facet on both sides (SegmentationMsg.facet_labels relies on it).
+shape_msgs::Mesh to_mesh_msg(const Mesh& mesh);
+Mesh from_mesh_msg(const shape_msgs::Mesh& msg, const std::string& where = "mesh message");
+
+// PointCloud2 (m, any frame) -> PointCloud (mm) after `to_target` (a rigid transform in metres). NaN and infinite
+// points are dropped. Needs float32 or float64 fields x, y, z; throws Error(where) otherwise.
+PointCloud from_cloud_msg(const sensor_msgs::PointCloud2& msg,
+                          const Eigen::Isometry3d& to_target = Eigen::Isometry3d::Identity(),
+                          const std::string& where = "cloud message");
+// PointCloud (mm) -> PointCloud2 (m, float32 x y z, dense): recorded bags and benchmarks.
+sensor_msgs::PointCloud2 to_cloud_msg(const PointCloud& cloud, const std::string& frame_id);
+
+ToolMsg to_tool_msg(const Tool& tool);
+Tool from_tool_msg(const ToolMsg& msg, const std::string& where = "tool");
+
+// Toolpath (mm, setup frame) <-> message. The setup names the frame the positions are in (see ToolpathMsg).
+ToolpathMsg to_toolpath_msg(const Toolpath& tp, const SetupFrame& setup);
+Toolpath from_toolpath_msg(const ToolpathMsg& msg, const std::string& where = "toolpath message");
+ToolpathJobMsg to_job_msg(const Job& job, const SetupFrame& setup, const std_msgs::Header& header);
+Job from_job_msg(const ToolpathJobMsg& msg);
+
+// Planning parameters of a request on top of the tool's; throws Error naming the bad field.
+PlanParams from_plan_parameters(const PlanParametersMsg& msg, const Tool& tool, const PlanParams& defaults);
+PlanStatisticsMsg to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed_mm_per_min);
+
+}  // namespace rosmill::edge

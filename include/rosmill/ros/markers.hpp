@@ -1,0 +1,31 @@
+// rviz views of core data, in metres, built by the conversion unit (the nodes only publish them).
+#pragma once
+#include <std_msgs/ColorRGBA.h>
+#include <std_msgs/Header.h>
+#include <visualization_msgs/Marker.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "rosmill/geometry/mesh.hpp"
+#include "rosmill/plan/strategy.hpp"
+#include "rosmill/ros/setup_frame.hpp"
+
+namespace rosmill::edge {
+
+std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f);
+// The colour of a move type in every view: rapid red, feed green, plunge blue.
+std_msgs::ColorRGBA move_colour(MoveType t);
+// A distinct colour per label (golden-ratio hues), for patches.
+std_msgs::ColorRGBA label_colour(uint32_t label);
+
+// The part as one TRIANGLE_LIST in the workpiece frame (grey unless `colour` is given).
+visualization_msgs::Marker mesh_marker(const Mesh& mesh, const std_msgs::Header& header, const std::string& ns,
+                                       const std_msgs::ColorRGBA& colour);
+
+// A job in rviz: one LINE_STRIP per pass in its own namespace "<toolpath index>/<pass name>" so each can be hidden;
+// each segment takes the colour of its move type (the vertex is doubled where the type changes, so colours do not
+// blend); a CYLINDER for the tool at the toolpath's start. Positions are rotated from the setup frame back into the
+// workpiece frame so the path is drawn around the part as it sits. Starts with a DELETEALL so older views vanish.
+visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
+                                                 const std_msgs::Header& header);
+
+}  // namespace rosmill::edge

@@ -1,0 +1,29 @@
+// Reading node parameters with validation: a missing value takes its default, a value of the wrong type or out of
+// range is a rosmill::Error naming the parameter (the node prints it and exits at start-up).
+#pragma once
+#include <ros/node_handle.h>
+
+#include <string>
+#include <vector>
+
+#include "rosmill/cutter/cutter.hpp"
+#include "rosmill/plan/strategy.hpp"
+
+namespace rosmill::edge {
+
+std::string string_param(const ::ros::NodeHandle& nh, const std::string& name, const std::string& fallback);
+bool bool_param(const ::ros::NodeHandle& nh, const std::string& name, bool fallback);
+// Numbers must lie in [min, max]; an integer given for a double is accepted.
+double double_param(const ::ros::NodeHandle& nh, const std::string& name, double fallback, double min, double max);
+int int_param(const ::ros::NodeHandle& nh, const std::string& name, int fallback, int min, int max);
+
+// The tool table of the node's `tools` parameter: a list of maps
+//   {id: 1, name: "...", cutter: "ball:6", feed: 1200, plunge_feed: 300, spindle_rpm: 12000, stepover: 1, stepdown: 2}
+// (millimetres and mm/min, as a tool table is written). Throws Error naming the entry and field.
+std::vector<Tool> tool_table_param(const ::ros::NodeHandle& nh, const std::string& name);
+const Tool& find_tool(const std::vector<Tool>& tools, int id);
+
+// The planner defaults of the `planner/*` parameters (millimetres).
+PlanParams plan_defaults_param(const ::ros::NodeHandle& nh);
+
+}  // namespace rosmill::edge

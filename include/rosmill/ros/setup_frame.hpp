@@ -1,0 +1,34 @@
+// A machining setup as the ROS layer sees it: the tool axis in the workpiece frame and the rotation that turns it
+// onto +Z (planning happens with the tool pointing down the machine's Z, DESIGN.md "Frames"). No ROS headers here.
+#pragma once
+#include <Eigen/Geometry>
+#include <string>
+
+#include "rosmill/geometry/mesh.hpp"
+#include "rosmill/geometry/point_cloud.hpp"
+
+namespace rosmill::edge {
+
+struct SetupFrame {
+  std::string name;                 // "+Z", "-X", ... or "custom"
+  Vec3 tool_axis = Vec3::UnitZ();   // unit, from the tool tip towards the spindle, in the workpiece frame
+  // Workpiece frame -> setup frame (tool_axis becomes +Z). Planning works in the setup frame.
+  Eigen::Quaterniond to_setup = Eigen::Quaterniond::Identity();
+
+  Vec3 to_setup_frame(const Vec3& p) const { return to_setup * p; }
+  Vec3 to_workpiece_frame(const Vec3& p) const { return to_setup.conjugate() * p; }
+  bool identity() const { return to_setup.angularDistance(Eigen::Quaterniond::Identity()) < 1e-12; }
+};
+
+// "+Z", "-Z", "+X", "-X", "+Y", "-Y" (case-insensitive, "Z" means "+Z"); throws Error(where) on anything else.
+SetupFrame named_setup(const std::string& name, const std::string& where = "setup");
+// A tool direction; throws Error(where) when it is not finite or has (near) zero length.
+SetupFrame direction_setup(const Vec3& direction, const std::string& where = "direction");
+// The setup named, or, when name is empty, the one of `direction`.
+SetupFrame resolve_setup(const std::string& name, const Vec3& direction);
+
+// Copies rotated into the setup frame (returned unchanged when the setup is +Z).
+Mesh mesh_in_setup(const Mesh& mesh, const SetupFrame& setup);
+PointCloud cloud_in_setup(const PointCloud& cloud, const SetupFrame& setup);
+
+}  // namespace rosmill::edge

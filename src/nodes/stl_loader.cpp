@@ -1,0 +1,96 @@
+// stl_loader: reads an STL part (the `path` parameter at start-up, or the load_mesh service at any time) and
+// publishes it latched as shape_msgs/Mesh on `mesh` (metres, frame `frame_id`) and as a marker on `mesh_marker`.
+// A path "primitive:<name>" loads a seed primitive (cube, cylinder, dome, cone, cavity).
+#include <ros/ros.h>
+#include <shape_msgs/Mesh.h>
+#include <visualization_msgs/Marker.h>
+
+#include "rosmill/LoadMesh.h"
+#include "rosmill/error.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/markers.hpp"
+#include "rosmill/ros/params.hpp"
+
+namespace rosmill::edge {
+namespace {
+
+class StlLoader {
+ public:
+  StlLoader(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
+      : frame_id_(string_param(pnh, "frame_id", "workpiece")),
+        units_(string_param(pnh, "units", "mm")),
+        weld_tolerance_(double_param(pnh, "weld_tolerance", 0.0, 0.0, 1.0)) {
+    parse_units(units_, "parameter units");  // validate now, not at the first load
+    mesh_pub_ = nh.advertise<shape_msgs::Mesh>("mesh", 1, true);
+    marker_pub_ = nh.advertise<visualization_msgs::Marker>("mesh_marker", 1, true);
+    service_ = nh.advertiseService("load_mesh", &StlLoader::on_load, this);
+    const std::string path = string_param(pnh, "path", "");
+    if (!path.empty()) load(path, units_, frame_id_);  // a bad start-up file ends the node with the reason
+  }
+
+ private:
+  // Loads and publishes; returns the mesh for the reply. Throws Error on a bad file or unit.
+  Mesh load(const std::string& path, const std::string& units, const std::string& frame) {
+    const ::ros::WallTime t0 = ::ros::WallTime::now();
+    Mesh mesh;
+    const std::string prefix = "primitive:";
+    if (path.rfind(prefix, 0) == 0) {
+      mesh = make_primitive(path.substr(prefix.size()));
+    } else {
+      StlReadOptions options;
+      options.units = parse_units(units, "units");
+      options.weld.tolerance = weld_tolerance_;
+      mesh = read_stl(path, options);
+    }
+    if (mesh.faces.empty()) throw Error(path, "holds no triangles");
+    std_msgs::Header header;
+    header.frame_id = frame;
+    header.stamp = ::ros::Time::now();
+    mesh_pub_.publish(to_mesh_msg(mesh));
+    marker_pub_.publish(mesh_marker(mesh, header, "part", rgba(0.7f, 0.7f, 0.75f, 1.0f)));
+    ROS_INFO("stl_loader: %s: %zu triangles, %zu vertices, in %.3f s", path.c_str(), mesh.faces.size(),
+             mesh.vertices.size(), (::ros::WallTime::now() - t0).toSec());
+    return mesh;
+  }
+
+  bool on_load(LoadMesh::Request& req, LoadMesh::Response& res) {
+    try {
+      const Mesh mesh = load(req.path, req.units.empty() ? units_ : req.units,
+                             req.frame_id.empty() ? frame_id_ : req.frame_id);
+      res.success = true;
+      res.triangles = mesh.faces.size();
+      res.bounds_min = to_point_msg(mesh.bbox.min);
+      res.bounds_max = to_point_msg(mesh.bbox.max);
+      res.message = "loaded " + std::to_string(res.triangles) + " triangles";
+    } catch (const std::exception& e) {  // rosmill::Error and allocation failures alike: the node stays up
+      res.success = false;
+      res.message = e.what();
+      ROS_WARN("stl_loader: %s", e.what());
+    }
+    return true;
+  }
+
+  std::string frame_id_;
+  std::string units_;
+  double weld_tolerance_;
+  ::ros::Publisher mesh_pub_, marker_pub_;
+  ::ros::ServiceServer service_;
+};
+
+}  // namespace
+}  // namespace rosmill::edge
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "stl_loader");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    rosmill::edge::StlLoader node(nh, pnh);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("stl_loader: %s", e.what());
+    return 1;
+  }
+  return 0;
+}

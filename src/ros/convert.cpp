@@ -1,0 +1,332 @@
+#include "rosmill/ros/convert.hpp"
+
+#include <sensor_msgs/point_cloud2_iterator.h>
+
+#include <cmath>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill::edge {
+
+double to_metres(double mm) { return mm * kMetrePerMm; }
+double to_mm(double metres) { return metres * kMmPerMetre; }
+
+geometry_msgs::Point to_point_msg(const Vec3& mm) {
+  geometry_msgs::Point p;
+  p.x = to_metres(mm.x());
+  p.y = to_metres(mm.y());
+  p.z = to_metres(mm.z());
+  return p;
+}
+
+Vec3 from_point_msg(const geometry_msgs::Point& m) { return {to_mm(m.x), to_mm(m.y), to_mm(m.z)}; }
+
+geometry_msgs::Vector3 to_direction_msg(const Vec3& v) {
+  geometry_msgs::Vector3 m;
+  m.x = v.x();
+  m.y = v.y();
+  m.z = v.z();
+  return m;
+}
+
+Vec3 from_direction_msg(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
+
+// ---------------------------------------------------------------------------------------------------- meshes
+
+shape_msgs::Mesh to_mesh_msg(const Mesh& mesh) {
+  shape_msgs::Mesh msg;
+  msg.vertices.reserve(mesh.vertices.size());
+  for (const Vec3& v : mesh.vertices) msg.vertices.push_back(to_point_msg(v));
+  msg.triangles.resize(mesh.faces.size());
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) msg.triangles[f].vertex_indices[i] = mesh.faces[f][i];
+  return msg;
+}
+
+Mesh from_mesh_msg(const shape_msgs::Mesh& msg, const std::string& where) {
+  std::vector<Vec3> vertices;
+  vertices.reserve(msg.vertices.size());
+  for (size_t i = 0; i < msg.vertices.size(); ++i) {
+    const Vec3 v = from_point_msg(msg.vertices[i]);
+    if (!v.allFinite()) throw Error(where, "vertex " + std::to_string(i) + " is not finite");
+    vertices.push_back(v);
+  }
+  std::vector<Vec3> corners;
+  corners.reserve(msg.triangles.size() * 3);
+  for (size_t f = 0; f < msg.triangles.size(); ++f)
+    for (uint32_t index : msg.triangles[f].vertex_indices) {
+      if (index >= vertices.size())
+        throw Error(where, "triangle " + std::to_string(f) + " uses vertex " + std::to_string(index) + " of " +
+                               std::to_string(vertices.size()));
+      corners.push_back(vertices[index]);
+    }
+  // Equal vertices scale to equal doubles, so an exact weld rebuilds the same vertices and faces in order.
+  return build_mesh(corners);
+}
+
+// ---------------------------------------------------------------------------------------------------- clouds
+
+namespace {
+
+const sensor_msgs::PointField* find_field(const sensor_msgs::PointCloud2& msg, const std::string& name) {
+  for (const auto& f : msg.fields)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+template <typename T>
+void read_points(const sensor_msgs::PointCloud2& msg, const Eigen::Isometry3d& to_target, PointCloud& out) {
+  sensor_msgs::PointCloud2ConstIterator<T> x(msg, "x"), y(msg, "y"), z(msg, "z");
+  const size_t n = size_t(msg.width) * msg.height;
+  out.points.reserve(n);
+  const Eigen::Matrix3d r = to_target.linear() * kMmPerMetre;
+  const Vec3 t = to_target.translation() * kMmPerMetre;
+  for (size_t i = 0; i < n; ++i, ++x, ++y, ++z) {
+    const Vec3 p{double(*x), double(*y), double(*z)};
+    if (p.allFinite()) out.points.push_back(r * p + t);
+  }
+}
+
+}  // namespace
+
+PointCloud from_cloud_msg(const sensor_msgs::PointCloud2& msg, const Eigen::Isometry3d& to_target,
+                          const std::string& where) {
+  const sensor_msgs::PointField* fx = find_field(msg, "x");
+  const sensor_msgs::PointField* fy = find_field(msg, "y");
+  const sensor_msgs::PointField* fz = find_field(msg, "z");
+  if (!fx || !fy || !fz) throw Error(where, "has no x, y and z fields");
+  if (fx->datatype != fy->datatype || fx->datatype != fz->datatype)
+    throw Error(where, "x, y and z fields have different types");
+  const size_t n = size_t(msg.width) * msg.height;
+  if (msg.data.size() < n * msg.point_step)
+    throw Error(where, "holds " + std::to_string(msg.data.size()) + " bytes, " + std::to_string(n) + " points of " +
+                           std::to_string(msg.point_step) + " bytes need more");
+  PointCloud out;
+  if (fx->datatype == sensor_msgs::PointField::FLOAT32)
+    read_points<float>(msg, to_target, out);
+  else if (fx->datatype == sensor_msgs::PointField::FLOAT64)
+    read_points<double>(msg, to_target, out);
+  else
+    throw Error(where, "x, y, z must be float32 or float64 (datatype " + std::to_string(fx->datatype) + ")");
+  out.recompute_bbox();
+  return out;
+}
+
+sensor_msgs::PointCloud2 to_cloud_msg(const PointCloud& cloud, const std::string& frame_id) {
+  sensor_msgs::PointCloud2 msg;
+  msg.header.frame_id = frame_id;
+  sensor_msgs::PointCloud2Modifier modifier(msg);
+  modifier.setPointCloud2FieldsByString(1, "xyz");
+  modifier.resize(cloud.points.size());
+  sensor_msgs::PointCloud2Iterator<float> x(msg, "x"), y(msg, "y"), z(msg, "z");
+  for (const Vec3& p : cloud.points) {
+    *x = float(to_metres(p.x()));
+    *y = float(to_metres(p.y()));
+    *z = float(to_metres(p.z()));
+    ++x, ++y, ++z;
+  }
+  msg.is_dense = true;
+  return msg;
+}
+
+// ---------------------------------------------------------------------------------------------------- tools
+
+ToolMsg to_tool_msg(const Tool& tool) {
+  ToolMsg m;
+  m.id = tool.id;
+  m.name = tool.name;
+  switch (tool.cutter.type) {
+    case CutterType::FlatEnd: m.cutter_type = ToolMsg::FLAT_END; break;
+    case CutterType::BallEnd: m.cutter_type = ToolMsg::BALL_END; break;
+    case CutterType::BullNose: m.cutter_type = ToolMsg::BULL_NOSE; break;
+  }
+  m.diameter = to_metres(tool.cutter.diameter);
+  m.corner_radius = to_metres(tool.cutter.corner_radius);
+  m.flute_length = to_metres(tool.cutter.flute_length);
+  m.shank_diameter = to_metres(tool.cutter.shank_diameter);
+  m.spindle_rpm = tool.spindle_rpm;
+  m.feed_rate = tool.feed * kMetrePerSecondPerMmPerMinute;
+  m.plunge_rate = tool.plunge_feed * kMetrePerSecondPerMmPerMinute;
+  m.stepover = to_metres(tool.stepover);
+  m.stepdown = to_metres(tool.stepdown);
+  return m;
+}
+
+Tool from_tool_msg(const ToolMsg& m, const std::string& where) {
+  Tool t;
+  t.id = m.id;
+  t.name = m.name;
+  switch (m.cutter_type) {
+    case ToolMsg::FLAT_END: t.cutter.type = CutterType::FlatEnd; break;
+    case ToolMsg::BALL_END: t.cutter.type = CutterType::BallEnd; break;
+    case ToolMsg::BULL_NOSE: t.cutter.type = CutterType::BullNose; break;
+    default: throw Error(where, "unknown cutter_type " + std::to_string(m.cutter_type));
+  }
+  t.cutter.diameter = to_mm(m.diameter);
+  t.cutter.corner_radius = to_mm(m.corner_radius);
+  t.cutter.flute_length = to_mm(m.flute_length);
+  t.cutter.shank_diameter = to_mm(m.shank_diameter);
+  if (!(t.cutter.diameter > 0)) throw Error(where, "diameter must be positive");
+  t.spindle_rpm = m.spindle_rpm;
+  t.feed = m.feed_rate / kMetrePerSecondPerMmPerMinute;
+  t.plunge_feed = m.plunge_rate / kMetrePerSecondPerMmPerMinute;
+  t.stepover = to_mm(m.stepover);
+  t.stepdown = to_mm(m.stepdown);
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------------------- toolpaths
+
+namespace {
+
+uint8_t to_move_type_msg(MoveType t) {
+  switch (t) {
+    case MoveType::Rapid: return ToolpathMoveMsg::RAPID;
+    case MoveType::Feed: return ToolpathMoveMsg::FEED;
+    case MoveType::Plunge: return ToolpathMoveMsg::PLUNGE;
+  }
+  return ToolpathMoveMsg::FEED;
+}
+
+MoveType from_move_type_msg(uint8_t t, const std::string& where) {
+  switch (t) {
+    case ToolpathMoveMsg::RAPID: return MoveType::Rapid;
+    case ToolpathMoveMsg::FEED: return MoveType::Feed;
+    case ToolpathMoveMsg::PLUNGE: return MoveType::Plunge;
+  }
+  throw Error(where, "unknown move_type " + std::to_string(t));
+}
+
+geometry_msgs::Quaternion to_quaternion_msg(const Eigen::Quaterniond& q) {
+  geometry_msgs::Quaternion m;
+  m.x = q.x();
+  m.y = q.y();
+  m.z = q.z();
+  m.w = q.w();
+  return m;
+}
+
+}  // namespace
+
+ToolpathMsg to_toolpath_msg(const Toolpath& tp, const SetupFrame& setup) {
+  ToolpathMsg m;
+  m.strategy = tp.strategy;
+  m.setup = setup.name;
+  m.tool_axis = to_direction_msg(setup.tool_axis);
+  m.setup_rotation = to_quaternion_msg(setup.to_setup);
+  m.tool = to_tool_msg(tp.tool);
+  m.safe_z = to_metres(tp.safe_z);
+  m.clearance_z = to_metres(tp.clearance_z);
+  m.start = to_point_msg(tp.start);
+  m.passes.resize(tp.passes.size());
+  for (size_t p = 0; p < tp.passes.size(); ++p) {
+    const ToolpathPass& pass = tp.passes[p];
+    ToolpathPassMsg& out = m.passes[p];
+    out.name = pass.name;
+    out.moves.resize(pass.moves.size());
+    for (size_t i = 0; i < pass.moves.size(); ++i) {
+      out.moves[i].position = to_point_msg(pass.moves[i].to);
+      out.moves[i].move_type = to_move_type_msg(pass.moves[i].type);
+      out.moves[i].feed_rate = pass.moves[i].feed * kMetrePerSecondPerMmPerMinute;
+    }
+  }
+  return m;
+}
+
+Toolpath from_toolpath_msg(const ToolpathMsg& m, const std::string& where) {
+  Toolpath tp;
+  tp.strategy = m.strategy;
+  tp.tool = from_tool_msg(m.tool, where + " tool");
+  tp.safe_z = to_mm(m.safe_z);
+  tp.clearance_z = to_mm(m.clearance_z);
+  tp.start = from_point_msg(m.start);
+  tp.passes.resize(m.passes.size());
+  for (size_t p = 0; p < m.passes.size(); ++p) {
+    tp.passes[p].name = m.passes[p].name;
+    auto& moves = tp.passes[p].moves;
+    moves.resize(m.passes[p].moves.size());
+    for (size_t i = 0; i < moves.size(); ++i) {
+      const ToolpathMoveMsg& in = m.passes[p].moves[i];
+      const std::string at = where + " pass " + std::to_string(p) + " move " + std::to_string(i);
+      moves[i].to = from_point_msg(in.position);
+      if (!moves[i].to.allFinite()) throw Error(at, "position is not finite");
+      moves[i].type = from_move_type_msg(in.move_type, at);
+      moves[i].feed = in.feed_rate / kMetrePerSecondPerMmPerMinute;
+      if (moves[i].type != MoveType::Rapid && !(moves[i].feed > 0))
+        throw Error(at, "a feed or plunge move needs a positive feed_rate");
+    }
+  }
+  return tp;
+}
+
+ToolpathJobMsg to_job_msg(const Job& job, const SetupFrame& setup, const std_msgs::Header& header) {
+  ToolpathJobMsg m;
+  m.header = header;
+  m.toolpaths.reserve(job.size());
+  for (const Toolpath& tp : job) {
+    m.toolpaths.push_back(to_toolpath_msg(tp, setup));
+    m.toolpaths.back().header = header;
+  }
+  return m;
+}
+
+Job from_job_msg(const ToolpathJobMsg& m) {
+  Job job;
+  for (size_t i = 0; i < m.toolpaths.size(); ++i)
+    job.push_back(from_toolpath_msg(m.toolpaths[i], "toolpath " + std::to_string(i)));
+  return job;
+}
+
+// ---------------------------------------------------------------------------------------------------- planning
+
+namespace {
+
+// A length field: 0 or NaN keeps `fallback` (mm); negative or infinite is an error naming the field.
+double length_field(double metres, double fallback, const char* field, bool allow_zero_value) {
+  if (std::isnan(metres) || (metres == 0.0 && !allow_zero_value)) return fallback;
+  if (!std::isfinite(metres) || metres < 0)
+    throw Error(std::string("parameters.") + field, "must be a finite length >= 0 m, got " + std::to_string(metres));
+  return to_mm(metres);
+}
+
+}  // namespace
+
+PlanParams from_plan_parameters(const PlanParametersMsg& m, const Tool& tool, const PlanParams& defaults) {
+  PlanParams p = defaults;
+  p.tool = tool;
+  p.stepover = length_field(m.stepover, defaults.stepover, "stepover", false);
+  p.stepdown = length_field(m.stepdown, defaults.stepdown, "stepdown", false);
+  p.allowance = length_field(m.allowance, defaults.allowance, "allowance", true);
+  p.tolerance = length_field(m.tolerance, defaults.tolerance, "tolerance", false);
+  p.stock_margin = length_field(m.stock_margin, defaults.stock_margin, "stock_margin", false);
+  p.safe_clearance = length_field(m.safe_clearance, defaults.safe_clearance, "safe_clearance", false);
+  if (!std::isfinite(m.angle)) throw Error("parameters.angle", "must be a finite angle in radians");
+  p.angle_deg = m.angle == 0.0 ? defaults.angle_deg : m.angle * 180.0 / M_PI;
+  if (!std::isnan(p.stepover) && p.stepover > tool.cutter.diameter)
+    throw Error("parameters.stepover", "is larger than the tool diameter (" +
+                                           std::to_string(to_metres(tool.cutter.diameter)) + " m)");
+  return p;
+}
+
+PlanStatisticsMsg to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed) {
+  PlanStatisticsMsg s;
+  Box3 box;
+  for (const Toolpath& tp : job) {
+    const ToolpathStats st = toolpath_stats(tp, rapid_feed);
+    s.toolpaths += 1;
+    s.passes += tp.passes.size();
+    s.moves += st.moves;
+    s.cutting_length += to_metres(st.cutting_length);
+    s.rapid_length += to_metres(st.rapid_length);
+    s.estimated_duration += st.estimated_seconds;
+    box.add(tp.bounds());
+  }
+  s.planning_time = planning_seconds;
+  if (!box.empty()) {
+    s.bounds_min = to_point_msg(box.min);
+    s.bounds_max = to_point_msg(box.max);
+  }
+  return s;
+}
+
+}  // namespace rosmill::edge

@@ -1,0 +1,142 @@
+#include "rosmill/ros/markers.hpp"
+
+#include <cmath>
+
+#include "rosmill/ros/convert.hpp"
+
+namespace rosmill::edge {
+
+std_msgs::ColorRGBA rgba(float r, float g, float b, float a) {
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
+  return c;
+}
+
+std_msgs::ColorRGBA move_colour(MoveType t) {
+  switch (t) {
+    case MoveType::Rapid: return rgba(1.0f, 0.1f, 0.1f);
+    case MoveType::Feed: return rgba(0.1f, 0.9f, 0.1f);
+    case MoveType::Plunge: return rgba(0.2f, 0.3f, 1.0f);
+  }
+  return rgba(1, 1, 1);
+}
+
+std_msgs::ColorRGBA label_colour(uint32_t label) {
+  // Hue steps of the golden ratio keep neighbouring labels far apart on the colour wheel.
+  const double h = std::fmod(0.1 + label * 0.618033988749895, 1.0) * 6.0;
+  const double x = 1.0 - std::fabs(std::fmod(h, 2.0) - 1.0);
+  const float s = 0.85f, v = 0.95f, c = s * v, m = v - c;
+  float r = 0, g = 0, b = 0;
+  switch (int(h)) {
+    case 0: r = c, g = c * x; break;
+    case 1: r = c * x, g = c; break;
+    case 2: g = c, b = c * x; break;
+    case 3: g = c * x, b = c; break;
+    case 4: r = c * x, b = c; break;
+    default: r = c, b = c * x; break;
+  }
+  return rgba(r + m, g + m, b + m);
+}
+
+namespace {
+
+visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std::string& ns, int id, int type) {
+  visualization_msgs::Marker m;
+  m.header = header;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.scale.x = m.scale.y = m.scale.z = 1.0;
+  return m;
+}
+
+}  // namespace
+
+visualization_msgs::Marker mesh_marker(const Mesh& mesh, const std_msgs::Header& header, const std::string& ns,
+                                       const std_msgs::ColorRGBA& colour) {
+  visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::TRIANGLE_LIST);
+  m.color = colour;
+  m.points.reserve(mesh.faces.size() * 3);
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (mesh.areas[f] <= 0) continue;  // degenerate: nothing to draw
+    for (int i = 0; i < 3; ++i) m.points.push_back(to_point_msg(mesh.corner(f, i)));
+  }
+  return m;
+}
+
+namespace {
+
+void add_vertex(visualization_msgs::Marker& strip, const Vec3& p, const std_msgs::ColorRGBA& c) {
+  strip.points.push_back(to_point_msg(p));
+  strip.colors.push_back(c);
+}
+
+visualization_msgs::Marker pass_marker(const ToolpathPass& pass, Vec3 at, const SetupFrame& setup,
+                                       const std_msgs::Header& header, const std::string& ns) {
+  visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::LINE_STRIP);
+  m.scale.x = 0.0004;  // line width, m
+  m.color = rgba(1, 1, 1);
+  m.points.reserve(pass.moves.size() + 8);
+  m.colors.reserve(pass.moves.size() + 8);
+  bool first = true;
+  MoveType current = MoveType::Feed;
+  for (const Move& move : pass.moves) {
+    const std_msgs::ColorRGBA c = move_colour(move.type);
+    if (first || move.type != current) add_vertex(m, setup.to_workpiece_frame(at), c);  // colour switch point
+    add_vertex(m, setup.to_workpiece_frame(move.to), c);
+    at = move.to;
+    current = move.type;
+    first = false;
+  }
+  return m;
+}
+
+visualization_msgs::Marker tool_marker(const Toolpath& tp, const SetupFrame& setup, const std_msgs::Header& header,
+                                       const std::string& ns) {
+  visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::CYLINDER);
+  const double length = tp.tool.cutter.flute_length > 0 ? tp.tool.cutter.flute_length : 4 * tp.tool.cutter.diameter;
+  // The cylinder's centre sits half a flute above the tip; its axis is the setup's tool axis.
+  const Vec3 centre = setup.to_workpiece_frame(tp.start + Vec3(0, 0, 0.5 * length));
+  m.pose.position = to_point_msg(centre);
+  const Eigen::Quaterniond q = setup.to_setup.conjugate();
+  m.pose.orientation.x = q.x();
+  m.pose.orientation.y = q.y();
+  m.pose.orientation.z = q.z();
+  m.pose.orientation.w = q.w();
+  m.scale.x = m.scale.y = to_metres(tp.tool.cutter.diameter);
+  m.scale.z = to_metres(length);
+  m.color = rgba(0.8f, 0.8f, 0.2f, 0.8f);
+  return m;
+}
+
+}  // namespace
+
+visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
+                                                 const std_msgs::Header& header) {
+  visualization_msgs::MarkerArray array;
+  visualization_msgs::Marker clear;
+  clear.header = header;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  array.markers.push_back(clear);
+  for (size_t t = 0; t < job.size(); ++t) {
+    const Toolpath& tp = job[t];
+    const std::string prefix = "toolpath" + std::to_string(t) + "/";
+    Vec3 at = tp.start;
+    for (size_t p = 0; p < tp.passes.size(); ++p) {
+      const ToolpathPass& pass = tp.passes[p];
+      if (pass.moves.empty()) continue;
+      const std::string name = pass.name.empty() ? "pass" + std::to_string(p) : pass.name;
+      array.markers.push_back(pass_marker(pass, at, setup, header, prefix + std::to_string(p) + "_" + name));
+      at = pass.moves.back().to;
+    }
+    array.markers.push_back(tool_marker(tp, setup, header, prefix + "tool"));
+  }
+  return array;
+}
+
+}  // namespace rosmill::edge

@@ -1,0 +1,65 @@
+#include "rosmill/ros/setup_frame.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill::edge {
+
+SetupFrame direction_setup(const Vec3& direction, const std::string& where) {
+  if (!direction.allFinite() || direction.norm() < 1e-9)
+    throw Error(where, "the tool direction must be a finite non-zero vector");
+  SetupFrame s;
+  s.name = "custom";
+  s.tool_axis = direction.normalized();
+  // The shortest rotation taking the tool axis onto +Z: a part fixtured for that setup, seen by the machine.
+  s.to_setup = Eigen::Quaterniond::FromTwoVectors(s.tool_axis, Vec3::UnitZ());
+  return s;
+}
+
+SetupFrame named_setup(const std::string& name, const std::string& where) {
+  std::string n = name;
+  std::transform(n.begin(), n.end(), n.begin(), [](unsigned char c) { return std::toupper(c); });
+  if (n.size() == 1) n = "+" + n;
+  Vec3 axis;
+  if (n.size() != 2 || (n[0] != '+' && n[0] != '-'))
+    throw Error(where, "unknown setup '" + name + "' (expected +Z, -Z, +X, -X, +Y or -Y, or a direction)");
+  const double sign = n[0] == '+' ? 1.0 : -1.0;
+  switch (n[1]) {
+    case 'X': axis = sign * Vec3::UnitX(); break;
+    case 'Y': axis = sign * Vec3::UnitY(); break;
+    case 'Z': axis = sign * Vec3::UnitZ(); break;
+    default: throw Error(where, "unknown setup '" + name + "' (expected +Z, -Z, +X, -X, +Y or -Y, or a direction)");
+  }
+  SetupFrame s = direction_setup(axis, where);
+  if (n == "-Z") s.to_setup = Eigen::AngleAxisd(M_PI, Vec3::UnitX());  // a defined flip, not an arbitrary axis
+  s.name = n;
+  return s;
+}
+
+SetupFrame resolve_setup(const std::string& name, const Vec3& direction) {
+  return name.empty() ? direction_setup(direction) : named_setup(name);
+}
+
+Mesh mesh_in_setup(const Mesh& mesh, const SetupFrame& setup) {
+  if (setup.identity()) return mesh;
+  std::vector<Vec3> corners;
+  corners.reserve(mesh.faces.size() * 3);
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) corners.push_back(setup.to_setup_frame(mesh.corner(f, i)));
+  return build_mesh(corners);
+}
+
+PointCloud cloud_in_setup(const PointCloud& cloud, const SetupFrame& setup) {
+  if (setup.identity()) return cloud;
+  PointCloud out;
+  out.points.reserve(cloud.points.size());
+  const Eigen::Matrix3d r = setup.to_setup.toRotationMatrix();
+  for (const Vec3& p : cloud.points) out.points.push_back(r * p);
+  out.recompute_bbox();
+  return out;
+}
+
+}  // namespace rosmill::edge
