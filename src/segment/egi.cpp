@@ -2,6 +2,7 @@
 #include "rosmill/segment/egi.hpp"
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <cmath>
 
 #include "rosmill/error.hpp"
@@ -50,7 +51,8 @@ uint32_t EgiBins::bin_of(const Vec3& n) const {
   const double polar = std::acos(std::clamp(n.z(), -1.0, 1.0));
   const int ring = std::min(rings_ - 1, int(polar / ring_step_));
   const uint32_t first = ring_first_[ring], sectors = ring_first_[ring + 1] - first;
-  const double azimuth = std::atan2(n.y(), n.x());  // [-pi, pi]
+  // + 0.0 folds -0 into +0: the normals of one flat face at a pole must not spread over the polar sectors.
+  const double azimuth = std::atan2(n.y() + 0.0, n.x() + 0.0);  // [-pi, pi]
   const uint32_t s = std::min(sectors - 1, uint32_t((azimuth + M_PI) / (2.0 * M_PI) * sectors));
   return first + s;
 }

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <random>
 
+#include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 
@@ -188,4 +190,173 @@ TEST(SegmentPhase1, ThresholdDecidesASmoothBody) {
   SegmentOptions strict;
   strict.small.min_area_fraction = 0.0;
   EXPECT_GT(segment_surface(m, strict).count(), 1u);
+}
+
+namespace {
+
+// Triangle a, b, c turned so that its normal points along `out`.
+void tri_out(std::vector<Vec3>& c, const Vec3& a, const Vec3& b, const Vec3& d, const Vec3& out) {
+  if ((b - a).cross(d - a).dot(out) >= 0)
+    tri(c, a, b, d);
+  else
+    tri(c, a, d, b);
+}
+
+// A 60 x 60 x 20 block whose top is a fan of 2,400 needles (aspect ratio up to 1,700) from the corner (0,0) to
+// the far edges, with a cap (a triangle with an angle near 180 degrees) beside each of the two near edges, lifted
+// by `lift` so that the cap tilts away from the top. The two far walls are fans of needles too. Six faces.
+std::vector<Vec3> needle_block(double lift) {
+  const double s = 60.0, h = 20.0, step = 0.05;
+  const int per_edge = int(std::lround(s / step));
+  std::vector<Vec3> chain;  // (s,0) -> (s,s) -> (0,s) at height h
+  for (int k = 0; k <= per_edge; ++k) chain.emplace_back(s, k * step, h);
+  for (int k = 1; k <= per_edge; ++k) chain.emplace_back(s - k * step, s, h);
+  std::vector<Vec3> c;
+  const Vec3 o(0, 0, h), up(0, 0, 1);
+  const size_t last = chain.size() - 1;
+  // Top: the caps beside the near edges o - chain[0] and chain[last] - o, then the needles between them.
+  const Vec3 cap0(30, 0.01, h + lift), cap1(0.01, 30, h + lift);
+  tri_out(c, o, chain[0], cap0, up);
+  tri_out(c, cap0, chain[0], chain[1], up);
+  tri_out(c, o, cap0, chain[1], up);
+  tri_out(c, o, chain[last], cap1, up);
+  tri_out(c, cap1, chain[last - 1], chain[last], up);
+  tri_out(c, o, chain[last - 1], cap1, up);
+  for (size_t k = 1; k + 1 < last; ++k) tri_out(c, o, chain[k], chain[k + 1], up);
+  // Far walls: fans from their bottom corners.
+  const Vec3 b0(s, 0, 0), b1(s, s, 0), b2(0, s, 0), b3(0, 0, 0);
+  const size_t corner = size_t(per_edge);
+  for (size_t k = 0; k < corner; ++k) tri_out(c, b0, chain[k], chain[k + 1], Vec3::UnitX());
+  tri_out(c, b0, chain[corner], b1, Vec3::UnitX());
+  for (size_t k = corner; k < last; ++k) tri_out(c, b2, chain[k], chain[k + 1], Vec3::UnitY());
+  tri_out(c, b2, b1, chain[corner], Vec3::UnitY());
+  // Near walls and bottom: plain quads.
+  tri_out(c, b3, b0, chain[0], -Vec3::UnitY());
+  tri_out(c, b3, chain[0], o, -Vec3::UnitY());
+  tri_out(c, b3, b2, chain[last], -Vec3::UnitX());
+  tri_out(c, b3, chain[last], o, -Vec3::UnitX());
+  tri_out(c, b3, b0, b1, -Vec3::UnitZ());
+  tri_out(c, b3, b1, b2, -Vec3::UnitZ());
+  return c;
+}
+
+}  // namespace
+
+TEST(SegmentPhase1, NeedlesAndCapsMakeNoSpuriousPatches) {
+  // Flat needles join by the flood itself; the lifted caps (tilted 45 degrees) are patches of their own after
+  // the flood, and recombination folds them back into the top, the neighbour they share most boundary with.
+  Mesh m = build_mesh(needle_block(0.01));
+  ASSERT_TRUE(m.closed());
+  const SurfacePatches sp = segment_surface(m);
+  expect_partition(sp);
+  expect_closed_loops_and_symmetry(sp);
+  EXPECT_GE(sp.notes().patches_before_recombination, 8u);
+  ASSERT_EQ(sp.count(), 6u);
+  // A cap shares its long edge with a wall and its two short ones with tilted slivers, so the wall can be its
+  // dominant neighbour: the top keeps at least everything but the two caps (0.3 mm2 each).
+  const Patch& top = patch_facing(sp, Vec3::UnitZ());
+  EXPECT_NEAR(top.area, 3600.0, 0.7);
+  EXPECT_GE(top.facet_count, 2402u);
+  // Without recombination the caps stay: the flood never drops or duplicates a facet either way.
+  SegmentOptions none;
+  none.small.min_area_fraction = 0.0;
+  const SurfacePatches raw = segment_surface(m, none);
+  expect_partition(raw);
+  EXPECT_EQ(raw.count(), sp.notes().patches_before_recombination);
+  // Caps in the plane (not lifted) are not even cut by the flood.
+  Mesh flat = build_mesh(needle_block(0.0));
+  EXPECT_EQ(segment_surface(flat, none).count(), 6u);
+}
+
+TEST(SegmentPhase1, ZeroAreaFacetsJoinANeighbourAndNeverMakePatches) {
+  // A cube with a zero-area sliver in its top face: the top's diagonal a-c gets a midpoint m, and the facet
+  // (a, m, c) is degenerate. The top's two triangles touch only through it.
+  std::vector<Vec3> c = cube_corners(60.0);
+  Mesh cube = build_mesh(c);
+  // Find the top's two triangles and rebuild them around the sliver.
+  std::vector<Vec3> out;
+  std::vector<Vec3> top;
+  for (size_t t = 0; t < c.size(); t += 3) {
+    if (c[t].z() == 60 && c[t + 1].z() == 60 && c[t + 2].z() == 60)
+      top.insert(top.end(), c.begin() + t, c.begin() + t + 3);
+    else
+      out.insert(out.end(), c.begin() + t, c.begin() + t + 3);
+  }
+  ASSERT_EQ(top.size(), 6u);
+  // quad(p4, p5, p6, p7): triangles (p4, p5, p6) and (p4, p6, p7) share the diagonal p4-p6.
+  const Vec3 p4 = top[0], p5 = top[1], p6 = top[2], p7 = top[5], mid = 0.5 * (p4 + p6);
+  tri(out, p4, p5, p6);
+  tri(out, p4, mid, p6);  // zero area, its corners on one line
+  tri(out, p4, p6, mid);  // and its twin, closing the sliver
+  tri(out, p4, p6, p7);
+  Mesh m = build_mesh(out);
+  const SurfacePatches sp = segment_surface(m);
+  expect_partition(sp);
+  EXPECT_EQ(sp.notes().degenerate_facets, 2u);
+  EXPECT_EQ(sp.count(), 6u);
+  EXPECT_EQ(sp.notes().patches_before_recombination, 6u);  // bridged by the flood, not rescued by recombination
+  EXPECT_EQ(patch_facing(sp, Vec3::UnitZ()).facet_count, 4u);
+}
+
+TEST(SegmentPhase1, OpenMeshIsSegmentedAndItsBorderReported) {
+  // The cube without its top: five patches, the open rim reported as mesh border on each wall's loop.
+  std::vector<Vec3> c = cube_corners(60.0), out;
+  for (size_t t = 0; t < c.size(); t += 3)
+    if (!(c[t].z() == 60 && c[t + 1].z() == 60 && c[t + 2].z() == 60)) out.insert(out.end(), c.begin() + t, c.begin() + t + 3);
+  Mesh m = build_mesh(out);
+  const SurfacePatches sp = segment_surface(m);
+  expect_partition(sp);
+  EXPECT_EQ(sp.count(), 5u);
+  EXPECT_EQ(sp.notes().open_edges, 4u);
+  for (const Patch& p : sp.patches()) {
+    ASSERT_EQ(p.loops.size(), 1u);
+    EXPECT_TRUE(p.loops[0].closed);
+  }
+}
+
+TEST(SegmentPhase1, NonManifoldMeshIsSegmentedAndReported) {
+  // Two cubes sharing one edge (four facets on it), and a fin standing on a third cube's top.
+  std::vector<Vec3> c = cube_corners(10.0);
+  for (const Vec3& p : cube_corners(10.0)) c.push_back(p + Vec3(10, 10, 0));
+  Mesh m = build_mesh(c);
+  const SurfacePatches sp = segment_surface(m);
+  expect_partition(sp);
+  EXPECT_EQ(sp.notes().nonmanifold_edges, 1u);
+  EXPECT_EQ(sp.count(), 12u);
+
+  // A fin standing on the top's diagonal (0,0,10)-(10,10,10): that edge has three facets.
+  std::vector<Vec3> f = cube_corners(10.0);
+  tri(f, Vec3(0, 0, 10), Vec3(10, 10, 10), Vec3(5, 5, 15));
+  Mesh fin = build_mesh(f);
+  const SurfacePatches fp = segment_surface(fin);
+  expect_partition(fp);
+  EXPECT_EQ(fp.notes().open_edges, 2u);
+  EXPECT_EQ(fp.notes().nonmanifold_edges, 1u);
+  // The top's two facets still join across the non-manifold edge (same normal); the fin is its own patch.
+  EXPECT_EQ(fp.count(), 7u);
+}
+
+TEST(SegmentPhase1, RejectsBadOptions) {
+  Mesh m = make_primitive("cube");
+  SegmentOptions o;
+  o.threshold = 0.0;
+  EXPECT_THROW(segment_surface(m, o), Error);
+  o.threshold = 0.4;
+  o.small.min_area_fraction = 1.5;
+  EXPECT_THROW(segment_surface(m, o), Error);
+}
+
+TEST(SegmentPhase1, FacetCountRuleMergesSmallPatches) {
+  // With "fewer than 3 facets is small", every cube face (2 facets) is small: they merge until one is left.
+  Mesh m = make_primitive("cube");
+  SegmentOptions o;
+  o.small.kind = SizeRule::Kind::FacetCount;
+  o.small.min_facets = 3;
+  const SurfacePatches sp = segment_surface(m, o);
+  expect_partition(sp);
+  EXPECT_EQ(sp.count(), 1u);
+  // On the cylinder, 36-facet caps survive a rule of 30 facets.
+  Mesh cyl = make_primitive("cylinder");
+  o.small.min_facets = 30;
+  EXPECT_EQ(segment_surface(cyl, o).count(), 3u);
 }

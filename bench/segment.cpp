@@ -1,0 +1,123 @@
+// Segmentation speed on the table: phase 1 (flood + recombination + patch records) and phase 2 for one
+// setup (+Z: EGI of every patch, pruning, recombination, segment records), median of 3, the mesh already
+// loaded, threshold 0.4 (23.07 degrees). Models: every STL of ../shared/data/stl and a generated 2,012,000-
+// triangle closed wavy solid. Usage: bench_segment [threads]
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rosmill/error.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/segment/setup_segmentation.hpp"
+
+using namespace rosmill;
+using namespace rosmill::segment;
+
+namespace {
+
+struct Model {
+  std::string name;
+  double cgal_seconds;  // the CGAL detect_sharp_edges + connected_components figure (0: none given)
+};
+
+const Model kModels[] = {
+    {"failedinpycam.stl", 0}, {"pycam-textbox.stl", 0}, {"featuretype.STL", 0},      {"ktoolcav.stl", 0},
+    {"wheel_in_box.stl", 0},  {"mount_rush.stl", 0},    {"counter.unitsmm.STL", 0.0084}, {"demo2.stl.gz", 0.0070},
+};
+
+double median_seconds(int runs, const std::function<void()>& work) {
+  std::vector<double> t;
+  for (int i = 0; i < runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[t.size() / 2];
+}
+
+// A closed box 200 x 200 whose top is the wave z = 50 + 2 sin(2 pi x / 100) sin(2 pi y / 100) on a 1000 x 1000
+// grid (2,000,000 triangles), one row of wall triangles per grid column (8,000) and a bottom fan (4,000).
+Mesh wavy_solid() {
+  const int n = 1000;
+  const double size = 200.0, step = size / n;
+  auto top = [&](int i, int j) {
+    const double x = i * step, y = j * step;
+    return Vec3(x, y, 50 + 2 * std::sin(2 * M_PI * x / 100) * std::sin(2 * M_PI * y / 100));
+  };
+  std::vector<Vec3> c;
+  c.reserve(3 * size_t(2 * n * n + 12 * n));
+  auto tri = [&](const Vec3& a, const Vec3& b, const Vec3& d) {
+    c.push_back(a);
+    c.push_back(b);
+    c.push_back(d);
+  };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      tri(top(i, j), top(i + 1, j), top(i + 1, j + 1));
+      tri(top(i, j), top(i + 1, j + 1), top(i, j + 1));
+    }
+  // The rim, counter-clockwise seen from above, and the walls below it.
+  std::vector<Vec3> rim;
+  for (int k = 0; k < n; ++k) rim.push_back(top(k, 0));
+  for (int k = 0; k < n; ++k) rim.push_back(top(n, k));
+  for (int k = n; k > 0; --k) rim.push_back(top(k, n));
+  for (int k = n; k > 0; --k) rim.push_back(top(0, k));
+  const Vec3 centre(size / 2, size / 2, 0);
+  for (size_t k = 0; k < rim.size(); ++k) {
+    const Vec3& a = rim[k];
+    const Vec3& b = rim[(k + 1) % rim.size()];
+    const Vec3 a0(a.x(), a.y(), 0), b0(b.x(), b.y(), 0);
+    tri(a0, b0, b);
+    tri(a0, b, a);
+    tri(centre, b0, a0);
+  }
+  return build_mesh(c);
+}
+
+void run(const std::string& name, const Mesh& mesh, double cgal) {
+  SurfacePatches sp;
+  const double t1 = median_seconds(3, [&] { sp = segment_surface(mesh); });
+  size_t segments = 0;
+  const double t2 = median_seconds(3, [&] {
+    const EgiSet egis(sp);
+    segments = segment_setup(egis, parse_setup("+z")).count();
+  });
+  const EgiSet egis(sp);
+  const double t2s = median_seconds(3, [&] { segment_setup(egis, parse_setup("+z")); });
+  char ref[32] = "-";
+  if (cgal > 0) std::snprintf(ref, sizeof ref, "%.4f (%.2fx)", cgal, t1 / cgal);
+  std::printf("%-20s %9zu %8zu %8zu %9.4f %16s %9.4f %9.4f %6zu %s\n", name.c_str(), mesh.face_count(),
+              sp.notes().patches_before_recombination, sp.count(), t1, ref, t2, t2s, segments,
+              mesh.closed() ? "closed" : "open");
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1) omp_set_num_threads(std::atoi(argv[1]));
+  std::printf("threads %d; seconds, median of 3, mesh loaded; phase2 = EGI + +Z pruning + recombination, setup = "
+              "+Z alone on a built EGI\n", omp_get_max_threads());
+  std::printf("%-20s %9s %8s %8s %9s %16s %9s %9s %6s\n", "model", "tris", "flooded", "patches", "phase1",
+              "CGAL (phase1/)", "phase2", "setup", "segs");
+  for (const Model& m : kModels) {
+    const std::string path = std::string(ROSMILL_SHARED_DATA) + "/stl/" + m.name;
+    try {
+      const Mesh mesh = read_stl(path);
+      run(m.name, mesh, m.cgal_seconds);
+    } catch (const Error& e) {
+      std::printf("%-20s skipped: %s\n", m.name.c_str(), e.what());
+    }
+  }
+  const Mesh wavy = wavy_solid();
+  run("2M wavy solid", wavy, 0.109);
+  return 0;
+}
