@@ -2,12 +2,18 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/plan/strategy.hpp"
+#include "rosmill/plan/raster.hpp"
+#include "rosmill/plan/rough.hpp"
+#include "rosmill/plan/waterline.hpp"
 
 namespace rosmill {
 
 // Every strategy, one line each. A strategy's own header declares its function.
 const std::vector<StrategyEntry>& strategies() {
   static const std::vector<StrategyEntry> table = {
+      {"raster", "parallel zigzag finishing at a stepover and angle", false, false, on_surface(raster_strategy)},
+      {"waterline", "closed z-level finishing loops every step-down", false, false, on_surface(waterline_strategy)},
+      {"rough", "z-level zigzag area clearing with ramp entry", false, false, on_surface(rough_strategy)},
   };
   return table;
 }
