@@ -2,6 +2,9 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/plan/strategy.hpp"
+#include "rosmill/plan/raster.hpp"
+#include "rosmill/plan/rough.hpp"
+#include "rosmill/plan/waterline.hpp"
 #include "rosmill/slice/contour_toolpath.hpp"
 
 namespace rosmill {
@@ -9,13 +12,15 @@ namespace rosmill {
 // Every strategy, one line each. A strategy's own header declares its function.
 const std::vector<StrategyEntry>& strategies() {
   static const std::vector<StrategyEntry> table = {
+      {"raster", "parallel zigzag finishing at a stepover and angle", false, false, on_surface(raster_strategy)},
+      {"waterline", "closed z-level finishing loops every step-down", false, false, on_surface(waterline_strategy)},
+      {"rough", "z-level zigzag area clearing with ramp entry", false, false, on_surface(rough_strategy)},
       {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true, false, plan_contour},
   };
   return table;
 }
 
-Job plan(const std::string& name, const PlanInput& input, const PlanParams& params,
-              const PlanProgress& progress) {
+Job plan(const std::string& name, const PlanInput& input, const PlanParams& params, const PlanProgress& progress) {
   for (const StrategyEntry& s : strategies()) {
     if (s.name != name) continue;
     if (s.needs_mesh && !input.mesh) throw Error("strategy " + name, "needs a mesh (an STL file), got a cloud");

@@ -1,0 +1,82 @@
+// What the surface strategies (raster, waterline, rough) share: the heights of safe moves, a move writer that
+// keeps rapids at the safe height, adaptive drop-cutter sampling along a segment, parallel scan lines, and the
+// adapter that runs a Surface strategy on a mesh (MeshSurface) or a cloud.
+#pragma once
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "rosmill/plan/strategy.hpp"
+#include "rosmill/plan/surface.hpp"
+
+namespace rosmill {
+
+// Heights and parameters of one plan, resolved from PlanParams and the surface's bounds.
+struct PlanFrame {
+  Box3 part;            // the surface's bounds
+  Box3 stock;           // part grown by the stock margin (XY and top; bottom at the part's floor)
+  double safe_z = 0;    // above everything: stock top + safe clearance (rapids travel here only)
+  double stepover = 0;  // resolved (params, else tool)
+  double stepdown = 0;
+  double allowance = 0;
+  double tolerance = 0.001;
+  Cutter cutter;        // the tool's cutter
+  Cutter drop_cutter;   // the cutter grown by the allowance (drop it, then add the allowance)
+};
+PlanFrame make_frame(const Surface& surface, const PlanParams& params);
+
+// CL height at (x, y): drop of the grown cutter plus the allowance, never below the part's floor + allowance.
+double cl_height(const Surface& surface, const PlanFrame& f, double x, double y);
+
+// Writes moves into a pass; a cut starts by a rapid at safe_z above its first point and a plunge down.
+class MoveWriter {
+ public:
+  MoveWriter(Toolpath& tp, const PlanFrame& f);
+  void begin_pass(const std::string& name);
+  // Retract to safe_z (if not there), rapid above p, plunge to p at the plunge feed.
+  void enter(const Vec3& p);
+  // Plunge vertically down to height z (air above cleared stock) without a retract.
+  void plunge_to(const Vec3& p);
+  void feed(const Vec3& p);
+  void retract();
+  bool at_safe() const { return at_safe_; }
+  const Vec3& position() const { return pos_; }
+
+ private:
+  Toolpath& tp_;
+  const PlanFrame& f_;
+  Vec3 pos_;
+  bool at_safe_ = true;
+};
+
+// CL points from a to b (inclusive) on the surface: first every `step`, then midpoints inserted until every
+// chord is within half the tolerance of the CL height at its midpoint; where the CL height jumps (a vertical
+// wall under a flat cutter) the chord is replaced by a step that goes up first or comes down last.
+void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, const Vec2& b, double step,
+                    std::vector<Vec3>& out);
+
+// Parallel lines at `angle_deg` spaced `spacing` apart, clipped to a rectangle and (when not empty) a boundary
+// polygon; each line gives the [start, end] pieces inside, ordered along the direction.
+struct ScanLine {
+  std::vector<std::pair<Vec2, Vec2>> pieces;
+};
+std::vector<ScanLine> scan_lines(const Vec2& lo, const Vec2& hi, double angle_deg, double spacing,
+                                 const std::vector<Vec2>& boundary);
+
+// Runs f over [0, n) in parallel, in blocks, reporting progress between blocks (cancel throws Error).
+void parallel_blocks(size_t n, const PlanProgress& progress, double from, double to,
+                     const std::function<void(size_t)>& f);
+void check_cancel(const PlanProgress& progress, double fraction);
+
+// A strategy written against a Surface, and the adapter that gives it one for a mesh or a cloud input.
+using SurfaceStrategy = std::function<Job(const Surface&, const PlanParams&, const PlanProgress&)>;
+StrategyFunction on_surface(SurfaceStrategy strategy);
+
+}  // namespace rosmill
+
+namespace rosmill {
+// The cloud Surface's maker, set by the cloud area (e.g. from its strategy-table entry or at start-up); until
+// then a Surface strategy refuses a cloud input with a clear error.
+using CloudSurfaceFactory = std::function<std::unique_ptr<Surface>(const PointCloud&, const PlanParams&)>;
+CloudSurfaceFactory& cloud_surface_factory();
+}  // namespace rosmill

@@ -1,0 +1,19 @@
+// Roughing: z-level area clearing from the stock's top down in step-downs, leaving the allowance. Each level is
+// cut in zigzag lines over the stock box, only where the cutter fits: a line is sampled once with the cutter
+// widened by half the sample spacing, so a sample that is free at a level proves the real cutter free within
+// that half spacing either side, and the cut pieces are exactly the union of those proven-free spans. A piece
+// is entered from above the level just cleared and ramps down into the material along itself.
+#pragma once
+#include "rosmill/plan/plan_support.hpp"
+
+namespace rosmill {
+
+struct RoughOptions {
+  double ramp_slope = 0.1;  // descent per unit of horizontal travel while ramping in (about 6 degrees)
+};
+
+Job rough_on(const Surface& surface, const PlanParams& params, const RoughOptions& options,
+             const PlanProgress& progress = {});
+Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
+
+}  // namespace rosmill

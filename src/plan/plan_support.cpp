@@ -1,0 +1,226 @@
+#include "rosmill/plan/plan_support.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "rosmill/cutter/contact.hpp"
+#include "rosmill/error.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
+
+namespace rosmill {
+
+namespace {
+
+double resolved(double value, double fallback, const char* name) {
+  const double v = std::isnan(value) ? fallback : value;
+  if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("parameter ") + name, "must be a positive number");
+  return v;
+}
+
+}  // namespace
+
+PlanFrame make_frame(const Surface& surface, const PlanParams& params) {
+  PlanFrame f;
+  f.part = surface.bounds();
+  if (f.part.empty()) throw Error("plan", "the surface is empty");
+  f.cutter = params.tool.cutter;
+  f.stepover = resolved(params.stepover, params.tool.stepover, "stepover");
+  f.stepdown = resolved(params.stepdown, params.tool.stepdown, "stepdown");
+  f.tolerance = resolved(params.tolerance, 0.001, "tolerance");
+  if (!(params.allowance >= 0) || !std::isfinite(params.allowance))
+    throw Error("parameter allowance", "must be >= 0");
+  if (!(params.stock_margin >= 0)) throw Error("parameter stock_margin", "must be >= 0");
+  if (!(params.safe_clearance > 0)) throw Error("parameter safe_clearance", "must be > 0");
+  f.allowance = params.allowance;
+  f.drop_cutter = offset_cutter(f.cutter, f.allowance);
+  f.stock = f.part;
+  f.stock.min.x() -= params.stock_margin, f.stock.min.y() -= params.stock_margin;
+  f.stock.max.x() += params.stock_margin, f.stock.max.y() += params.stock_margin;
+  f.stock.max.z() += params.stock_margin;
+  f.safe_z = f.stock.max.z() + params.safe_clearance;
+  return f;
+}
+
+double cl_height(const Surface& surface, const PlanFrame& f, double x, double y) {
+  const Drop d = surface.drop(f.drop_cutter, x, y);
+  return std::max(d.z, f.part.min.z()) + f.allowance;
+}
+
+MoveWriter::MoveWriter(Toolpath& tp, const PlanFrame& f) : tp_(tp), f_(f) {
+  tp.safe_z = f.safe_z;
+  tp.clearance_z = f.safe_z;
+  tp.start = Vec3(0.5 * (f.stock.min.x() + f.stock.max.x()), 0.5 * (f.stock.min.y() + f.stock.max.y()), f.safe_z);
+  pos_ = tp.start;
+}
+
+void MoveWriter::begin_pass(const std::string& name) { tp_.passes.push_back({name, {}}); }
+
+void MoveWriter::retract() {
+  if (at_safe_) return;
+  pos_.z() = f_.safe_z;
+  tp_.passes.back().moves.push_back({pos_, MoveType::Rapid, 0.0});
+  at_safe_ = true;
+}
+
+void MoveWriter::enter(const Vec3& p) {
+  retract();
+  if ((pos_.head<2>() - p.head<2>()).norm() > 0) {
+    pos_ = Vec3(p.x(), p.y(), f_.safe_z);
+    tp_.passes.back().moves.push_back({pos_, MoveType::Rapid, 0.0});
+  }
+  plunge_to(p);
+}
+
+void MoveWriter::plunge_to(const Vec3& p) {
+  pos_ = p;
+  tp_.passes.back().moves.push_back({p, MoveType::Plunge, tp_.tool.plunge_feed});
+  at_safe_ = false;
+}
+
+void MoveWriter::feed(const Vec3& p) {
+  if (at_safe_) return enter(p);
+  if ((p - pos_).squaredNorm() == 0) return;
+  pos_ = p;
+  tp_.passes.back().moves.push_back({p, MoveType::Feed, tp_.tool.feed});
+}
+
+namespace {
+
+// Midpoint refinement of the chord A-B (B is appended last).
+void refine(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B, int depth, std::vector<Vec3>& out) {
+  const Vec2 m = 0.5 * (A.head<2>() + B.head<2>());
+  const double zm = cl_height(s, f, m.x(), m.y());
+  const double chord = 0.5 * (A.z() + B.z());
+  if (std::abs(zm - chord) <= 0.5 * f.tolerance) {
+    out.push_back(B);
+    return;
+  }
+  if (depth >= 24 || (B.head<2>() - A.head<2>()).norm() < 1e-6) {
+    // A jump: go up before the horizontal step, come down after it.
+    const double top = std::max({A.z(), B.z(), zm});
+    if (top > A.z()) out.emplace_back(A.x(), A.y(), top);
+    if (top > B.z()) out.emplace_back(B.x(), B.y(), top);
+    out.push_back(B);
+    return;
+  }
+  const Vec3 M(m.x(), m.y(), zm);
+  refine(s, f, A, M, depth + 1, out);
+  refine(s, f, M, B, depth + 1, out);
+}
+
+}  // namespace
+
+void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, const Vec2& b, double step,
+                    std::vector<Vec3>& out) {
+  const double len = (b - a).norm();
+  const int n = std::max(1, static_cast<int>(std::ceil(len / step)));
+  Vec3 prev(a.x(), a.y(), cl_height(surface, f, a.x(), a.y()));
+  out.push_back(prev);
+  for (int i = 1; i <= n; ++i) {
+    const Vec2 p = a + (b - a) * (double(i) / n);
+    const Vec3 cur(p.x(), p.y(), cl_height(surface, f, p.x(), p.y()));
+    refine(surface, f, prev, cur, 0, out);
+    prev = cur;
+  }
+}
+
+std::vector<ScanLine> scan_lines(const Vec2& lo, const Vec2& hi, double angle_deg, double spacing,
+                                 const std::vector<Vec2>& boundary) {
+  const double a = angle_deg * M_PI / 180.0;
+  const Vec2 u(std::cos(a), std::sin(a)), v(-std::sin(a), std::cos(a));
+  double vmin = 1e300, vmax = -1e300;
+  for (const Vec2& c : {lo, hi, Vec2(lo.x(), hi.y()), Vec2(hi.x(), lo.y())})
+    vmin = std::min(vmin, c.dot(v)), vmax = std::max(vmax, c.dot(v));
+  const int n = std::max(1, static_cast<int>(std::ceil((vmax - vmin) / spacing - 1e-9))) + 1;
+  const double gap = n > 1 ? (vmax - vmin) / (n - 1) : 0.0;
+  std::vector<ScanLine> lines;
+  for (int k = 0; k < n; ++k) {
+    const Vec2 origin = v * (vmin + k * gap);
+    // Clip the line origin + s u to the rectangle (slabs).
+    double s0 = -1e300, s1 = 1e300;
+    for (int axis = 0; axis < 2; ++axis) {
+      if (std::abs(u[axis]) < 1e-15) {
+        if (origin[axis] < lo[axis] - 1e-12 || origin[axis] > hi[axis] + 1e-12) s0 = 1, s1 = 0;
+        continue;
+      }
+      double t0 = (lo[axis] - origin[axis]) / u[axis], t1 = (hi[axis] - origin[axis]) / u[axis];
+      if (t0 > t1) std::swap(t0, t1);
+      s0 = std::max(s0, t0), s1 = std::min(s1, t1);
+    }
+    ScanLine line;
+    if (s0 > s1) {
+      lines.push_back(line);
+      continue;
+    }
+    if (boundary.size() < 3) {
+      line.pieces.emplace_back(origin + s0 * u, origin + s1 * u);
+      lines.push_back(line);
+      continue;
+    }
+    // Crossings with the boundary, even-odd inside.
+    std::vector<double> cuts = {s0, s1};
+    for (size_t i = 0; i < boundary.size(); ++i) {
+      const Vec2& p = boundary[i];
+      const Vec2& q = boundary[(i + 1) % boundary.size()];
+      const double dp = (p - origin).dot(v), dq = (q - origin).dot(v);
+      if ((dp > 0) == (dq > 0)) continue;
+      const Vec2 x = p + (q - p) * (dp / (dp - dq));
+      const double s = (x - origin).dot(u);
+      if (s > s0 && s < s1) cuts.push_back(s);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+      if (cuts[i + 1] - cuts[i] < 1e-9) continue;
+      const Vec2 mid = origin + 0.5 * (cuts[i] + cuts[i + 1]) * u;
+      bool inside = false;
+      for (size_t j = 0, k2 = boundary.size() - 1; j < boundary.size(); k2 = j++) {
+        const Vec2& p = boundary[j];
+        const Vec2& q = boundary[k2];
+        if ((p.y() > mid.y()) != (q.y() > mid.y()) &&
+            mid.x() < (q.x() - p.x()) * (mid.y() - p.y()) / (q.y() - p.y()) + p.x())
+          inside = !inside;
+      }
+      if (inside) line.pieces.emplace_back(origin + cuts[i] * u, origin + cuts[i + 1] * u);
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+void check_cancel(const PlanProgress& progress, double fraction) {
+  if (progress && !progress(fraction)) throw Error("plan", "cancelled");
+}
+
+void parallel_blocks(size_t n, const PlanProgress& progress, double from, double to,
+                     const std::function<void(size_t)>& f) {
+  const size_t block = std::max<size_t>(1, n / 50);
+  for (size_t start = 0; start < n; start += block) {
+    const size_t end = std::min(n, start + block);
+    tbb::parallel_for(start, end, [&](size_t i) { f(i); });
+    check_cancel(progress, from + (to - from) * double(end) / double(n));
+  }
+}
+
+CloudSurfaceFactory& cloud_surface_factory() {
+  static CloudSurfaceFactory factory;
+  return factory;
+}
+
+StrategyFunction on_surface(SurfaceStrategy strategy) {
+  return [strategy](const PlanInput& input, const PlanParams& params, const PlanProgress& progress) {
+    if (input.mesh) {
+      const MeshSurface surface(*input.mesh);
+      return strategy(surface, params, progress);
+    }
+    if (input.cloud) {
+      if (!cloud_surface_factory()) throw Error("plan", "no point-cloud surface is available in this build");
+      const std::unique_ptr<Surface> surface = cloud_surface_factory()(*input.cloud, params);
+      return strategy(*surface, params, progress);
+    }
+    throw Error("plan", "nothing to plan on");
+  };
+}
+
+}  // namespace rosmill

@@ -1,0 +1,149 @@
+#include "rosmill/plan/rough.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill {
+namespace {
+
+// One scan line sampled once: positions along it and the CL heights of the widened cutter.
+struct SampledLine {
+  Vec2 origin, dir;
+  std::vector<double> s, h;
+};
+
+// Free spans of a line at level z: unions of [s - half, s + half] over samples whose widened CL is <= z.
+std::vector<std::pair<double, double>> free_spans(const SampledLine& line, double z, double half) {
+  std::vector<std::pair<double, double>> spans;
+  for (size_t i = 0; i < line.s.size(); ++i) {
+    if (line.h[i] > z) continue;
+    const double a = line.s[i] - half, b = line.s[i] + half;
+    if (!spans.empty() && a <= spans.back().second + 1e-12) spans.back().second = b;
+    else spans.emplace_back(a, b);
+  }
+  // Keep to the sampled stretch: the ends are the line's own ends.
+  for (auto& sp : spans) sp.first = std::max(sp.first, line.s.front()), sp.second = std::min(sp.second, line.s.back());
+  return spans;
+}
+
+// Ramps from (a, z_from) down to z along the piece a-b (back and forth), ending at a at height z.
+void ramp_in(MoveWriter& w, const Vec2& a, const Vec2& b, double z_from, double z, double slope) {
+  const double len = (b - a).norm();
+  double zc = z_from;
+  bool forward = true;
+  if (len < 1e-6) {
+    w.plunge_to(Vec3(a.x(), a.y(), z));
+    return;
+  }
+  // Each leg descends at most slope * len; the last leg returns to a.
+  while (zc > z + 1e-12) {
+    const double drop = std::min(zc - z, slope * len);
+    const double frac = drop / (slope * len);
+    const Vec2 from = forward ? a : b;
+    const Vec2 to = forward ? b : a;
+    const Vec2 p = from + (to - from) * frac;
+    zc -= drop;
+    w.plunge_to(Vec3(p.x(), p.y(), zc));
+    if (frac < 1.0) {  // stopped part way: go back to a at z
+      w.feed(Vec3(a.x(), a.y(), z));
+      return;
+    }
+    forward = !forward;
+  }
+  w.feed(Vec3(a.x(), a.y(), z));
+}
+
+}  // namespace
+
+Job rough_on(const Surface& surface, const PlanParams& params, const RoughOptions& options,
+             const PlanProgress& progress) {
+  const PlanFrame f = make_frame(surface, params);
+  if (!(options.ramp_slope > 0)) throw Error("rough", "ramp slope must be > 0");
+  const double R = f.cutter.radius();
+  const double spacing = std::min(0.25 * R, 0.5), half = 0.5 * spacing;
+  // The widened cutter: radius + half the spacing, same corner (see rough.hpp).
+  Cutter wide = f.drop_cutter;
+  wide.diameter += 2 * half;
+  if (wide.type == CutterType::BallEnd) wide.type = CutterType::BullNose;
+  PlanFrame fw = f;
+  fw.drop_cutter = wide;
+
+  const Vec2 lo = f.stock.min.head<2>(), hi = f.stock.max.head<2>();
+  const std::vector<ScanLine> scan = scan_lines(lo, hi, params.angle_deg, f.stepover, {});
+  std::vector<SampledLine> lines(scan.size());
+  parallel_blocks(scan.size(), progress, 0.0, 0.8, [&](size_t i) {
+    if (scan[i].pieces.empty()) return;
+    const Vec2 a = scan[i].pieces.front().first, b = scan[i].pieces.front().second;
+    SampledLine& L = lines[i];
+    L.origin = a;
+    const double len = (b - a).norm();
+    L.dir = len > 0 ? Vec2((b - a) / len) : Vec2(1, 0);
+    const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
+    for (int k = 0; k <= n; ++k) {
+      const double s = len * k / n;
+      const Vec2 p = a + s * L.dir;
+      L.s.push_back(s);
+      L.h.push_back(cl_height(surface, fw, p.x(), p.y()));
+    }
+  });
+
+  // Levels from the stock top down; the last at the part's floor plus the allowance.
+  const double floor = f.part.min.z() + f.allowance;
+  std::vector<double> levels;
+  for (double z = f.stock.max.z() - f.stepdown; z > floor + 1e-9; z -= f.stepdown) levels.push_back(z);
+  levels.push_back(floor);
+
+  Toolpath tp;
+  tp.strategy = "rough";
+  tp.tool = params.tool;
+  MoveWriter w(tp, f);
+  double above = f.stock.max.z();
+  for (size_t li = 0; li < levels.size(); ++li) {
+    const double z = levels[li];
+    w.begin_pass("level z " + std::to_string(z));
+    bool reverse = false;
+    for (const SampledLine& L : lines) {
+      if (L.s.empty()) continue;
+      auto spans = free_spans(L, z, half);
+      if (reverse) {
+        std::reverse(spans.begin(), spans.end());
+        for (auto& sp : spans) std::swap(sp.first, sp.second);
+      }
+      for (const auto& sp : spans) {
+        const Vec2 a = L.origin + sp.first * L.dir, b = L.origin + sp.second * L.dir;
+        if (!w.at_safe() && std::abs(w.position().z() - z) < 1e-12) {
+          // Stay down when the straight link at this level is proven free (sampled like the lines).
+          const Vec2 from = w.position().head<2>();
+          const double len = (a - from).norm();
+          bool free = len <= 2 * f.stepover;
+          const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
+          for (int k = 0; free && k <= n; ++k) {
+            const Vec2 p = from + (a - from) * (double(k) / n);
+            free = cl_height(surface, fw, p.x(), p.y()) <= z;
+          }
+          if (free) {
+            w.feed(Vec3(a.x(), a.y(), z));
+            w.feed(Vec3(b.x(), b.y(), z));
+            continue;
+          }
+        }
+        w.enter(Vec3(a.x(), a.y(), above));
+        ramp_in(w, a, b, above, z, options.ramp_slope);
+        w.feed(Vec3(b.x(), b.y(), z));
+      }
+      reverse = !reverse;
+    }
+    w.retract();
+    above = z;
+    check_cancel(progress, 0.8 + 0.2 * double(li + 1) / levels.size());
+  }
+  return {tp};
+}
+
+Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress) {
+  return rough_on(surface, params, RoughOptions{}, progress);
+}
+
+}  // namespace rosmill

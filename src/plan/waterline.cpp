@@ -1,0 +1,213 @@
+#include "rosmill/plan/waterline.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+
+#include "rosmill/plan/raster.hpp"
+
+namespace rosmill {
+namespace {
+
+constexpr double kAbove = 1e-6;  // CL above the level by more than this is material
+
+// The CL heights on a grid over the part, dropped once for every level.
+struct HeightGrid {
+  double x0, y0, step;
+  int nx, ny;
+  std::vector<double> h;
+  Vec2 node(int i, int j) const { return Vec2(x0 + i * step, y0 + j * step); }
+};
+
+HeightGrid height_grid(const Surface& s, const PlanFrame& f, double step) {
+  HeightGrid g;
+  const double reach = f.cutter.radius() + f.allowance + 2 * step;
+  g.step = step;
+  g.x0 = f.part.min.x() - reach, g.y0 = f.part.min.y() - reach;
+  g.nx = static_cast<int>(std::ceil((f.part.max.x() + reach - g.x0) / step)) + 1;
+  g.ny = static_cast<int>(std::ceil((f.part.max.y() + reach - g.y0) / step)) + 1;
+  std::vector<Vec2> xy(size_t(g.nx) * g.ny);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) xy[size_t(j) * g.nx + i] = g.node(i, j);
+  std::vector<Drop> d(xy.size());
+  s.drop_many(f.drop_cutter, xy.data(), xy.size(), d.data());
+  g.h.resize(xy.size());
+  for (size_t k = 0; k < xy.size(); ++k) g.h[k] = std::max(d[k].z, f.part.min.z()) + f.allowance;
+  return g;
+}
+
+class LevelContour {
+ public:
+  LevelContour(const Surface& s, const PlanFrame& f, const HeightGrid& g, double z) : s_(s), f_(f), g_(g), z_(z) {}
+
+  std::vector<Loop> loops() {
+    link_cells();
+    std::vector<Loop> out;
+    std::unordered_map<uint64_t, bool> used;
+    for (const auto& [edge, nb] : adj_) {
+      if (used.count(edge)) continue;
+      Loop loop;
+      uint64_t prev = kNoEdge, cur = edge;
+      while (cur != kNoEdge && !used.count(cur)) {
+        used[cur] = true;
+        loop.push_back(crossing(cur));
+        const auto& n = adj_.at(cur);
+        const uint64_t next = n[0] != prev ? n[0] : n[1];
+        prev = cur;
+        cur = next;
+      }
+      if (loop.size() >= 3) out.push_back(refine(loop));
+    }
+    return out;
+  }
+
+ private:
+  static constexpr uint64_t kNoEdge = ~uint64_t(0);
+
+  bool material(double h) const { return h > z_ + kAbove; }
+  bool material_at(const Vec2& p) const { return material(cl_height(s_, f_, p.x(), p.y())); }
+  bool node_in(int i, int j) const { return material(g_.h[size_t(j) * g_.nx + i]); }
+
+  // Edge ids: 2k for the edge from node k to k + 1 (along x), 2k + 1 from k to k + nx (along y).
+  uint64_t edge_id(int i, int j, bool along_y) const { return 2 * (uint64_t(j) * g_.nx + i) + (along_y ? 1 : 0); }
+
+  void connect(uint64_t a, uint64_t b) {
+    add(a, b);
+    add(b, a);
+  }
+  void add(uint64_t a, uint64_t b) {
+    auto it = adj_.find(a);
+    if (it == adj_.end()) adj_.emplace(a, std::array<uint64_t, 2>{b, kNoEdge});
+    else it->second[1] = b;
+  }
+
+  void link_cells() {
+    for (int j = 0; j + 1 < g_.ny; ++j)
+      for (int i = 0; i + 1 < g_.nx; ++i) {
+        const int c = node_in(i, j) | node_in(i + 1, j) << 1 | node_in(i + 1, j + 1) << 2 | node_in(i, j + 1) << 3;
+        if (c == 0 || c == 15) continue;
+        const uint64_t e[4] = {edge_id(i, j, false), edge_id(i + 1, j, true), edge_id(i, j + 1, false),
+                               edge_id(i, j, true)};
+        if (c == 5 || c == 10) {
+          const bool centre = material_at(g_.node(i, j) + Vec2(0.5, 0.5) * g_.step);
+          // Isolate the corners that differ from the centre.
+          const bool cut_c1_c3 = (c == 5) == centre;
+          if (cut_c1_c3) connect(e[0], e[1]), connect(e[2], e[3]);
+          else connect(e[3], e[0]), connect(e[1], e[2]);
+          continue;
+        }
+        uint64_t ends[2];
+        int n = 0;
+        const bool in[4] = {bool(c & 1), bool(c & 2), bool(c & 4), bool(c & 8)};
+        const int ea[4][2] = {{0, 1}, {1, 2}, {3, 2}, {0, 3}};
+        for (int k = 0; k < 4; ++k)
+          if (in[ea[k][0]] != in[ea[k][1]]) ends[n++] = e[k];
+        if (n == 2) connect(ends[0], ends[1]);
+      }
+  }
+
+  // Where the contour crosses a grid edge, on the free side, by bisection with the drop-cutter.
+  Vec3 crossing(uint64_t id) const {
+    const uint64_t k = id / 2;
+    const int i = int(k % g_.nx), j = int(k / g_.nx);
+    const Vec2 a = g_.node(i, j), b = (id & 1) ? g_.node(i, j + 1) : g_.node(i + 1, j);
+    Vec2 in = a, out = b;
+    if (!node_in(i, j)) std::swap(in, out);
+    const Vec2 p = bisect(in, out);
+    return Vec3(p.x(), p.y(), z_);
+  }
+
+  Vec2 bisect(Vec2 in, Vec2 out) const {
+    while ((in - out).norm() > 0.05 * f_.tolerance) {
+      const Vec2 m = 0.5 * (in + out);
+      (material_at(m) ? in : out) = m;
+    }
+    return out;
+  }
+
+  // Inserts contour points until every chord's midpoint is within half the tolerance of the contour.
+  Loop refine(const Loop& loop) const {
+    Loop out;
+    for (size_t i = 0; i < loop.size(); ++i) {
+      out.push_back(loop[i]);
+      split(loop[i], loop[(i + 1) % loop.size()], 0, out);
+    }
+    drop_collinear(out);
+    return out;
+  }
+
+  void split(const Vec3& a, const Vec3& b, int depth, Loop& out) const {
+    const Vec2 d = b.head<2>() - a.head<2>();
+    const double len = d.norm();
+    if (depth > 10 || len < f_.tolerance) return;
+    const Vec2 m = 0.5 * (a.head<2>() + b.head<2>());
+    const Vec2 n(-d.y() / len, d.x() / len);
+    const double reach = std::min(0.5 * len, g_.step);
+    const Vec2 p = m - reach * n, q = m + reach * n;
+    const bool p_in = material_at(p), q_in = material_at(q), m_in = material_at(m);
+    Vec2 c;
+    if (m_in && !p_in) c = bisect(m, p);
+    else if (m_in && !q_in) c = bisect(m, q);
+    else if (!m_in && p_in) c = bisect(p, m);
+    else if (!m_in && q_in) c = bisect(q, m);
+    else return;
+    // A free midpoint close enough to the contour needs nothing; a midpoint in material always moves out.
+    if (!m_in && (c - m).norm() <= 0.5 * f_.tolerance) return;
+    const Vec3 cp(c.x(), c.y(), z_);
+    split(a, cp, depth + 1, out);
+    out.push_back(cp);
+    split(cp, b, depth + 1, out);
+  }
+
+  const Surface& s_;
+  const PlanFrame& f_;
+  const HeightGrid& g_;
+  double z_;
+  std::unordered_map<uint64_t, std::array<uint64_t, 2>> adj_;
+};
+
+std::vector<double> default_levels(const PlanFrame& f, const HeightGrid& g) {
+  const double top = *std::max_element(g.h.begin(), g.h.end());
+  const double floor = f.part.min.z() + f.allowance;
+  std::vector<double> levels;
+  for (double z = top - f.stepdown; z > floor + 1e-9; z -= f.stepdown) levels.push_back(z);
+  return levels;
+}
+
+}  // namespace
+
+Job waterline_on(const Surface& surface, const PlanParams& params, const WaterlineOptions& options,
+                 const PlanProgress& progress, std::vector<std::vector<Loop>>* loops_out) {
+  const PlanFrame f = make_frame(surface, params);
+  const double step = std::min(0.25 * f.cutter.radius(), 0.5);
+  const HeightGrid grid = height_grid(surface, f, step);
+  check_cancel(progress, 0.2);
+  const std::vector<double> levels = options.levels.empty() ? default_levels(f, grid) : options.levels;
+  std::vector<std::vector<Loop>> loops(levels.size());
+  parallel_blocks(levels.size(), progress, 0.2, 0.95,
+                  [&](size_t i) { loops[i] = LevelContour(surface, f, grid, levels[i]).loops(); });
+
+  Toolpath tp;
+  tp.strategy = "waterline";
+  tp.tool = params.tool;
+  MoveWriter w(tp, f);
+  for (size_t i = 0; i < levels.size(); ++i) {
+    w.begin_pass("z " + std::to_string(levels[i]));
+    for (const Loop& loop : loops[i]) {
+      w.enter(loop.front());
+      for (size_t k = 1; k < loop.size(); ++k) w.feed(loop[k]);
+      w.feed(loop.front());
+      w.retract();
+    }
+  }
+  if (loops_out) *loops_out = std::move(loops);
+  check_cancel(progress, 1.0);
+  return {tp};
+}
+
+Job waterline_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress) {
+  return waterline_on(surface, params, WaterlineOptions{}, progress);
+}
+
+}  // namespace rosmill
