@@ -35,6 +35,36 @@ std::vector<int> Block::m_codes() const {
   return m;
 }
 
+namespace {
+
+// A G-code number: [+-] digits [. digits]. Not strtod: "G0X9" must not read as the hexadecimal 0X9, and
+// exponents, "inf" and "nan" are no G-code.
+const char* parse_number(const char* p, const char* end, double& value) {
+  const char* start = p;
+  bool negative = false;
+  if (p < end && (*p == '+' || *p == '-')) negative = *p++ == '-';
+  double v = 0;
+  int digits = 0;
+  while (p < end && std::isdigit(static_cast<unsigned char>(*p))) {
+    v = v * 10 + (*p++ - '0');
+    ++digits;
+  }
+  if (p < end && *p == '.') {
+    ++p;
+    double scale = 0.1;
+    while (p < end && std::isdigit(static_cast<unsigned char>(*p))) {
+      v += (*p++ - '0') * scale;
+      scale *= 0.1;
+      ++digits;
+    }
+  }
+  if (digits == 0) return start;
+  value = negative ? -v : v;
+  return p;
+}
+
+}  // namespace
+
 Block parse_block(const std::string& line, const std::string& where) {
   Block b;
   const char* p = line.c_str();
@@ -56,10 +86,9 @@ Block parse_block(const std::string& line, const std::string& where) {
     const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     ++p;
     while (p < end && *p == ' ') ++p;
-    char* num_end = nullptr;
-    const double v = std::strtod(p, &num_end);
+    double v = 0;
+    const char* num_end = parse_number(p, end, v);
     if (num_end == p) throw Error(where, std::string("word ") + letter + " without a number in: " + line);
-    if (!std::isfinite(v)) throw Error(where, std::string("word ") + letter + " is not a finite number in: " + line);
     b.words.push_back({letter, v});
     p = num_end;
   }

@@ -145,4 +145,11 @@ TEST(ModalScan, StateBeforeALineIsWhatTheControllerHas) {
   EXPECT_DOUBLE_EQ(b.get('X'), -1.5);
   EXPECT_TRUE(std::isnan(b.get('Z')));
   EXPECT_DOUBLE_EQ(b.get('N'), 20);
+  // Packed words (as GRBL senders strip spaces): "0X9" is G0 then X9, not a hexadecimal number.
+  const Block packed = parse_block("G0X9Y-.5Z1.", "l");
+  EXPECT_DOUBLE_EQ(packed.get('G'), 0);
+  EXPECT_DOUBLE_EQ(packed.get('X'), 9);
+  EXPECT_DOUBLE_EQ(packed.get('Y'), -0.5);
+  EXPECT_DOUBLE_EQ(packed.get('Z'), 1);
+  EXPECT_THROW(parse_block("G1 Xinf", "l"), Error);
 }
