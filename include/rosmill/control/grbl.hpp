@@ -1,0 +1,52 @@
+// The GRBL driver (see controller.hpp for the interface, src/control/grbl.cpp for the streaming protocol).
+#pragma once
+#include <chrono>
+#include <deque>
+#include <functional>
+
+#include "rosmill/control/controller.hpp"
+#include "rosmill/control/transport.hpp"
+
+namespace rosmill::control {
+
+class GrblController : public Controller {
+ public:
+  // `open` makes a new connection (serial port or TCP); called by connect(), again after a lost connection.
+  GrblController(std::function<std::unique_ptr<Transport>()> open, std::string describe, const ControllerOptions& o);
+
+  std::string describe() const override;
+  void connect() override;
+  void start(const std::vector<std::string>& program, const SendOptions& options) override;
+  ControllerStatus poll(double timeout_s) override;
+  void feed_hold() override;
+  void resume() override;
+  void abort() override;
+  void unlock() override;
+  void disconnect() override;
+
+  size_t bytes_in_flight() const { return buffered_; }
+
+ private:
+  struct Item {
+    std::string text;  // as sent, without the newline
+    size_t line;       // program line (1-based); 0 for resume preamble lines
+  };
+  void pump();
+  void handle_line(const std::string& line);
+  void parse_status(const std::string& report);
+
+  std::function<std::unique_ptr<Transport>()> open_;
+  std::string describe_;
+  ControllerOptions opt_;
+  std::unique_ptr<Transport> transport_;
+  std::unique_ptr<LineReader> reader_;
+  std::vector<Item> queue_;
+  std::deque<size_t> in_flight_;  // indices into queue_, oldest first
+  size_t next_ = 0;
+  size_t buffered_ = 0;           // bytes sent and not yet answered
+  std::string machine_state_;
+  ControllerStatus status_;
+  std::chrono::steady_clock::time_point last_heard_{}, last_status_{};
+};
+
+}  // namespace rosmill::control

@@ -1,0 +1,24 @@
+// G-code dialects: what differs between controllers when the post-processor writes a program. Adding a
+// controller is one row of the table in src/gcode/dialect.cpp.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace rosmill::gcode {
+
+struct Dialect {
+  std::string name;
+  std::string description;
+  std::string setup_words;     // the safe modal start of every program (units, distance, plane, offset, ...)
+  bool path_blending = false;  // G64 P<tolerance> (LinuxCNC's path blending within a tolerance)
+  bool tool_change_m6 = false; // T<n> M6; otherwise the operator changes the tool at an M0 pause
+  bool tool_length_offset = false;  // G43 H<n> after a tool change
+  std::string program_end;     // M2 or M30
+  size_t max_line_length = 0;  // 0: no limit (GRBL's line buffer holds 80 characters)
+};
+
+const std::vector<Dialect>& dialects();
+// Throws Error listing the known names.
+const Dialect& find_dialect(const std::string& name);
+
+}  // namespace rosmill::gcode

@@ -1,0 +1,47 @@
+// Safety before anything is sent: the machine's limits (config/machine.yaml) and the checker that refuses a
+// program breaking one, naming the line and the limit.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rosmill/geometry/types.hpp"
+
+namespace rosmill::gcode {
+
+// Lengths in mm, feeds in mm/min. Envelope and table are in machine coordinates; the program's coordinates are
+// the work offset's (G54), whose origin sits at `work_offset` in machine coordinates.
+struct MachineLimits {
+  std::string name;
+  Box3 envelope;                  // soft limits of the controlled point (the tool tip)
+  Vec3 work_offset = Vec3::Zero();
+  double table_z = 0.0;           // no tool tip goes below the table top
+  double max_feed = 0.0;
+  double max_spindle_rpm = 0.0;
+  double clearance_over_stock = 0.0;  // rapids end at least this high over the stock top
+};
+
+// Reads and validates the YAML file; throws Error naming the file and the field.
+MachineLimits load_machine_limits(const std::string& path);
+
+struct LimitViolation {
+  size_t line = 0;       // 1-based program line
+  std::string limit;     // which limit: "envelope x max", "table", "max feed", "rapid clearance", ...
+  std::string detail;    // the value against the limit
+  std::string text;      // the program line
+  std::string message() const;
+};
+
+struct LimitCheckOptions {
+  // Top of the stock in program coordinates; NaN: the highest Z of the cutting moves that travel in XY (the stock
+  // reaches at least there).
+  double stock_top = NAN;
+  size_t max_violations = 20;
+};
+
+std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, const MachineLimits& limits,
+                                         const LimitCheckOptions& options = {});
+// Throws Error("line N", "<limit>: <detail>: <text>") for the first violation (and counts the others).
+void require_within_limits(const std::vector<std::string>& lines, const MachineLimits& limits,
+                           const LimitCheckOptions& options = {});
+
+}  // namespace rosmill::gcode

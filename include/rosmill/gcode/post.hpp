@@ -1,0 +1,54 @@
+// The post-processor: a job (one toolpath per tool) becomes an RS274/NGC program in a controller's dialect.
+//
+// Positions are written in millimetres in the work offset (G54) with fixed precision (`decimals`); a word is
+// written only when it changes (modal motion, feed and axis words); numbers never read "-0". Every line keeps
+// where it came from (toolpath, pass, moves) so a controller's line number leads back to the toolpath.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rosmill/gcode/dialect.hpp"
+#include "rosmill/plan/strategy.hpp"
+
+namespace rosmill::gcode {
+
+enum class Coolant { Off, Flood, Mist };
+
+struct PostOptions {
+  std::string dialect = "linuxcnc";
+  int decimals = 3;                // digits after the point for lengths (feeds and speeds use fewer)
+  double blend_tolerance = 0.01;   // G64 P (mm) where the dialect blends paths
+  bool line_numbers = false;       // N words
+  int line_number_step = 10;
+  bool arcs = false;               // fit G2/G3 arcs to runs of feed moves (see arc_fit.hpp)
+  double arc_tolerance = 0.005;    // mm: the arc stays this close to the polyline it replaces
+  Coolant coolant = Coolant::Flood;
+  std::string title;               // written as a comment in the header
+};
+
+// Where a program line came from: toolpath index, pass index and the moves [first_move, last_move] it carries
+// out (-1 for lines that are not moves of the toolpath: header, tool change, retracts, end).
+struct LineOrigin {
+  int toolpath = -1;
+  int pass = -1;
+  int first_move = -1;
+  int last_move = -1;
+};
+
+struct Program {
+  std::vector<std::string> lines;   // without line ends
+  std::vector<LineOrigin> origin;   // one per line
+  std::string dialect;
+  int decimals = 3;
+
+  std::string text() const;         // lines joined with '\n', ending with '\n'
+  size_t motion_blocks() const;     // lines that move the machine (G0/G1/G2/G3 blocks)
+};
+
+Program post(const Job& job, const PostOptions& options = {});
+
+void write_program(const std::string& path, const Program& program);
+// Reads a program file into lines (no line ends); throws Error naming the file.
+std::vector<std::string> read_program_lines(const std::string& path);
+
+}  // namespace rosmill::gcode

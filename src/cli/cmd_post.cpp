@@ -1,0 +1,94 @@
+// rosmill post: toolpath.json -> G-code program in a controller's dialect, checked against the machine's limits
+// (and, with --verify, by LinuxCNC's own interpreter).
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "command.hpp"
+#include "rosmill/error.hpp"
+#include "rosmill/gcode/machine_limits.hpp"
+#include "rosmill/gcode/post.hpp"
+#include "rosmill/gcode/rs274_check.hpp"
+#include "rosmill/plan/toolpath_io.hpp"
+
+namespace rosmill::cli {
+namespace {
+
+struct PostArgs {
+  std::string input, output, machine, map;
+  gcode::PostOptions options;
+  std::string coolant = "flood";
+  double stock_top = NAN;
+  bool verify = false;
+};
+
+gcode::Coolant parse_coolant(const std::string& s) {
+  if (s == "flood") return gcode::Coolant::Flood;
+  if (s == "mist") return gcode::Coolant::Mist;
+  if (s == "off") return gcode::Coolant::Off;
+  throw Error("--coolant", "expected flood, mist or off, got '" + s + "'");
+}
+
+void write_map(const std::string& path, const gcode::Program& p) {
+  nlohmann::json lines = nlohmann::json::array();
+  for (size_t i = 0; i < p.origin.size(); ++i) {
+    const auto& o = p.origin[i];
+    if (o.first_move < 0) continue;
+    lines.push_back({i + 1, o.toolpath, o.pass, o.first_move, o.last_move});
+  }
+  std::ofstream out(path);
+  out << nlohmann::json{{"format", "rosmill-gcode-map"}, {"columns", {"line", "toolpath", "pass", "first_move", "last_move"}},
+                        {"lines", lines}}.dump()
+      << '\n';
+  if (!out) throw Error(path, "cannot write the line map");
+}
+
+void run(const PostArgs& a) {
+  gcode::PostOptions o = a.options;
+  o.coolant = parse_coolant(a.coolant);
+  if (o.title.empty()) o.title = a.input;
+  const Job job = read_toolpath_file(a.input);
+  const gcode::Program p = gcode::post(job, o);
+  nlohmann::json report{{"output", a.output}, {"dialect", p.dialect}, {"lines", p.lines.size()},
+                        {"motion_blocks", p.motion_blocks()}};
+  if (o.arcs) {
+    size_t moves = 0;
+    for (const auto& tp : job) moves += tp.move_count();
+    report["toolpath_moves"] = moves;
+  }
+  if (!a.machine.empty()) {
+    gcode::LimitCheckOptions lo;
+    lo.stock_top = a.stock_top;
+    gcode::require_within_limits(p.lines, gcode::load_machine_limits(a.machine), lo);
+    report["machine"] = a.machine;
+  }
+  if (a.verify) {
+    const auto rep = gcode::compare_with_job(p, job, gcode::run_rs274(p.lines), o.arc_tolerance);
+    if (!rep.ok) throw Error("rs274 verification", rep.problem);
+    report["rs274"] = {{"canon_moves", rep.canon_moves}, {"max_deviation_mm", rep.max_deviation}};
+  }
+  gcode::write_program(a.output, p);
+  if (!a.map.empty()) write_map(a.map, p);
+  std::printf("%s\n", report.dump().c_str());
+}
+
+CommandRegistration reg([](CLI::App& app) {
+  auto a = std::make_shared<PostArgs>();
+  auto* cmd = app.add_subcommand("post", "write a toolpath file as a G-code program");
+  cmd->add_option("TOOLPATH", a->input, "toolpath.json (rosmill plan -o)")->required();
+  cmd->add_option("-o,--output", a->output, "the program to write (.ngc)")->required();
+  cmd->add_option("--dialect", a->options.dialect, "linuxcnc or grbl")->capture_default_str();
+  cmd->add_flag("--arcs", a->options.arcs, "fit G2/G3 arcs to runs of feed moves");
+  cmd->add_option("--arc-tolerance", a->options.arc_tolerance, "mm")->capture_default_str();
+  cmd->add_option("--decimals", a->options.decimals, "digits after the point")->capture_default_str();
+  cmd->add_flag("--line-numbers", a->options.line_numbers, "write N words");
+  cmd->add_option("--blend-tolerance", a->options.blend_tolerance, "G64 P (LinuxCNC), mm")->capture_default_str();
+  cmd->add_option("--coolant", a->coolant, "flood, mist or off")->capture_default_str();
+  cmd->add_option("--machine", a->machine, "machine limits (config/machine.yaml): refuse a program that breaks one");
+  cmd->add_option("--stock-top", a->stock_top, "stock top z for the rapid clearance check (default: highest cut)");
+  cmd->add_flag("--verify", a->verify, "run LinuxCNC's rs274 on the program and compare its moves with the toolpath");
+  cmd->add_option("--map", a->map, "write the line -> (toolpath, pass, move) map as JSON");
+  cmd->callback([a] { run(*a); });
+});
+
+}  // namespace
+}  // namespace rosmill::cli

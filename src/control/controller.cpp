@@ -1,0 +1,135 @@
+#include "rosmill/control/controller.hpp"
+
+#include <sys/stat.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "rosmill/control/grbl.hpp"
+#include "rosmill/control/linuxcnc.hpp"
+#include "rosmill/error.hpp"
+
+namespace rosmill::control {
+namespace {
+
+// file:///DIR: the program is written into a folder a controller loads from (a shared folder, a USB stick).
+class FileController : public Controller {
+ public:
+  FileController(std::string dir, const ControllerOptions& o) : dir_(std::move(dir)), opt_(o) {}
+  std::string describe() const override { return "file://" + dir_; }
+  void connect() override {
+    if (!std::filesystem::is_directory(dir_)) throw Error(describe(), "is not a folder");
+    status_.state = RunState::Idle;
+  }
+  void start(const std::vector<std::string>& program, const SendOptions& o) override {
+    const std::string path = dir_ + "/" + (name_.empty() ? "rosmill.ngc" : name_);
+    const std::string tmp = path + ".part";
+    {
+      std::ofstream out(tmp);
+      if (!out) throw Error(tmp, "cannot write");
+      for (const auto& l : resume_preamble(program, o, opt_.dialect.empty() ? "linuxcnc" : opt_.dialect)) out << l << '\n';
+      out << resume_first_line(program, o.from_line) << '\n';
+      for (size_t i = o.from_line + 1; i <= program.size(); ++i) out << program[i - 1] << '\n';
+      if (!out) throw Error(tmp, "write failed");
+    }
+    // Renamed into place so a controller watching the folder never loads half a program.
+    std::filesystem::rename(tmp, path);
+    status_.total_lines = status_.acknowledged_line = program.size();
+    status_.state = RunState::Finished;
+  }
+  ControllerStatus poll(double) override { return status_; }
+  void feed_hold() override { throw Error(describe(), "a folder cannot hold the feed"); }
+  void resume() override { throw Error(describe(), "a folder cannot resume"); }
+  void abort() override { status_.state = RunState::Idle; }
+  void disconnect() override { status_.state = RunState::Disconnected; }
+  void set_name(std::string n) { name_ = std::move(n); }
+
+ private:
+  std::string dir_, name_;
+  ControllerOptions opt_;
+  ControllerStatus status_;
+};
+
+}  // namespace
+
+const char* run_state_name(RunState s) {
+  switch (s) {
+    case RunState::Disconnected: return "disconnected";
+    case RunState::Idle: return "idle";
+    case RunState::Running: return "running";
+    case RunState::Paused: return "paused";
+    case RunState::Alarm: return "alarm";
+    case RunState::Error: return "error";
+    case RunState::Finished: return "finished";
+  }
+  return "?";
+}
+
+std::unique_ptr<Controller> open_controller(const std::string& url, const ControllerOptions& o) {
+  const size_t sep = url.find("://");
+  if (sep == std::string::npos)
+    throw Error("--controller", "expected linuxcnc://HOST:PORT, grbl:///dev/ttyX?baud=N, grbl+tcp://HOST:PORT or "
+                                "file:///DIR, got '" + url + "'");
+  const std::string scheme = url.substr(0, sep), rest = url.substr(sep + 3);
+  if (scheme == "linuxcnc") {
+    std::string host;
+    int port;
+    split_host_port(rest, host, port, "--controller " + url);
+    return std::make_unique<LinuxcncController>(host, port, o);
+  }
+  if (scheme == "grbl+tcp") {
+    std::string host;
+    int port;
+    split_host_port(rest, host, port, "--controller " + url);
+    return std::make_unique<GrblController>([host, port] { return open_tcp(host, port); }, url, o);
+  }
+  if (scheme == "grbl") {
+    std::string device = rest;
+    int baud = 115200;
+    const size_t q = rest.find('?');
+    if (q != std::string::npos) {
+      device = rest.substr(0, q);
+      const std::string query = rest.substr(q + 1);
+      if (query.rfind("baud=", 0) != 0) throw Error("--controller " + url, "unknown option '" + query + "' (baud=N)");
+      try {
+        baud = std::stoi(query.substr(5));
+      } catch (const std::exception&) {
+        throw Error("--controller " + url, "baud is not a number");
+      }
+    }
+    if (device.empty() || device.front() != '/') throw Error("--controller " + url, "expected a device path like /dev/ttyUSB0");
+    return std::make_unique<GrblController>([device, baud] { return open_serial(device, baud); }, url, o);
+  }
+  if (scheme == "file") {
+    if (rest.empty() || rest.front() != '/') throw Error("--controller " + url, "expected file:///ABSOLUTE/DIR");
+    return std::make_unique<FileController>(rest, o);
+  }
+  throw Error("--controller " + url, "unknown controller kind '" + scheme + "' (linuxcnc, grbl, grbl+tcp, file)");
+}
+
+ControllerStatus run_to_end(Controller& c, const std::vector<std::string>& program, const SendOptions& o,
+                            const Progress& progress, double stall_s) {
+  c.start(program, o);
+  auto last_change = std::chrono::steady_clock::now();
+  ControllerStatus prev;
+  for (;;) {
+    const ControllerStatus s = c.poll(0.05);
+    if (progress) progress(s);
+    if (s.state == RunState::Finished) return s;
+    if (s.state == RunState::Error || s.state == RunState::Alarm || s.state == RunState::Disconnected ||
+        s.state == RunState::Idle)
+      throw Error(c.describe(), (s.error.empty() ? std::string(run_state_name(s.state)) : s.error) +
+                                    "; resume with --from-line " + std::to_string(s.acknowledged_line + 1));
+    const bool moved = s.acknowledged_line != prev.acknowledged_line || s.current_line != prev.current_line ||
+                       (s.position - prev.position).norm() > 1e-6 || s.state != prev.state;
+    if (moved || s.state == RunState::Paused) last_change = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_change).count() > stall_s)
+      throw Error(c.describe(), "no progress for " + std::to_string(stall_s) + " s at program line " +
+                                    std::to_string(s.current_line) + "; resume with --from-line " +
+                                    std::to_string(s.acknowledged_line + 1));
+    prev = s;
+  }
+}
+
+}  // namespace rosmill::control

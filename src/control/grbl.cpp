@@ -1,0 +1,231 @@
+// GRBL over a serial port or TCP: character-counting streaming (the documented way to keep GRBL's 128-byte
+// receive buffer full without overflowing it): the sender counts the bytes of every line sent and not yet
+// answered, and sends the next line only when it fits. Every "ok" or "error:N" answers the oldest such line.
+#include "rosmill/control/grbl.hpp"
+
+#include <chrono>
+#include <cstdlib>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill::control {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// GRBL's receive buffer holds the line without comments: strip them (and spaces) to save room.
+std::string compact(const std::string& line) {
+  std::string out;
+  int depth = 0;
+  for (char c : line) {
+    if (c == ';' && depth == 0) break;
+    if (c == '(') ++depth;
+    else if (c == ')') --depth;
+    else if (depth == 0 && c != ' ' && c != '\t' && c != '\r') out.push_back(c);
+  }
+  return out;
+}
+
+}  // namespace
+
+GrblController::GrblController(std::function<std::unique_ptr<Transport>()> open, std::string describe,
+                               const ControllerOptions& o)
+    : open_(std::move(open)), describe_(std::move(describe)), opt_(o) {}
+
+std::string GrblController::describe() const { return describe_; }
+
+void GrblController::connect() {
+  transport_ = open_();
+  reader_ = std::make_unique<LineReader>(*transport_);
+  status_ = ControllerStatus{};
+  status_.state = RunState::Idle;
+  // A serial GRBL resets when the port opens and greets with "Grbl 1.1x ['$' for help]"; a TCP bridge may not.
+  std::string line;
+  const auto start = Clock::now();
+  while (seconds_since(start) < 0.5 && reader_->next(line, 0.5 - seconds_since(start))) handle_line(line);
+}
+
+void GrblController::start(const std::vector<std::string>& program, const SendOptions& o) {
+  if (!transport_) throw Error(describe_, "not connected");
+  queue_.clear();
+  in_flight_.clear();
+  next_ = 0;
+  for (const std::string& pre : resume_preamble(program, o, opt_.dialect.empty() ? "grbl" : opt_.dialect))
+    queue_.push_back({compact(pre), 0});
+  for (size_t i = o.from_line; i <= program.size(); ++i) {
+    const std::string text = compact(i == o.from_line ? resume_first_line(program, i) : program[i - 1]);
+    if (text.empty() || text == "%") continue;  // nothing for GRBL to answer
+    if (text.size() + 1 > opt_.rx_buffer)
+      throw Error(describe_ + " line " + std::to_string(i), "longer than GRBL's receive buffer: " + text);
+    queue_.push_back({text, i});
+  }
+  status_.total_lines = program.size();
+  status_.acknowledged_line = o.from_line - 1;
+  status_.current_line = 0;
+  status_.error.clear();
+  status_.state = RunState::Running;
+  last_heard_ = Clock::now();
+  pump();
+}
+
+void GrblController::pump() {
+  // Character counting: send while the line fits in what GRBL's buffer has free.
+  std::string batch;
+  while (next_ < queue_.size() && status_.state == RunState::Running) {
+    const size_t need = queue_[next_].text.size() + 1;
+    if (buffered_ + need > opt_.rx_buffer) break;
+    batch += queue_[next_].text;
+    batch.push_back('\n');
+    in_flight_.push_back(next_);
+    buffered_ += need;
+    ++next_;
+  }
+  if (!batch.empty()) transport_->write(batch);
+}
+
+void GrblController::handle_line(const std::string& line) {
+  if (line.empty()) return;
+  last_heard_ = Clock::now();
+  if (line == "ok" || line.rfind("error:", 0) == 0) {
+    if (in_flight_.empty()) {
+      if (line != "ok") status_.error = "GRBL " + line + " for a line rosmill did not send";
+      return;  // an "ok" for a command outside the stream ($X)
+    }
+    machine_state_.clear();  // only a status report after this answer tells whether the machine is done
+    const Item& item = queue_[in_flight_.front()];
+    buffered_ -= item.text.size() + 1;
+    in_flight_.pop_front();
+    if (line == "ok") {
+      if (item.line > 0) status_.acknowledged_line = item.line;
+    } else if (status_.state != RunState::Alarm) {  // after an alarm GRBL refuses what was buffered (error:9)
+      status_.state = RunState::Error;
+      status_.error = "GRBL " + line + (item.line ? " at program line " + std::to_string(item.line) : " in the resume preamble") +
+                      ": " + item.text;
+    }
+    return;
+  }
+  if (line.rfind("ALARM:", 0) == 0) {
+    status_.state = RunState::Alarm;
+    status_.error = "GRBL " + line + " after program line " + std::to_string(status_.acknowledged_line) +
+                    " (unlock with $X only once the machine is safe)";
+    return;
+  }
+  if (line.front() == '<') {
+    parse_status(line);
+    return;
+  }
+  if (line.rfind("Grbl ", 0) == 0 && status_.state == RunState::Running) {
+    // A greeting mid-stream means the controller reset: what it had buffered is gone.
+    status_.state = RunState::Error;
+    status_.error = "GRBL reset while running (after program line " + std::to_string(status_.acknowledged_line) + ")";
+  }
+}
+
+void GrblController::parse_status(const std::string& s) {
+  // <Idle|MPos:1.000,2.000,3.000|FS:0,0|...>
+  const size_t bar = s.find('|');
+  const std::string state = s.substr(1, (bar == std::string::npos ? s.size() - 1 : bar) - 1);
+  machine_state_ = state.substr(0, state.find(':'));
+  if (machine_state_ == "Hold" && status_.state == RunState::Running) status_.state = RunState::Paused;
+  if (machine_state_ == "Alarm") status_.state = RunState::Alarm;
+  for (const char* key : {"MPos:", "WPos:"}) {
+    const size_t at = s.find(key);
+    if (at == std::string::npos) continue;
+    const char* p = s.c_str() + at + 5;
+    for (int a = 0; a < 3; ++a) {
+      char* end;
+      status_.position[a] = std::strtod(p, &end);
+      p = end + 1;
+    }
+    status_.position_known = true;
+  }
+  const size_t ln = s.find("Ln:");
+  if (ln != std::string::npos) status_.current_line = std::strtoul(s.c_str() + ln + 3, nullptr, 10);
+  else status_.current_line = status_.acknowledged_line < status_.total_lines ? status_.acknowledged_line + 1 : 0;
+}
+
+ControllerStatus GrblController::poll(double timeout_s) {
+  if (!transport_) {
+    status_.state = RunState::Disconnected;
+    return status_;
+  }
+  const auto start = Clock::now();
+  try {
+    if (seconds_since(last_status_) >= opt_.status_interval_s) {
+      transport_->write("?");  // real-time: not part of the buffer count
+      last_status_ = Clock::now();
+    }
+    std::string line;
+    while (reader_->next(line, std::max(0.0, timeout_s - seconds_since(start)))) {
+      handle_line(line);
+      if (status_.state == RunState::Running) pump();
+      if (seconds_since(start) >= timeout_s) break;
+    }
+    if (status_.state == RunState::Running) pump();
+  } catch (const Error& e) {
+    transport_.reset();
+    reader_.reset();
+    buffered_ = 0;
+    in_flight_.clear();
+    status_.state = RunState::Disconnected;
+    status_.error = std::string(e.what()) + " (after program line " + std::to_string(status_.acknowledged_line) +
+                    " was acknowledged)";
+    return status_;
+  }
+  const bool all_answered = next_ == queue_.size() && in_flight_.empty();
+  if ((status_.state == RunState::Running || status_.state == RunState::Paused) && all_answered &&
+      machine_state_ == "Idle") {
+    status_.state = RunState::Finished;
+    status_.acknowledged_line = status_.total_lines;
+  }
+  if (status_.state == RunState::Running && !in_flight_.empty() && seconds_since(last_heard_) > opt_.reply_timeout_s) {
+    status_.state = RunState::Error;
+    status_.error = "GRBL did not answer for " + std::to_string(opt_.reply_timeout_s) + " s (after program line " +
+                    std::to_string(status_.acknowledged_line) + ")";
+  }
+  return status_;
+}
+
+void GrblController::feed_hold() {
+  if (transport_) transport_->write("!");
+  if (status_.state == RunState::Running) status_.state = RunState::Paused;
+}
+
+void GrblController::resume() {
+  if (transport_) transport_->write("~");
+  if (status_.state == RunState::Paused) status_.state = RunState::Running;
+}
+
+void GrblController::abort() {
+  // Soft reset (0x18): GRBL stops at once and empties its buffers; nothing of ours is in flight any more.
+  in_flight_.clear();
+  buffered_ = 0;
+  next_ = queue_.size();
+  status_.state = RunState::Idle;
+  if (!transport_) return;
+  transport_->write(std::string(1, '\x18'));
+  // GRBL greets again after the reset; wait for it so it is not taken for a reset during the next program.
+  std::string line;
+  const auto start = Clock::now();
+  while (seconds_since(start) < opt_.reply_timeout_s) {
+    if (!reader_->next(line, opt_.reply_timeout_s - seconds_since(start))) break;
+    if (line.rfind("Grbl ", 0) == 0) return;
+  }
+  throw Error(describe_, "no greeting after the soft reset within " + std::to_string(opt_.reply_timeout_s) + " s");
+}
+
+void GrblController::unlock() {
+  if (!transport_) throw Error(describe_, "not connected");
+  transport_->write("$X\n");
+  if (status_.state == RunState::Alarm) status_.state = RunState::Idle;
+}
+
+void GrblController::disconnect() {
+  transport_.reset();
+  reader_.reset();
+  status_.state = RunState::Disconnected;
+}
+
+}  // namespace rosmill::control

@@ -1,0 +1,194 @@
+#include "rosmill/control/linuxcnc.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill::control {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string upper(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::string first_word(const std::string& s) { return s.substr(0, s.find(' ')); }
+
+}  // namespace
+
+LinuxcncController::LinuxcncController(std::string host, int port, const ControllerOptions& o)
+    : host_(std::move(host)), port_(port), opt_(o) {}
+
+std::string LinuxcncController::describe() const { return "linuxcnc://" + host_ + ":" + std::to_string(port_); }
+
+std::string LinuxcncController::reply_for(const std::string& request, const std::string& key) {
+  if (!transport_) throw Error(describe(), "not connected");
+  transport_->write(request + "\r\n");
+  const auto start = Clock::now();
+  std::string line;
+  for (;;) {
+    const double left = opt_.reply_timeout_s - std::chrono::duration<double>(Clock::now() - start).count();
+    if (left <= 0 || !reader_->next(line, left))
+      throw Error(describe(), "no reply to '" + request + "' within " + std::to_string(opt_.reply_timeout_s) + " s");
+    if (line.empty() || line == request) continue;  // blank separators and echoes
+    if (line.rfind(key, 0) == 0) return line.substr(std::min(line.size(), key.size() + 1));
+    if (line.find("NAK") != std::string::npos)
+      throw Error(describe(), "linuxcncrsh refused '" + request + "': " + line);
+  }
+}
+
+void LinuxcncController::set(const std::string& what) {
+  const std::string reply = reply_for("set " + what, "SET " + upper(first_word(what)));
+  if (reply != "ACK") throw Error(describe(), "linuxcncrsh refused 'set " + what + "': " + reply);
+}
+
+std::string LinuxcncController::get(const std::string& what) { return reply_for("get " + what, upper(first_word(what))); }
+
+void LinuxcncController::connect() {
+  transport_ = open_tcp(host_, port_);
+  reader_ = std::make_unique<LineReader>(*transport_);
+  const std::string hello = reply_for("hello EMC rosmill 1.0", "HELLO");
+  if (hello.rfind("ACK", 0) != 0) throw Error(describe(), "handshake refused: HELLO " + hello);
+  transport_->write("set echo off\r\n");
+  set("verbose on");  // from here every set is answered ACK or NAK
+  set("enable EMCTOO");
+  set("set_wait done");
+  set("estop off");
+  set("machine on");
+  if (!opt_.home_if_needed) return;
+  auto homed = [&] {
+    std::istringstream in(get("joint_homed"));
+    std::string w;
+    for (int j = 0; j < 3 && in >> w; ++j)  // the reply lists unused joints too; X, Y and Z are the first three
+      if (upper(w) != "YES") return false;
+    return true;
+  };
+  if (homed()) return;
+  set("mode manual");
+  set("home -1");
+  const auto start = Clock::now();
+  while (!homed()) {
+    if (std::chrono::duration<double>(Clock::now() - start).count() > 60)
+      throw Error(describe(), "homing did not finish within 60 s");
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+}
+
+void LinuxcncController::start(const std::vector<std::string>& program, const SendOptions& o) {
+  if (opt_.program_dir.empty() || opt_.program_dir.front() != '/')
+    throw Error(describe(), "needs an absolute program folder the controller reads (--program-dir)");
+  const std::vector<std::string> pre = resume_preamble(program, o, opt_.dialect.empty() ? "linuxcnc" : opt_.dialect);
+  const std::string path = opt_.program_dir + "/rosmill-" + std::to_string(::getpid()) + "-" +
+                           std::to_string(++file_counter_) + ".ngc";
+  {
+    std::ofstream out(path);
+    if (!out) throw Error(path, "cannot write the program for the controller");
+    for (const auto& l : pre) out << l << '\n';
+    out << resume_first_line(program, o.from_line) << '\n';
+    for (size_t i = o.from_line + 1; i <= program.size(); ++i) out << program[i - 1] << '\n';
+    if (!out) throw Error(path, "write failed");
+  }
+  ::chmod(path.c_str(), 0644);  // the controller may run as another user
+  preamble_lines_ = pre.size();
+  from_line_ = o.from_line;
+  status_ = ControllerStatus{};
+  status_.total_lines = program.size();
+  status_.acknowledged_line = o.from_line - 1;
+  set("mode auto");
+  set("open " + path);
+  const std::string err = get("error");
+  if (upper(err) != "OK") throw Error(describe(), "cannot open " + path + ": " + err);
+  set("run");
+  status_.state = RunState::Running;
+  seen_running_ = false;
+  started_ = Clock::now();
+}
+
+size_t LinuxcncController::program_line_of(size_t file_line) const {
+  if (file_line <= preamble_lines_) return 0;
+  return file_line - preamble_lines_ - 1 + from_line_;
+}
+
+void LinuxcncController::lost(const Error& e) {
+  transport_.reset();
+  reader_.reset();
+  status_.state = RunState::Disconnected;
+  status_.error = std::string(e.what()) + " (program line " + std::to_string(status_.acknowledged_line) + " done)";
+}
+
+ControllerStatus LinuxcncController::poll(double timeout_s) {
+  const auto start = Clock::now();
+  if (!transport_) {
+    status_.state = RunState::Disconnected;
+    return status_;
+  }
+  try {
+    const std::string run = upper(get("program_status"));
+    const size_t line = program_line_of(std::strtoul(get("program_line").c_str(), nullptr, 10));
+    std::istringstream pos(get("abs_act_pos"));
+    status_.position_known = static_cast<bool>(pos >> status_.position.x() >> status_.position.y() >> status_.position.z());
+    const std::string err = get("error");
+    if (line > 0) {
+      status_.current_line = line;
+      status_.acknowledged_line = std::max(status_.acknowledged_line, line - 1);
+    }
+    if (upper(err) != "OK") {
+      status_.state = RunState::Error;
+      status_.error = "LinuxCNC: " + err + " (at program line " + std::to_string(status_.current_line) + ")";
+    } else if (status_.state == RunState::Running || status_.state == RunState::Paused) {
+      if (run == "RUNNING") {
+        seen_running_ = true;
+        status_.state = RunState::Running;
+      } else if (run == "PAUSED") {
+        seen_running_ = true;
+        status_.state = RunState::Paused;
+      } else if (run == "IDLE" && (seen_running_ || std::chrono::duration<double>(Clock::now() - started_).count() > 1.0)) {
+        status_.state = RunState::Finished;
+        status_.acknowledged_line = status_.total_lines;
+      }
+    }
+  } catch (const Error& e) {
+    lost(e);
+    return status_;
+  }
+  const double left = timeout_s - std::chrono::duration<double>(Clock::now() - start).count();
+  if (left > 0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
+  return status_;
+}
+
+void LinuxcncController::feed_hold() {
+  set("pause");
+  if (status_.state == RunState::Running) status_.state = RunState::Paused;
+}
+
+void LinuxcncController::resume() {
+  set("resume");
+  if (status_.state == RunState::Paused) status_.state = RunState::Running;
+}
+
+void LinuxcncController::abort() {
+  set("abort");
+  status_.state = RunState::Idle;
+}
+
+void LinuxcncController::disconnect() {
+  if (transport_) {
+    try {
+      transport_->write("quit\r\n");
+    } catch (const Error&) {
+    }
+  }
+  transport_.reset();
+  reader_.reset();
+  status_.state = RunState::Disconnected;
+}
+
+}  // namespace rosmill::control

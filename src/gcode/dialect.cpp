@@ -1,0 +1,29 @@
+#include "rosmill/gcode/dialect.hpp"
+
+#include <sstream>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill::gcode {
+
+// One row per controller. G40 (no cutter compensation), G49 (no length offset), G80 (no canned cycle) and G94
+// (feed per minute) make the start state explicit whatever the previous program left behind.
+const std::vector<Dialect>& dialects() {
+  static const std::vector<Dialect> table = {
+      {"linuxcnc", "LinuxCNC (rs274ngc): T M6 tool change, G43 length offset, G64 path blending",
+       "G17 G21 G40 G49 G54 G80 G90 G94", true, true, true, "M30", 0},
+      {"grbl", "GRBL 1.1: no tool changer (M0 pause to change the tool), 80-character lines",
+       "G17 G21 G40 G49 G54 G80 G90 G94", false, false, false, "M30", 80},
+  };
+  return table;
+}
+
+const Dialect& find_dialect(const std::string& name) {
+  for (const Dialect& d : dialects())
+    if (d.name == name) return d;
+  std::ostringstream known;
+  for (const Dialect& d : dialects()) known << (known.tellp() > 0 ? ", " : "") << d.name;
+  throw Error("dialect", "unknown dialect '" + name + "' (known: " + known.str() + ")");
+}
+
+}  // namespace rosmill::gcode

@@ -1,0 +1,286 @@
+#include "rosmill/gcode/post.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include "rosmill/error.hpp"
+#include "rosmill/gcode/arc_fit.hpp"
+#include "rosmill/gcode/number_format.hpp"
+
+namespace rosmill::gcode {
+namespace {
+
+constexpr int kFeedDecimals = 1;
+constexpr int kSpeedDecimals = 0;
+
+// Writes blocks and remembers the modal state the controller is in, so that only changed words are written.
+class Writer {
+ public:
+  Writer(const Dialect& d, const PostOptions& o, Program& p) : dialect_(d), opt_(o), prog_(p) {}
+
+  void line(const std::string& body, const LineOrigin& origin = {}) {
+    std::string text;
+    if (opt_.line_numbers) {
+      text.push_back('N');
+      text += std::to_string(next_number_);
+      text.push_back(' ');
+      next_number_ += opt_.line_number_step;
+    }
+    text += body;
+    if (dialect_.max_line_length && text.size() > dialect_.max_line_length)
+      throw Error("post " + dialect_.name, "line " + std::to_string(prog_.lines.size() + 1) + " is longer than " +
+                                               std::to_string(dialect_.max_line_length) + " characters: " + text);
+    prog_.lines.push_back(std::move(text));
+    prog_.origin.push_back(origin);
+  }
+
+  void comment(const std::string& text) {
+    std::string clean;
+    for (char c : text) clean.push_back(c == '(' || c == ')' ? ' ' : c);  // parentheses would end the comment
+    line("(" + clean + ")");
+  }
+
+  // motion: 0 rapid, 1 line, 2 clockwise arc, 3 counter-clockwise arc (centre given for arcs).
+  void move(int motion, const Vec3& to, double feed, const LineOrigin& origin, const Vec2* centre = nullptr) {
+    const int d = opt_.decimals;
+    int64_t target[3];
+    for (int a = 0; a < 3; ++a) target[a] = to_fixed(to[a], d);
+    std::string& b = scratch_;
+    b.clear();
+    if (motion != motion_) {
+      b.push_back('G');
+      b.push_back(static_cast<char>('0' + motion));
+    }
+    static const char axis[3] = {'X', 'Y', 'Z'};
+    bool moved = false;
+    for (int a = 0; a < 3; ++a) {
+      if (known_ && target[a] == pos_[a]) continue;
+      if (!b.empty()) b.push_back(' ');
+      b.push_back(axis[a]);
+      append_fixed(b, target[a], d);
+      moved = true;
+    }
+    if (!moved) return;  // a move shorter than the output precision: nothing for the controller to do
+    if (centre) {
+      // I and J are relative to the start point, as written (rounded) so the controller sees a consistent arc.
+      b += " I";
+      append_fixed(b, to_fixed((*centre).x(), d) - pos_[0], d);
+      b += " J";
+      append_fixed(b, to_fixed((*centre).y(), d) - pos_[1], d);
+    }
+    if (motion != 0) {
+      if (!(feed > 0)) throw Error("post", "a feed move without a feed rate (toolpath " + std::to_string(origin.toolpath) +
+                                               ", pass " + std::to_string(origin.pass) + ", move " +
+                                               std::to_string(origin.first_move) + ")");
+      const int64_t f = to_fixed(feed, kFeedDecimals);
+      if (f != feed_) {
+        b += " F";
+        append_fixed(b, f, kFeedDecimals);
+        feed_ = f;
+      }
+    }
+    motion_ = motion;
+    for (int a = 0; a < 3; ++a) pos_[a] = target[a];
+    known_ = true;
+    line(b, origin);
+  }
+
+  // Moves straight up (or down) to z at the current XY; used for retracts whose XY is the current one.
+  void rapid_z(double z, const LineOrigin& origin) {
+    if (!known_) {
+      if (motion_ == 0 && z_only_ == to_fixed(z, opt_.decimals)) return;
+      std::string b = "G0 Z";
+      append_fixed(b, to_fixed(z, opt_.decimals), opt_.decimals);
+      line(b, origin);
+      motion_ = 0;
+      z_only_ = to_fixed(z, opt_.decimals);
+      return;
+    }
+    Vec3 at(static_cast<double>(pos_[0]), static_cast<double>(pos_[1]), z);
+    const double s = static_cast<double>(decimal_scale(opt_.decimals));
+    at.x() /= s;
+    at.y() /= s;
+    move(0, at, 0.0, origin);
+  }
+
+  // Before the first full position, only Z is known (from rapid_z); the first XY rapid fills in the rest.
+  void rapid_xy(double x, double y, const LineOrigin& origin) {
+    if (known_) {
+      const double s = static_cast<double>(decimal_scale(opt_.decimals));
+      move(0, Vec3(x, y, static_cast<double>(pos_[2]) / s), 0.0, origin);
+      return;
+    }
+    std::string b = motion_ == 0 ? "X" : "G0 X";
+    append_fixed(b, to_fixed(x, opt_.decimals), opt_.decimals);
+    b += " Y";
+    append_fixed(b, to_fixed(y, opt_.decimals), opt_.decimals);
+    pos_[0] = to_fixed(x, opt_.decimals);
+    pos_[1] = to_fixed(y, opt_.decimals);
+    pos_[2] = z_only_;
+    known_ = true;
+    motion_ = 0;
+    line(b, origin);
+  }
+
+  // After a tool change the tool's length (and so the program Z of the tip) changed: write every axis again.
+  void forget_position() {
+    known_ = false;
+    motion_ = -1;
+  }
+
+  bool position_known() const { return known_; }
+  Vec3 position() const {
+    const double s = static_cast<double>(decimal_scale(opt_.decimals));
+    return Vec3(pos_[0] / s, pos_[1] / s, pos_[2] / s);
+  }
+
+ private:
+  const Dialect& dialect_;
+  const PostOptions& opt_;
+  Program& prog_;
+  std::string scratch_;
+  int next_number_ = 10;
+  int motion_ = -1;
+  int64_t feed_ = -1;
+  int64_t pos_[3] = {0, 0, 0};
+  int64_t z_only_ = 0;
+  bool known_ = false;
+};
+
+std::string fixed_text(double v, int decimals) {
+  std::string s;
+  append_fixed(s, to_fixed(v, decimals), decimals);
+  return s;
+}
+
+std::string tool_text(const Tool& t) {
+  std::string s = "T" + std::to_string(t.id) + " " + cutter_type_name(t.cutter.type) + " D" +
+                  fixed_text(t.cutter.diameter, 3);
+  if (t.cutter.type == CutterType::BullNose) s += " r" + fixed_text(t.cutter.corner_radius, 3);
+  if (!t.name.empty()) s += " " + t.name;
+  return s;
+}
+
+void tool_change(Writer& w, const Dialect& d, const Toolpath& tp, int index, bool first, const PostOptions& o) {
+  const LineOrigin origin{index};
+  if (!first) {
+    w.line("M5", origin);
+    if (o.coolant != Coolant::Off) w.line("M9", origin);
+  }
+  w.rapid_z(tp.clearance_z, origin);
+  if (d.tool_change_m6) {
+    w.line("T" + std::to_string(tp.tool.id) + " M6", origin);
+    if (d.tool_length_offset) w.line("G43 H" + std::to_string(tp.tool.id), origin);
+  } else {
+    w.comment("load tool " + tool_text(tp.tool) + ", set its length, then cycle start");
+    w.line("M0", origin);
+  }
+  w.forget_position();
+  w.rapid_z(tp.clearance_z, origin);  // first move after the length offset: straight up to the clearance
+  w.line("S" + fixed_text(tp.tool.spindle_rpm, kSpeedDecimals) + " M3", origin);
+  if (o.coolant == Coolant::Flood) w.line("M8", origin);
+  if (o.coolant == Coolant::Mist) w.line("M7", origin);
+}
+
+// A pass's moves, with runs of equal-feed linear moves handed to the arc fitter when arcs are on.
+void write_pass(Writer& w, const ToolpathPass& pass, int ti, int pi, const PostOptions& o) {
+  const auto& moves = pass.moves;
+  const int n = static_cast<int>(moves.size());
+  ArcFitOptions fit;
+  fit.tolerance = o.arc_tolerance;
+  std::vector<Vec3> run;
+  int k = 0;
+  while (k < n) {
+    const Move& m = moves[k];
+    if (!o.arcs || m.type != MoveType::Feed || !w.position_known()) {
+      w.move(m.type == MoveType::Rapid ? 0 : 1, m.to, m.feed, LineOrigin{ti, pi, k, k});
+      ++k;
+      continue;
+    }
+    int e = k;
+    while (e + 1 < n && moves[e + 1].type == MoveType::Feed && moves[e + 1].feed == m.feed) ++e;
+    run.clear();
+    run.push_back(w.position());
+    for (int q = k; q <= e; ++q) run.push_back(moves[q].to);
+    for (const ArcPiece& piece : fit_arcs(run, fit)) {
+      if (piece.arc) {
+        w.move(piece.clockwise ? 2 : 3, run[piece.last], m.feed, LineOrigin{ti, pi, k + piece.first, k + piece.last - 1},
+               &piece.centre);
+      } else {
+        for (int s = piece.first; s < piece.last; ++s) w.move(1, run[s + 1], m.feed, LineOrigin{ti, pi, k + s, k + s});
+      }
+    }
+    k = e + 1;
+  }
+}
+
+}  // namespace
+
+std::string Program::text() const {
+  size_t total = 0;
+  for (const auto& l : lines) total += l.size() + 1;
+  std::string out;
+  out.reserve(total);
+  for (const auto& l : lines) {
+    out += l;
+    out.push_back('\n');
+  }
+  return out;
+}
+
+size_t Program::motion_blocks() const {
+  size_t n = 0;
+  for (const LineOrigin& o : origin) n += o.first_move >= 0;
+  return n;
+}
+
+Program post(const Job& job, const PostOptions& o) {
+  const Dialect& d = find_dialect(o.dialect);
+  decimal_scale(o.decimals);  // validates
+  if (job.empty()) throw Error("post", "the job has no toolpath");
+  Program prog;
+  prog.dialect = d.name;
+  prog.decimals = o.decimals;
+  Writer w(d, o, prog);
+  if (!o.title.empty()) w.comment(o.title);
+  w.comment("rosmill post, dialect " + d.name + ", mm");
+  for (const Toolpath& tp : job) w.comment(tp.strategy + ": " + tool_text(tp.tool));
+  w.line(d.setup_words);
+  if (d.path_blending) w.line("G64 P" + fixed_text(o.blend_tolerance, o.decimals));
+  for (size_t t = 0; t < job.size(); ++t) {
+    const Toolpath& tp = job[t];
+    const int ti = static_cast<int>(t);
+    if (t == 0 || tp.tool.id != job[t - 1].tool.id) tool_change(w, d, tp, ti, t == 0, o);
+    w.rapid_z(std::max(tp.clearance_z, tp.start.z()), LineOrigin{ti});
+    w.rapid_xy(tp.start.x(), tp.start.y(), LineOrigin{ti});
+    w.rapid_z(tp.start.z(), LineOrigin{ti});
+    for (size_t p = 0; p < tp.passes.size(); ++p) write_pass(w, tp.passes[p], ti, static_cast<int>(p), o);
+    w.rapid_z(tp.clearance_z, LineOrigin{ti});
+  }
+  w.line("M5");
+  if (o.coolant != Coolant::Off) w.line("M9");
+  w.line(d.program_end);
+  return prog;
+}
+
+void write_program(const std::string& path, const Program& program) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw Error(path, "cannot open for writing");
+  const std::string text = program.text();
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  if (!out) throw Error(path, "write failed");
+}
+
+std::vector<std::string> read_program_lines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path, "cannot open G-code program");
+  std::vector<std::string> lines;
+  std::string l;
+  while (std::getline(in, l)) {
+    if (!l.empty() && l.back() == '\r') l.pop_back();
+    lines.push_back(l);
+  }
+  return lines;
+}
+
+}  // namespace rosmill::gcode

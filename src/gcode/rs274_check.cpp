@@ -1,0 +1,279 @@
+#include "rosmill/gcode/rs274_check.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "rosmill/error.hpp"
+#include "rosmill/gcode/arc_fit.hpp"
+#include "rosmill/gcode/number_format.hpp"
+
+extern char** environ;
+
+namespace rosmill::gcode {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Tool numbers the program selects (T words outside comments), for rs274's tool table.
+std::set<int> tools_used(const std::vector<std::string>& lines) {
+  std::set<int> tools;
+  for (const std::string& l : lines) {
+    int depth = 0;
+    for (size_t i = 0; i < l.size(); ++i) {
+      const char c = l[i];
+      if (c == '(') ++depth;
+      if (c == ')') --depth;
+      if (c == ';') break;
+      if (depth == 0 && (c == 'T' || c == 't') && i + 1 < l.size() && std::isdigit(static_cast<unsigned char>(l[i + 1])))
+        tools.insert(std::atoi(l.c_str() + i + 1));
+    }
+  }
+  return tools;
+}
+
+// Numbers between the parentheses of "NAME(a, b, ...)".
+std::vector<double> arguments(const std::string& line, size_t open) {
+  std::vector<double> v;
+  const char* p = line.c_str() + open + 1;
+  while (*p && *p != ')') {
+    char* end = nullptr;
+    const double x = std::strtod(p, &end);
+    if (end == p) break;
+    v.push_back(x);
+    p = end;
+    while (*p == ',' || *p == ' ') ++p;
+  }
+  return v;
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string tmpl = (fs::temp_directory_path() / "rosmill-rs274-XXXXXX").string();
+    if (!mkdtemp(tmpl.data())) throw Error("rs274", "cannot create a temporary folder");
+    path_ = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+}  // namespace
+
+std::vector<CanonMove> parse_canon(const std::string& text) {
+  std::vector<CanonMove> moves;
+  double feed = 0.0, scale = 1.0;
+  std::istringstream in(text);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    size_t at;
+    if ((at = line.find("SET_FEED_RATE(")) != std::string::npos) {
+      auto a = arguments(line, line.find('(', at));
+      if (!a.empty()) feed = a[0] * scale;
+      continue;
+    }
+    // Canonical numbers are in the program's units (G20 inches, G21 mm) and program coordinates.
+    if (line.find("USE_LENGTH_UNITS(") != std::string::npos) {
+      scale = line.find("CANON_UNITS_INCHES") != std::string::npos ? 25.4
+              : line.find("CANON_UNITS_CM") != std::string::npos ? 10.0 : 1.0;
+      continue;
+    }
+    CanonMove m;
+    m.canon_line = n;
+    if ((at = line.find("STRAIGHT_TRAVERSE(")) != std::string::npos) {
+      m.kind = CanonMove::Traverse;
+    } else if ((at = line.find("STRAIGHT_FEED(")) != std::string::npos) {
+      m.kind = CanonMove::Feed;
+    } else if ((at = line.find("ARC_FEED(")) != std::string::npos) {
+      m.kind = CanonMove::Arc;
+    } else {
+      continue;
+    }
+    const auto a = arguments(line, line.find('(', at));
+    if (m.kind == CanonMove::Arc) {
+      if (a.size() < 6) throw Error("rs274 output line " + std::to_string(n), "ARC_FEED with too few arguments");
+      m.end = Vec3(a[0], a[1], a[5]) * scale;
+      m.centre = Vec2(a[2], a[3]) * scale;
+      m.rotation = static_cast<int>(a[4]);
+    } else {
+      if (a.size() < 3) throw Error("rs274 output line " + std::to_string(n), "move with too few arguments");
+      m.end = Vec3(a[0], a[1], a[2]) * scale;
+    }
+    m.feed = m.kind == CanonMove::Traverse ? 0.0 : feed;
+    moves.push_back(m);
+  }
+  return moves;
+}
+
+Rs274Result run_rs274(const std::vector<std::string>& lines, const std::string& executable) {
+  TempDir dir;
+  const fs::path program = dir.path() / "program.ngc", out = dir.path() / "canon.txt", log = dir.path() / "log.txt",
+                 table = dir.path() / "tools.tbl";
+  {
+    std::ofstream p(program);
+    for (const auto& l : lines) p << l << '\n';
+    std::ofstream t(table);
+    for (int id : tools_used(lines)) t << 'T' << id << " P" << id << " Z0 D1 ;rosmill verification\n";
+    if (!p || !t) throw Error("rs274", "cannot write into " + dir.path().string());
+  }
+  const std::string logs = log.string(), dirs = dir.path().string();
+  std::vector<std::string> args = {executable, "-t", table.string(), "-g", program.string(), out.string()};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, logs.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawn_file_actions_addchdir_np(&actions, dirs.c_str());
+  pid_t pid;
+  const int rc = posix_spawnp(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw Error("rs274", "cannot start '" + executable + "' (package linuxcnc-uspace): " + std::strerror(rc));
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  Rs274Result r;
+  r.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.moves = parse_canon(slurp(out));
+  std::string message = slurp(log);
+  // rs274 prints "executing" as it starts; what follows is its complaint and the block it refused.
+  for (size_t p; (p = message.find("executing")) != std::string::npos;) message.erase(p, 9);
+  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.front()))) message.erase(0, 1);
+  r.ok = r.exit_status == 0 && message.empty();
+  if (!r.ok) r.error = message.empty() ? "rs274 exited with status " + std::to_string(r.exit_status) : message;
+  return r;
+}
+
+namespace {
+
+// Walks the toolpath moves in order alongside the program's motion lines.
+struct JobCursor {
+  const Job& job;
+  size_t t = 0, p = 0, k = 0;
+  const Move* current() const {
+    if (t >= job.size() || p >= job[t].passes.size() || k >= job[t].passes[p].moves.size()) return nullptr;
+    return &job[t].passes[p].moves[k];
+  }
+};
+
+std::string where(const LineOrigin& o) {
+  return "toolpath " + std::to_string(o.toolpath) + ", pass " + std::to_string(o.pass) + ", move " +
+         std::to_string(o.first_move);
+}
+
+}  // namespace
+
+VerifyReport compare_with_job(const Program& program, const Job& job, const Rs274Result& rs, double arc_tolerance) {
+  VerifyReport rep;
+  rep.canon_moves = rs.moves.size();
+  for (const Toolpath& tp : job) rep.toolpath_moves += tp.move_count();
+  if (!rs.ok) {
+    rep.problem = "rs274 refused the program: " + rs.error;
+    return rep;
+  }
+  // Written numbers are rounded to the program's decimals; rs274 prints four decimals.
+  const double precision = 0.5 / static_cast<double>(decimal_scale(program.decimals)) + 0.5e-4 + 1e-9;
+  // Every line that moves the machine yields one canonical move: find them by their origin or their axis words.
+  size_t c = 0;
+  Vec3 at = Vec3::Constant(NAN);
+  auto fail = [&](size_t line, const std::string& what) {
+    rep.problem = "program line " + std::to_string(line + 1) + " (" + program.lines[line] + "): " + what;
+    return rep;
+  };
+  std::vector<std::vector<bool>> done;  // per toolpath, flattened moves carried out
+  for (const Toolpath& tp : job) done.emplace_back(tp.move_count(), false);
+  auto flat_index = [&](int t, int p, int k) {
+    size_t i = 0;
+    for (int q = 0; q < p; ++q) i += job[t].passes[q].moves.size();
+    return i + static_cast<size_t>(k);
+  };
+  for (size_t i = 0; i < program.lines.size(); ++i) {
+    const std::string& l = program.lines[i];
+    const LineOrigin& o = program.origin[i];
+    std::string code;  // the line without comments
+    int depth = 0;
+    for (char ch : l) {
+      if (ch == '(') ++depth;
+      else if (ch == ')') --depth;
+      else if (depth == 0) code.push_back(ch);
+    }
+    const bool motion = code.find_first_of("XYZ") != std::string::npos;
+    if (!motion) continue;
+    if (c >= rs.moves.size()) return fail(i, "rs274 produced no move for this line");
+    const CanonMove& m = rs.moves[c++];
+    if (o.first_move >= 0) {
+      const auto& moves = job[o.toolpath].passes[o.pass].moves;
+      const Move& last = moves[o.last_move];
+      const double dev = (m.end - last.to).cwiseAbs().maxCoeff();
+      rep.max_deviation = std::max(rep.max_deviation, dev);
+      if (dev > precision) return fail(i, "ends " + std::to_string(dev) + " mm from the toolpath point (" + where(o) + ")");
+      const bool rapid = last.type == MoveType::Rapid;
+      if (rapid != (m.kind == CanonMove::Traverse)) return fail(i, "rapid/feed kind differs from " + where(o));
+      if (!rapid && std::abs(m.feed - last.feed) > 0.05 + 1e-9)
+        return fail(i, "feed " + std::to_string(m.feed) + " differs from the toolpath's " + std::to_string(last.feed));
+      if (m.kind == CanonMove::Arc) {
+        if (!std::isfinite(at.x())) return fail(i, "arc from an unknown position");
+        for (int k = o.first_move; k < o.last_move; ++k) {
+          const double d = distance_to_arc(moves[k].to.head<2>(), at.head<2>(), m.end.head<2>(), m.centre, m.rotation < 0);
+          rep.max_deviation = std::max(rep.max_deviation, d);
+          if (d > arc_tolerance + 2 * precision || std::abs(moves[k].to.z() - m.end.z()) > precision)
+            return fail(i, "the arc passes " + std::to_string(d) + " mm from toolpath move " + std::to_string(k));
+        }
+      } else if (o.first_move != o.last_move) {
+        return fail(i, "a straight move stands for several toolpath moves");
+      }
+      for (int k = o.first_move; k <= o.last_move; ++k) done[o.toolpath][flat_index(o.toolpath, o.pass, k)] = true;
+    }
+    at = m.end;
+  }
+  if (c != rs.moves.size()) {
+    rep.problem = "rs274 produced " + std::to_string(rs.moves.size() - c) + " more moves than the program has motion lines";
+    return rep;
+  }
+  // Moves shorter than the precision are left out of the program; any other toolpath move must be there.
+  for (size_t t = 0; t < job.size(); ++t) {
+    size_t flat = 0;
+    Vec3 prev = job[t].start;
+    for (size_t p = 0; p < job[t].passes.size(); ++p)
+      for (size_t k = 0; k < job[t].passes[p].moves.size(); ++k, ++flat) {
+        const Vec3& to = job[t].passes[p].moves[k].to;
+        if (!done[t][flat] && (to - prev).cwiseAbs().maxCoeff() > 2 * precision) {
+          rep.problem = "toolpath " + std::to_string(t) + ", pass " + std::to_string(p) + ", move " +
+                        std::to_string(k) + " is missing from the program";
+          return rep;
+        }
+        prev = to;
+      }
+  }
+  rep.ok = true;
+  return rep;
+}
+
+}  // namespace rosmill::gcode

@@ -1,0 +1,192 @@
+// The GRBL driver against a SIMULATED GRBL (test/core/grbl_sim.hpp, a TCP peer following the documented
+// protocol): character-counting streaming, replies, alarms, feed hold, and resume after a dropped connection.
+#include <gtest/gtest.h>
+#include <sys/socket.h>
+
+#include <random>
+#include <thread>
+
+#include "grbl_sim.hpp"
+#include "rosmill/control/controller.hpp"
+#include "rosmill/control/transport.hpp"
+#include "rosmill/error.hpp"
+
+using namespace rosmill;
+using namespace rosmill::control;
+using rosmill::test::GrblSimulation;
+
+namespace {
+
+std::vector<std::string> numbered_program(int n) {
+  std::vector<std::string> p = {"(simulation stream test)", "G21 G90 G17 G54", "S1000 M3", "G0 Z5", "G1 Z-1 F800"};
+  for (int k = 1; k <= n; ++k)
+    p.push_back("N" + std::to_string(k) + " X" + std::to_string(k % 97) + "." + std::to_string(k % 10) + " Y" +
+                std::to_string(k / 97));
+  p.push_back("G0 Z5");
+  p.push_back("M5");
+  p.push_back("M30");
+  return p;
+}
+
+// The N numbers of the executed lines, in order.
+std::vector<long> executed_numbers(const GrblSimulation& sim) {
+  std::vector<long> n;
+  for (const std::string& l : sim.executed())
+    if (!l.empty() && l[0] == 'N') n.push_back(std::strtol(l.c_str() + 1, nullptr, 10));
+  return n;
+}
+
+void expect_each_once_in_order(const std::vector<long>& n, long count) {
+  ASSERT_EQ(n.size(), static_cast<size_t>(count));
+  for (long k = 0; k < count; ++k)
+    if (n[k] != k + 1) FAIL() << "position " << k << " holds N" << n[k] << " (lost or repeated line)";
+}
+
+std::unique_ptr<Controller> grbl(const GrblSimulation& sim) {
+  return open_controller("grbl+tcp://127.0.0.1:" + std::to_string(sim.port()));
+}
+
+}  // namespace
+
+TEST(GrblSimulationStream, TenThousandLinesEachAcknowledgedOnceInOrder) {
+  GrblSimulation sim;
+  auto c = grbl(sim);
+  c->connect();
+  const auto program = numbered_program(10000);
+  size_t polls = 0, last_ack = 0;
+  bool monotonic = true;
+  const ControllerStatus s = run_to_end(*c, program, SendOptions{}, [&](const ControllerStatus& st) {
+    ++polls;
+    monotonic &= st.acknowledged_line >= last_ack;
+    last_ack = st.acknowledged_line;
+  });
+  EXPECT_EQ(s.state, RunState::Finished);
+  EXPECT_EQ(s.acknowledged_line, program.size());
+  EXPECT_TRUE(monotonic);
+  expect_each_once_in_order(executed_numbers(sim), 10000);
+  EXPECT_FALSE(sim.overflowed()) << "the driver overran GRBL's 128-byte buffer";
+  EXPECT_LE(sim.max_fill(), 128u);
+  EXPECT_GT(sim.max_fill(), 100u) << "character counting should keep the buffer nearly full";
+  EXPECT_GT(sim.status_queries(), 0);
+  EXPECT_TRUE(s.position_known);
+}
+
+TEST(GrblSimulationStream, DisconnectAtARandomLineThenResumeLosesAndRepeatsNothing) {
+  std::mt19937 rng(20261122);
+  for (int round = 0; round < 2; ++round) {
+    const long drop = std::uniform_int_distribution<long>(200, 9500)(rng);
+    GrblSimulation sim;
+    sim.schedule_drop_after(drop);
+    auto c = grbl(sim);
+    c->connect();
+    const auto program = numbered_program(10000);
+    size_t resume_from = 0;
+    try {
+      run_to_end(*c, program, SendOptions{});
+      FAIL() << "the dropped connection was not reported";
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("connection"), std::string::npos) << what;
+      const size_t at = what.find("--from-line ");
+      ASSERT_NE(at, std::string::npos) << what;
+      resume_from = std::stoul(what.substr(at + 12));
+    }
+    // Every line acknowledged before the drop was executed; nothing after it.
+    EXPECT_EQ(sim.executed().size(), static_cast<size_t>(drop));
+    c->connect();
+    SendOptions o;
+    o.from_line = resume_from;
+    const ControllerStatus s = run_to_end(*c, program, o);
+    EXPECT_EQ(s.state, RunState::Finished);
+    expect_each_once_in_order(executed_numbers(sim), 10000);
+    EXPECT_FALSE(sim.overflowed());
+    EXPECT_EQ(sim.connections(), 2);
+    // The resume restored the modal state before the first resumed line.
+    const auto ex = sim.executed();
+    bool units = false, spindle = false;
+    for (size_t i = static_cast<size_t>(drop); i < ex.size() && ex[i][0] != 'N'; ++i) {
+      units |= ex[i].find("G21") != std::string::npos;
+      spindle |= ex[i] == "S1000M3";
+    }
+    EXPECT_TRUE(units && spindle) << "resume preamble missing";
+  }
+}
+
+TEST(GrblSimulationStream, ErrorAndAlarmAreReportedWithTheLine) {
+  GrblSimulation sim;
+  auto c = grbl(sim);
+  c->connect();
+  try {
+    run_to_end(*c, {"G21 G90", "G0 Z5", "G64 P0.01", "G0 X1", "M30"}, SendOptions{});
+    FAIL() << "error:20 not reported";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("error:20 at program line 3"), std::string::npos) << e.what();
+  }
+  c->abort();
+  try {
+    run_to_end(*c, {"G21 G90", "G0 Z5", "G0 X900", "G0 X1", "M30"}, SendOptions{});
+    FAIL() << "alarm not reported";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ALARM:2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--from-line 3"), std::string::npos) << e.what();
+  }
+  // The alarm stays until unlocked on request: a new program is refused, then runs after $X.
+  EXPECT_THROW(run_to_end(*c, {"G0 X2", "M30"}, SendOptions{}), Error);
+  c->unlock();
+  const ControllerStatus s = run_to_end(*c, {"G0 X2", "M30"}, SendOptions{});
+  EXPECT_EQ(s.state, RunState::Finished);
+}
+
+TEST(GrblSimulationStream, FeedHoldStopsAndResumeFinishes) {
+  GrblSimulation::Config cfg;
+  cfg.line_period_s = 200e-6;
+  GrblSimulation sim(cfg);
+  auto c = grbl(sim);
+  c->connect();
+  const auto program = numbered_program(3000);
+  c->start(program, SendOptions{});
+  ControllerStatus s;
+  while ((s = c->poll(0.02)).acknowledged_line < 500) ASSERT_EQ(s.state, RunState::Running);
+  c->feed_hold();
+  for (int i = 0; i < 10; ++i) s = c->poll(0.02);
+  const size_t held_at = sim.executed().size();
+  for (int i = 0; i < 10; ++i) s = c->poll(0.02);
+  EXPECT_TRUE(sim.held());
+  EXPECT_EQ(sim.executed().size(), held_at) << "lines executed during the feed hold";
+  EXPECT_EQ(s.state, RunState::Paused);
+  c->resume();
+  while ((s = c->poll(0.05)).state == RunState::Running) {
+  }
+  EXPECT_EQ(s.state, RunState::Finished);
+  expect_each_once_in_order(executed_numbers(sim), 3000);
+}
+
+TEST(GrblSimulationStream, AMiscountingSenderOverflowsTheSimulatedBuffer) {
+  GrblSimulation sim;
+  auto t = open_tcp("127.0.0.1", sim.port());
+  t->write("!");  // hold, so nothing drains while the sender floods
+  std::string flood;
+  for (int i = 0; i < 30; ++i) flood += "G1 X" + std::to_string(i) + " Y1\n";
+  ASSERT_GT(flood.size(), 128u);
+  t->write(flood);
+  for (int i = 0; i < 100 && !sim.overflowed(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_TRUE(sim.overflowed());
+  EXPECT_EQ(sim.max_fill(), 128u);
+}
+
+TEST(GrblUrl, MalformedControllersAreRefused) {
+  EXPECT_THROW(open_controller("grbl+tcp://localhost"), Error);
+  EXPECT_THROW(open_controller("grbl://dev/ttyUSB0"), Error);
+  EXPECT_THROW(open_controller("grbl:///dev/ttyUSB0?speed=9"), Error);
+  EXPECT_THROW(open_controller("mach3://x:1"), Error);
+  EXPECT_NO_THROW(open_controller("grbl:///dev/ttyUSB0?baud=115200"));
+  auto serial = open_controller("grbl:///nonexistent/tty?baud=115200");
+  try {
+    serial->connect();
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot open serial port"), std::string::npos) << e.what();
+  }
+  auto closed = open_controller("grbl+tcp://127.0.0.1:1");
+  EXPECT_THROW(closed->connect(), Error);
+}
