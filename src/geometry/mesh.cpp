@@ -1,6 +1,7 @@
 #include "rosmill/geometry/mesh.hpp"
 
 #include <algorithm>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
 #include <unordered_map>

@@ -2,12 +2,14 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/plan/strategy.hpp"
+#include "rosmill/slice/contour_toolpath.hpp"
 
 namespace rosmill {
 
 // Every strategy, one line each. A strategy's own header declares its function.
 const std::vector<StrategyEntry>& strategies() {
   static const std::vector<StrategyEntry> table = {
+      {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true, false, plan_contour},
   };
   return table;
 }

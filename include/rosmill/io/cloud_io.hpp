@@ -22,5 +22,8 @@ PointCloud read_cloud(const std::string& path, const CloudReadOptions& options =
 
 // True when the path names a cloud file (.pcd, .ply) rather than a mesh (.stl).
 bool is_cloud_path(const std::string& path);
+// True when the path names a cloud by its extension or, whatever its name, by its first bytes ("ply", a PCD
+// header); false for a missing or unreadable file (the mesh reader then reports it).
+bool is_cloud_file(const std::string& path);
 
 }  // namespace rosmill

@@ -16,7 +16,7 @@ struct StlReadOptions {
 struct StlInfo {
   bool ascii = false;
   size_t solids = 0;                    // ASCII: solid blocks read
-  size_t stored_normal_mismatches = 0;  // stored normals that disagree with the corners (> 1e-3 rad... see .cpp)
+  size_t stored_normal_mismatches = 0;  // stored normals more than 10 degrees off the corners' normal
 };
 
 // Reads path (also .stl.gz). Throws Error on any bad input.

@@ -1,0 +1,82 @@
+// Drop-cutter rate on the table (OpenCAMLib BatchDropCutter, 2 threads, same models, cutters and point
+// counts) and a check of a subsample against the all-triangles reference. Usage: bench_dropcutter [threads]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include <tbb/global_control.h>
+
+#include "rosmill/error.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/plan/drop_grid.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
+
+using namespace rosmill;
+
+namespace {
+
+struct Row {
+  const char* file;
+  const char* tool;
+  size_t points;        // OpenCAMLib's CL point count
+  double ocl_rate;      // OpenCAMLib's points per second
+};
+
+const Row kRows[] = {
+    {"failedinpycam.stl", "ball:6", 1002001, 99660},  {"pycam-textbox.stl", "ball:6", 1000878, 64187},
+    {"wheel_in_box.stl", "ball:6", 1000000, 73449},   {"mount_rush.stl", "ball:6", 250344, 15481},
+    {"mount_rush.stl", "flat:10", 250656, 12866},     {"counter.unitsmm.STL", "ball:6", 1001000, 54525},
+    {"demo2.stl.gz", "ball:6", 105280, 5404},         {"demo2.stl.gz", "flat:10", 63495, 3226},
+    {"ktoolcav.stl", "ball:6", 46872, 2164},
+};
+
+// The spacing whose grid holds the closest number of points to `target` (the count falls as the step grows).
+double spacing_for(const Box3& box, double radius, size_t target) {
+  double lo = 1e-3 * radius, hi = 1e4;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (grid_over(box, radius, mid).size() > target ? lo : hi) = mid;
+  }
+  const size_t a = grid_over(box, radius, lo).size(), b = grid_over(box, radius, hi).size();
+  return (a > target ? a - target : target - a) < (b > target ? b - target : target - b) ? lo : hi;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  std::printf("threads %d; seconds = index build + all drops; check = max |z - brute force| over 2000 points\n",
+              threads);
+  std::printf("%-20s %7s %-8s %9s %8s %10s %10s %6s %9s\n", "model", "tris", "cutter", "points", "seconds",
+              "points/s", "OCL pts/s", "xOCL", "check");
+  for (const Row& row : kRows) {
+    const std::string path = std::string(ROSMILL_SHARED_DATA) + "/stl/" + row.file;
+    Mesh mesh;
+    try {
+      mesh = read_stl(path);
+      if (mesh.face_count() == 0) throw Error(path, "no triangles read");
+    } catch (const Error& e) {
+      std::printf("%-20s skipped: %s\n", row.file, e.what());
+      continue;
+    }
+    const Cutter cutter = parse_cutter_spec(row.tool);
+    const DropGrid grid = grid_over(mesh.bbox, cutter.radius(), spacing_for(mesh.bbox, cutter.radius(), row.points));
+    const auto t0 = std::chrono::steady_clock::now();
+    const MeshSurface surface(mesh);
+    const std::vector<Vec3> cl = drop_grid(surface, cutter, grid, mesh.bbox.min.z());
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    double worst = 0;
+    const size_t stride = std::max<size_t>(1, cl.size() / 2000);
+    for (size_t k = 0; k < cl.size(); k += stride) {
+      const Drop ref = surface.drop_brute_force(cutter, cl[k].x(), cl[k].y());
+      worst = std::max(worst, std::abs(std::max(ref.z, mesh.bbox.min.z()) - cl[k].z()));
+    }
+    const double rate = cl.size() / seconds;
+    std::printf("%-20s %7zu %-8s %9zu %8.3f %10.0f %10.0f %6.1f %9.1e%s\n", row.file, mesh.face_count(), row.tool,
+                cl.size(), seconds, rate, row.ocl_rate, rate / row.ocl_rate, worst, worst <= 1e-6 ? "" : " FAIL");
+  }
+  return 0;
+}

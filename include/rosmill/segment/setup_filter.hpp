@@ -1,0 +1,36 @@
+// A setup filter (seed 001, 3.3, fig. 9): the tool directions a workpiece setup allows, and so which facet
+// normals it reaches. A facet is reachable when its outward normal makes at most `max_angle_deg` (90 by
+// default) with some allowed tool axis: with 90 degrees a vertical wall is reached by the cutter's side, an
+// undercut is not.
+//   3-axis along +X, -X, +Y, -Y, +Z or -Z: the one tool axis.
+//   4-axis about an axis u: the tool axis turns in the plane perpendicular to u.
+//   5-axis: every direction.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rosmill/geometry/types.hpp"
+
+namespace rosmill::segment {
+
+struct SetupFilter {
+  enum class Kind { ThreeAxis, FourAxis, FiveAxis };
+  Kind kind = Kind::ThreeAxis;
+  Vec3 axis = Vec3::UnitZ();  // tool axis (3-axis) or rotary axis (4-axis), unit length
+  double max_angle_deg = 90.0;
+  std::string name = "+z";
+
+  // True when a facet with this unit outward normal is reachable (a zero normal is: it has no area).
+  bool reaches(const Vec3& normal) const;
+  // Angle (radians) from a unit direction to the nearest allowed tool axis.
+  double angle_to_allowed(const Vec3& direction) const;
+};
+
+// "+z", "-x", ... (3-axis), "4axis:x" (also y, z), "5axis". Throws Error naming the text otherwise.
+SetupFilter parse_setup(const std::string& text);
+// A comma-separated list of the above.
+std::vector<SetupFilter> parse_setups(const std::string& list);
+// The six 3-axis setups in the order +z, -z, +x, -x, +y, -y.
+const std::vector<SetupFilter>& axis_setups();
+
+}  // namespace rosmill::segment

@@ -1,0 +1,15 @@
+// XY arcs of a program (G2/G3 with helical z): angles, points and bounds shared by the simulator and its tests.
+#pragma once
+#include "rosmill/verify/program.hpp"
+
+namespace rosmill::verify {
+
+// Signed sweep angle of an arc move in radians: positive counter-clockwise (G3), negative clockwise (G2); a move
+// that ends where it starts in XY is a full turn (±2π).
+double arc_sweep(const SimMove& arc);
+// The point at fraction s in [0, 1] along the move (lines and arcs; z changes linearly along the arc).
+Vec3 move_point(const SimMove& move, double s);
+// XY bounds of the move's axis path (the arc's extreme points included).
+void move_xy_bounds(const SimMove& move, Vec2& min, Vec2& max);
+
+}  // namespace rosmill::verify

@@ -1,0 +1,51 @@
+// A height field (dexel) grid over the XY plane: one value per square cell, sampled at the cell centre.
+// The stock, the design and the deviation are all held on the same grid so they compare cell by cell.
+#pragma once
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "rosmill/geometry/types.hpp"
+
+namespace rosmill::verify {
+
+struct GridSpec {
+  double x0 = 0.0, y0 = 0.0;  // lower-left corner of cell (0, 0) in mm
+  double cell = 1.0;          // cell edge length in mm (the resolution)
+  int nx = 0, ny = 0;
+
+  size_t cells() const { return static_cast<size_t>(nx) * static_cast<size_t>(ny); }
+  size_t index(int i, int j) const { return static_cast<size_t>(j) * nx + i; }
+  double cx(int i) const { return x0 + (i + 0.5) * cell; }
+  double cy(int j) const { return y0 + (j + 0.5) * cell; }
+  // Index range [lo, hi] of the cells whose centres lie in [a, b] along x (or y); empty when lo > hi.
+  int first_x(double a) const { return clampi(static_cast<int>(std::ceil((a - x0) / cell - 0.5)), nx); }
+  int last_x(double b) const { return clampi(static_cast<int>(std::floor((b - x0) / cell - 0.5)), nx, -1); }
+  int first_y(double a) const { return clampi(static_cast<int>(std::ceil((a - y0) / cell - 0.5)), ny); }
+  int last_y(double b) const { return clampi(static_cast<int>(std::floor((b - y0) / cell - 0.5)), ny, -1); }
+
+  // A grid covering [min, max] in XY at `cell` mm (at least one cell each way).
+  static GridSpec covering(const Vec2& min, const Vec2& max, double cell);
+
+ private:
+  // Clamps to [lo, n] for a first index, [-1, n - 1] for a last index; out-of-range values make empty ranges.
+  static int clampi(int v, int n, int lo = 0) {
+    if (lo == 0) return v < 0 ? 0 : (v > n ? n : v);
+    return v < -1 ? -1 : (v > n - 1 ? n - 1 : v);
+  }
+};
+
+// The stock being cut: the top height of material per cell and, per cell, the move that last lowered it.
+struct Stock {
+  GridSpec grid;
+  double bottom = 0.0;             // stock floor (mm); cells without material sit at the floor
+  std::vector<float> top;          // current top of material per cell (mm)
+  std::vector<uint32_t> cut_by;    // index of the program move that last lowered the cell, kNoMove if none
+  static constexpr uint32_t kNoMove = 0xffffffffu;
+
+  // A box of stock: every cell at `top_z`, floor at `bottom_z`.
+  static Stock box(const GridSpec& grid, double bottom_z, double top_z);
+};
+
+}  // namespace rosmill::verify

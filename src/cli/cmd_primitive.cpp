@@ -1,0 +1,34 @@
+// rosmill primitive NAME -o FILE.stl [--ascii]: writes a seed primitive (see geometry/primitives.hpp).
+#include <cstdio>
+#include <memory>
+
+#include "command.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/io/stl.hpp"
+
+namespace rosmill::cli {
+namespace {
+
+struct PrimitiveArgs {
+  std::string name;
+  std::string output;
+  bool ascii = false;
+};
+
+CommandRegistration registration([](CLI::App& app) {
+  auto args = std::make_shared<PrimitiveArgs>();
+  auto* cmd = app.add_subcommand("primitive", "write a seed primitive (cube, cylinder, dome, cone, cavity) as STL");
+  cmd->add_option("NAME", args->name, "cube | cylinder | dome | cone | cavity")
+      ->required()
+      ->check(CLI::IsMember(primitive_names()));
+  cmd->add_option("-o,--output", args->output, "STL file to write")->required();
+  cmd->add_flag("--ascii", args->ascii, "write ASCII STL (default binary)");
+  cmd->callback([args] {
+    const Mesh mesh = make_primitive(args->name);
+    write_stl(args->output, mesh, args->ascii);
+    std::printf("%s: %zu triangles -> %s\n", args->name.c_str(), mesh.face_count(), args->output.c_str());
+  });
+});
+
+}  // namespace
+}  // namespace rosmill::cli

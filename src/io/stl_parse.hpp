@@ -1,0 +1,39 @@
+// STL parsing from bytes in memory into a triangle soup (three corners per triangle, in the file's units).
+// Internal to src/io: read_stl() and read_stl_buffer() wrap these with format detection and welding.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rosmill/geometry/types.hpp"
+
+namespace rosmill::io {
+
+constexpr size_t kStlHeaderBytes = 80;
+constexpr size_t kStlBinaryPrefix = 84;  // header + uint32 triangle count
+constexpr size_t kStlRecordBytes = 50;   // normal, 3 corners (12 float32) + uint16 attribute
+
+struct StlSoup {
+  std::vector<Vec3> corners;  // 3 per triangle
+  size_t solids = 0;
+  size_t stored_normal_mismatches = 0;
+};
+
+// Triangle count declared by a binary header (bytes 80..83, little endian); size must be >= 84.
+uint32_t binary_declared_count(const char* data);
+
+// True when the first word of the buffer (after white space) is "solid", in any case.
+bool starts_with_solid(const char* data, size_t size);
+
+// Parses a binary body: `count` triangles starting at byte 84 (size already checked). Throws on NaN or infinity.
+void parse_binary(const char* data, size_t count, const std::string& name, StlSoup& soup);
+
+// Parses ASCII text; throws Error("name:line", what) on the first problem.
+void parse_ascii(const char* data, size_t size, const std::string& name, StlSoup& soup);
+
+// Counts a stored normal that disagrees with the corners' right-hand normal (both unit, zero stored normals and
+// degenerate corners are not judged).
+bool stored_normal_disagrees(const Vec3& stored, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace rosmill::io

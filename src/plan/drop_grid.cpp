@@ -1,0 +1,34 @@
+#include "rosmill/plan/drop_grid.hpp"
+
+#include <cmath>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill {
+
+DropGrid grid_over(const Box3& box, double radius, double step) {
+  if (!(step > 0) || !std::isfinite(step)) throw Error("--spacing", "must be a positive number");
+  if (box.empty()) throw Error("grid", "the model is empty");
+  DropGrid g;
+  g.step = step;
+  g.x0 = box.min.x() - radius;
+  g.y0 = box.min.y() - radius;
+  // Exactly the formula, in the same order of operations, so that any reader of it counts the same.
+  g.nx = static_cast<size_t>(std::floor((box.max.x() + radius - (box.min.x() - radius)) / step)) + 1;
+  g.ny = static_cast<size_t>(std::floor((box.max.y() + radius - (box.min.y() - radius)) / step)) + 1;
+  if (double(g.nx) * double(g.ny) > 5e8) throw Error("--spacing", "the grid would hold more than 5e8 points");
+  return g;
+}
+
+std::vector<Vec3> drop_grid(const Surface& surface, const Cutter& cutter, const DropGrid& grid, double floor) {
+  const size_t n = grid.size();
+  std::vector<Vec2> xy(n);
+  for (size_t k = 0; k < n; ++k) xy[k] = grid.point(k);
+  std::vector<Drop> drops(n);
+  surface.drop_many(cutter, xy.data(), n, drops.data());
+  std::vector<Vec3> out(n);
+  for (size_t k = 0; k < n; ++k) out[k] = Vec3(xy[k].x(), xy[k].y(), std::max(drops[k].z, floor));
+  return out;
+}
+
+}  // namespace rosmill

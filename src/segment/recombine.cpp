@@ -1,0 +1,137 @@
+// The recombination step of seed 001: patches too small to be machined on their own join the neighbour they
+// share the longest boundary with. Works on labels, so phase 1 patches and phase 2 segments share it.
+#include <algorithm>
+
+#include "labelling.hpp"
+#include "union_find.hpp"
+
+namespace rosmill::segment::detail {
+namespace {
+
+double edge_length(const Mesh& mesh, uint32_t e) {
+  const MeshEdge& edge = mesh.edges[e];
+  return (mesh.vertices[edge.a] - mesh.vertices[edge.b]).norm();
+}
+
+// Sorts pairs and sums the lengths of equal pairs in place.
+void reduce_pairs(std::vector<LabelPair>& pairs) {
+  std::sort(pairs.begin(), pairs.end(),
+            [](const LabelPair& l, const LabelPair& r) { return l.a != r.a ? l.a < r.a : l.b < r.b; });
+  size_t out = 0;
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    if (out > 0 && pairs[out - 1].a == pairs[i].a && pairs[out - 1].b == pairs[i].b)
+      pairs[out - 1].length += pairs[i].length;
+    else
+      pairs[out++] = pairs[i];
+  }
+  pairs.resize(out);
+}
+
+bool is_small(const SizeRule& rule, size_t facets, double area, double total_area) {
+  if (rule.kind == SizeRule::Kind::FacetCount) return facets < rule.min_facets;
+  return area < rule.min_area_fraction * total_area;
+}
+
+}  // namespace
+
+uint32_t compact_labels(std::vector<uint32_t>& labels, uint32_t label_bound) {
+  std::vector<uint32_t> map(label_bound, kNone);
+  uint32_t count = 0;
+  for (uint32_t& l : labels) {
+    if (map[l] == kNone) map[l] = count++;
+    l = map[l];
+  }
+  return count;
+}
+
+std::vector<LabelPair> label_pairs(const Mesh& mesh, const std::vector<uint32_t>& labels,
+                                   const std::vector<uint32_t>& edges) {
+  std::vector<LabelPair> pairs;
+  for (uint32_t e : edges) {
+    const MeshEdge& edge = mesh.edges[e];
+    if (edge.face_count < 2) continue;
+    const uint32_t* faces = mesh.edge_faces.data() + edge.first_face;
+    double length = -1.0;
+    for (uint32_t i = 0; i < edge.face_count; ++i)
+      for (uint32_t j = i + 1; j < edge.face_count; ++j) {
+        const uint32_t a = labels[faces[i]], b = labels[faces[j]];
+        if (a == b) continue;
+        if (length < 0.0) length = edge_length(mesh, e);
+        pairs.push_back({std::min(a, b), std::max(a, b), length});
+      }
+  }
+  reduce_pairs(pairs);
+  return pairs;
+}
+
+uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t count,
+                   const std::vector<uint32_t>& edges, const SizeRule& rule, double total_area,
+                   const std::vector<uint32_t>* group) {
+  const bool active = rule.kind == SizeRule::Kind::FacetCount ? rule.min_facets > 0 : rule.min_area_fraction > 0;
+  if (!active || count < 2) return count;
+
+  // Sizes per label; merged sizes are summed at the roots of `sets` after each round.
+  std::vector<double> area(count, 0.0);
+  std::vector<size_t> facets(count, 0);
+  for (size_t f = 0; f < labels.size(); ++f) {
+    area[labels[f]] += mesh.areas[f];
+    ++facets[labels[f]];
+  }
+  std::vector<uint32_t> root_group;
+  if (group) root_group = *group;
+
+  const std::vector<LabelPair> base = label_pairs(mesh, labels, edges);
+  UnionFind sets(count);
+  std::vector<LabelPair> pairs;
+  std::vector<uint32_t> best(count);
+  std::vector<double> best_length(count);
+  std::vector<bool> best_same(count);
+  for (;;) {
+    // The label graph as it stands after earlier rounds' merges.
+    pairs.clear();
+    for (const LabelPair& p : base) {
+      const uint32_t a = sets.find(p.a), b = sets.find(p.b);
+      if (a != b) pairs.push_back({std::min(a, b), std::max(a, b), p.length});
+    }
+    reduce_pairs(pairs);
+    std::fill(best.begin(), best.end(), kNone);
+    // Dominant neighbour of each small root: same group first, then the longest shared boundary, then the
+    // larger neighbour, then the lower id.
+    auto offer = [&](uint32_t from, uint32_t to, double length) {
+      if (!is_small(rule, facets[from], area[from], total_area)) return;
+      const bool same = group && root_group[from] == root_group[to];
+      bool better = best[from] == kNone;
+      if (!better && same != best_same[from]) better = same;
+      else if (!better && length != best_length[from]) better = length > best_length[from];
+      else if (!better && area[to] != area[best[from]]) better = area[to] > area[best[from]];
+      else if (!better) better = to < best[from];
+      if (better) {
+        best[from] = to;
+        best_length[from] = length;
+        best_same[from] = same;
+      }
+    };
+    for (const LabelPair& p : pairs) {
+      offer(p.a, p.b, p.length);
+      offer(p.b, p.a, p.length);
+    }
+    bool merged = false;
+    for (uint32_t r = 0; r < count; ++r) {
+      if (best[r] == kNone) continue;
+      const uint32_t target_group = group ? root_group[sets.find(best[r])] : 0;
+      const uint32_t a = sets.find(r), b = sets.find(best[r]);
+      if (a == b) continue;
+      const uint32_t root = sets.unite(a, b);
+      const uint32_t other = root == a ? b : a;
+      area[root] += area[other];
+      facets[root] += facets[other];
+      if (group) root_group[root] = target_group;
+      merged = true;
+    }
+    if (!merged) break;
+  }
+  for (uint32_t& l : labels) l = sets.find(l);
+  return compact_labels(labels, count);
+}
+
+}  // namespace rosmill::segment::detail

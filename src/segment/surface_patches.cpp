@@ -1,0 +1,149 @@
+// Phase 1 surface flooding (seed 001, 3.2.2) as a linear pass: every manifold edge is tested once (both cores),
+// then a union-find joins the facets across the edges that pass. A patch is then exactly the set of facets a
+// flood from any of its facets reaches, including facets first rejected through another edge (figs. 6, 7).
+#include <cmath>
+#include <string>
+
+#include "labelling.hpp"
+#include "rosmill/error.hpp"
+#include "union_find.hpp"
+
+namespace rosmill::segment {
+namespace {
+
+using detail::has_area;
+using detail::UnionFind;
+
+void check_options(const SegmentOptions& o) {
+  if (!(o.threshold > 0.0 && o.threshold <= 2.0))
+    throw Error("parameter threshold", "must be in (0, 2] (length of a difference of unit normals), got " +
+                                           std::to_string(o.threshold));
+  if (o.small.kind == SizeRule::Kind::AreaFraction && !(o.small.min_area_fraction >= 0.0 &&
+                                                        o.small.min_area_fraction < 1.0))
+    throw Error("parameter min_area_fraction", "must be in [0, 1), got " + std::to_string(o.small.min_area_fraction));
+}
+
+// Marks the edges the flood crosses: manifold, both facets with an area, normals closer than the threshold.
+// Counts the mesh's open, non-manifold and inconsistent edges on the way.
+std::vector<uint8_t> soft_edges(const Mesh& mesh, double threshold, MeshNotes& notes) {
+  const double t2 = threshold * threshold;
+  const int64_t n = int64_t(mesh.edges.size());
+  std::vector<uint8_t> soft(mesh.edges.size());
+  size_t open = 0, nonmanifold = 0, inconsistent = 0;
+#pragma omp parallel for schedule(static) reduction(+ : open, nonmanifold, inconsistent)
+  for (int64_t e = 0; e < n; ++e) {
+    const MeshEdge& edge = mesh.edges[e];
+    uint8_t pass = 0;
+    if (edge.face_count == 2) {
+      const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
+      inconsistent += !edge.consistent;
+      if (mesh.areas[f0] > 0.0 && mesh.areas[f1] > 0.0)
+        pass = (mesh.normals[f0] - mesh.normals[f1]).squaredNorm() < t2;
+    } else if (edge.face_count == 1) {
+      ++open;
+    } else {
+      ++nonmanifold;
+    }
+    soft[e] = pass;
+  }
+  notes.open_edges = open;
+  notes.nonmanifold_edges = nonmanifold;
+  notes.inconsistent_edges = inconsistent;
+  return soft;
+}
+
+// Joins the facets across soft edges; a non-manifold edge joins each pair of its facets that passes the test.
+void flood(const Mesh& mesh, const std::vector<uint8_t>& soft, double threshold, UnionFind& sets,
+           std::vector<uint32_t>& cut) {
+  const double t2 = threshold * threshold;
+  for (uint32_t e = 0; e < soft.size(); ++e) {
+    const MeshEdge& edge = mesh.edges[e];
+    const uint32_t* faces = mesh.edge_faces.data() + edge.first_face;
+    if (soft[e]) {
+      sets.unite(faces[0], faces[1]);
+      continue;
+    }
+    cut.push_back(e);
+    for (uint32_t i = 0; edge.face_count > 2 && i < edge.face_count; ++i)
+      for (uint32_t j = i + 1; j < edge.face_count; ++j)
+        if (has_area(mesh, faces[i]) && has_area(mesh, faces[j]) &&
+            (mesh.normals[faces[i]] - mesh.normals[faces[j]]).squaredNorm() < t2)
+          sets.unite(faces[i], faces[j]);
+  }
+}
+
+// Zero-area facets have no normal to test: each joins the patch of a neighbour across one of its edges (through
+// chains of such facets if need be), and bridges the facets around it whose normals agree with that neighbour,
+// so a sliver inside a flat face does not cut it. A group of them touching no real facet joins the largest
+// facet's patch. Returns the number of zero-area facets.
+size_t attach_degenerate(const Mesh& mesh, double threshold, UnionFind& sets) {
+  const double t2 = threshold * threshold;
+  std::vector<uint32_t> pending;
+  for (uint32_t f = 0; f < mesh.face_count(); ++f)
+    if (!has_area(mesh, f)) pending.push_back(f);
+  const size_t degenerate = pending.size();
+  std::vector<char> attached(mesh.face_count(), 0);
+  bool changed = true;
+  std::vector<uint32_t> real;
+  while (!pending.empty() && changed) {
+    changed = false;
+    size_t keep = 0;
+    for (uint32_t d : pending) {
+      real.clear();
+      uint32_t via = kNone;
+      for (int i = 0; i < 3; ++i) {
+        const MeshEdge& edge = mesh.edges[mesh.face_edges[d][i]];
+        for (uint32_t k = 0; k < edge.face_count; ++k) {
+          const uint32_t g = mesh.edge_faces[edge.first_face + k];
+          if (g == d) continue;
+          if (has_area(mesh, g)) real.push_back(g);
+          else if (attached[g] && via == kNone) via = g;
+        }
+      }
+      if (!real.empty()) via = real.front();
+      if (via == kNone) {
+        pending[keep++] = d;
+        continue;
+      }
+      sets.unite(d, via);
+      attached[d] = 1;
+      changed = true;
+      for (uint32_t g : real)
+        if ((mesh.normals[g] - mesh.normals[real.front()]).squaredNorm() < t2) sets.unite(g, real.front());
+    }
+    pending.resize(keep);
+  }
+  if (!pending.empty()) {
+    uint32_t largest = kNone;
+    for (uint32_t f = 0; f < mesh.face_count(); ++f)
+      if (has_area(mesh, f) && (largest == kNone || mesh.areas[f] > mesh.areas[largest])) largest = f;
+    for (uint32_t d : pending) sets.unite(d, largest == kNone ? pending.front() : largest);
+  }
+  return degenerate;
+}
+
+}  // namespace
+
+SurfacePatches segment_surface(const Mesh& mesh, const SegmentOptions& options) {
+  check_options(options);
+  SurfacePatches out;
+  out.mesh_ = &mesh;
+  out.options_ = options;
+  const size_t n = mesh.face_count();
+  for (double a : mesh.areas) out.total_area_ += a;
+
+  const std::vector<uint8_t> soft = soft_edges(mesh, options.threshold, out.notes_);
+  UnionFind sets(n);
+  flood(mesh, soft, options.threshold, sets, out.cut_edges_);
+  out.notes_.degenerate_facets = attach_degenerate(mesh, options.threshold, sets);
+
+  out.labels_.resize(n);
+  for (uint32_t f = 0; f < n; ++f) out.labels_[f] = sets.find(f);
+  uint32_t count = detail::compact_labels(out.labels_, uint32_t(n));
+  out.notes_.patches_before_recombination = count;
+  count = detail::recombine(mesh, out.labels_, count, out.cut_edges_, options.small, out.total_area_);
+  detail::describe_patches(mesh, out.labels_, count, out.cut_edges_, out.patches_, out.facet_order_);
+  return out;
+}
+
+}  // namespace rosmill::segment

@@ -1,0 +1,34 @@
+#include "rosmill/verify/program.hpp"
+
+namespace rosmill::verify {
+
+MachineProgram program_from_job(const std::vector<Toolpath>& job) {
+  MachineProgram program;
+  uint32_t number = 0;
+  for (const Toolpath& tp : job) {
+    program.tools.push_back(tp.tool);
+    const uint16_t tool = static_cast<uint16_t>(program.tools.size() - 1);
+    Vec3 at = tp.start;
+    for (const ToolpathPass& pass : tp.passes) {
+      for (const Move& mv : pass.moves) {
+        ++number;
+        SimMove m;
+        m.from = at;
+        m.to = mv.to;
+        m.rapid = mv.type == MoveType::Rapid;
+        m.tool = tool;
+        m.source = number;
+        at = mv.to;
+        program.moves.push_back(m);
+      }
+    }
+    program.finishing_stepover = tp.tool.stepover;
+  }
+  return program;
+}
+
+bool is_toolpath_path(const std::string& path) {
+  return path.size() >= 5 && path.compare(path.size() - 5, 5, ".json") == 0;
+}
+
+}  // namespace rosmill::verify

@@ -1,0 +1,191 @@
+// Drop-cutter: each contact type against analytic answers, the bull-nose edge against a 1-D brute-force search,
+// whole triangles against dense sampling, and the indexed surface against the all-triangles reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "rosmill/cutter/contact.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
+
+using namespace rosmill;
+
+namespace {
+
+Mesh one_triangle(const Vec3& a, const Vec3& b, const Vec3& c) { return build_mesh({a, b, c}); }
+
+// max over the chord of the footprint of p.z - h(d) along an edge, by ternary search (the function is concave).
+double edge_reference(const Cutter& cutter, double x, double y, const Vec3& P, const Vec3& Q) {
+  const CutterProfile cp(cutter);
+  auto f = [&](double t) {
+    const Vec3 p = P + t * (Q - P);
+    const double d = std::hypot(p.x() - x, p.y() - y);
+    return d > cp.R ? kNoContact : p.z() - cp.height(d);
+  };
+  // Feasible interval: where the edge is under the footprint.
+  const int n = 20000;
+  double lo = -1, hi = -1;
+  for (int i = 0; i <= n; ++i) {
+    const double t = double(i) / n;
+    if (f(t) > kNoContact) {
+      if (lo < 0) lo = t;
+      hi = t;
+    }
+  }
+  if (lo < 0) return kNoContact;
+  // Widen to the exact chord ends by bisection on feasibility.
+  auto widen = [&](double in, double out) {
+    for (int k = 0; k < 80; ++k) {
+      const double mid = 0.5 * (in + out);
+      (f(mid) > kNoContact ? in : out) = mid;
+    }
+    return in;
+  };
+  lo = widen(lo, std::max(0.0, lo - 1.0 / n));
+  hi = widen(hi, std::min(1.0, hi + 1.0 / n));
+  for (int k = 0; k < 200; ++k) {
+    const double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+    (f(a) < f(b) ? lo : hi) = (f(a) < f(b) ? a : b);
+  }
+  return f(0.5 * (lo + hi));
+}
+
+}  // namespace
+
+TEST(DropCutter, BallOnPlaneAndOverCubeEdge) {
+  const MeshSurface s(make_primitive("cube"));
+  const Cutter ball = Cutter::ball(6);
+  EXPECT_NEAR(s.drop(ball, 30, 30).z, 60.0, 1e-12);
+  // Axis 2 mm outside the top edge x = 60: the ball's circle of radius 3 rests on the edge.
+  EXPECT_NEAR(s.drop(ball, 62, 30).z, 57.0 + std::sqrt(5.0), 1e-12);
+  EXPECT_FALSE(s.drop(ball, 63.5, 30).touched);
+  EXPECT_EQ(s.drop(ball, 63.5, 30).z, 0.0);
+}
+
+TEST(DropCutter, FlatOnEdgeAndTiltedPlane) {
+  const MeshSurface s(make_primitive("cube"));
+  const Cutter flat = Cutter::flat(10);
+  EXPECT_NEAR(s.drop(flat, 64.9, 10).z, 60.0, 1e-12);
+  EXPECT_FALSE(s.drop(flat, 65.1, 10).touched);
+  // A plane z = 0.5 x: the flat cutter rests on its rim's highest point, x + R.
+  const MeshSurface ramp(build_mesh({Vec3(-50, -50, -25), Vec3(50, -50, 25), Vec3(50, 50, 25), Vec3(-50, -50, -25),
+                                     Vec3(50, 50, 25), Vec3(-50, 50, -25)}));
+  EXPECT_NEAR(ramp.drop(flat, 3, 4).z, 0.5 * (3 + 5), 1e-12);
+  // Ball on the same plane: the tip sits R (1/cos - 1) below the contact-free height of the centre.
+  const double slope = 0.5, R = 3;
+  EXPECT_NEAR(ramp.drop(Cutter::ball(6), 3, 4).z, 0.5 * 3 + R * std::sqrt(1 + slope * slope) - R, 1e-12);
+  // Bull nose D10 r2: the torus' tube centre circle radius 3 offsets along the slope, then the ball part.
+  const double R1 = 3, r = 2, nz = 1 / std::sqrt(1 + slope * slope);
+  EXPECT_NEAR(ramp.drop(Cutter::bull(10, 2), 3, 4).z, 0.5 * (3 + R1) + r / nz - r, 1e-12);
+}
+
+TEST(DropCutter, BullOnVertex) {
+  const MeshSurface s(make_primitive("cube"));
+  const Cutter bull = Cutter::bull(10, 2);
+  // Axis diagonal from the corner (60, 60, 60) at distance d = 4.2: on the torus, h = r - sqrt(r^2 - (d - R1)^2).
+  const double d = 4.2, e = d - 3.0;
+  const Drop drop = s.drop(bull, 60 + d / std::sqrt(2.0), 60 + d / std::sqrt(2.0));
+  EXPECT_TRUE(drop.touched);
+  EXPECT_NEAR(drop.z, 60.0 - (2.0 - std::sqrt(4.0 - e * e)), 1e-12);
+  // Inside the flat bottom's radius the corner carries the cutter at its own height.
+  EXPECT_NEAR(s.drop(bull, 62, 61).z, 60.0, 1e-12);
+}
+
+TEST(DropCutter, BallOnDomeMatchesSphere) {
+  const MeshSurface s(make_primitive("dome"));
+  const double R = 50, r = 3;
+  EXPECT_NEAR(s.drop(Cutter::ball(6), 0, 0).z, 50.0, 1e-9);  // the pole is a vertex
+  // Facets are inscribed in the sphere: the drop lies between the spheres of radius R and R - sag.
+  const double sag = R * (1 - std::cos(M_PI / 30)) + 1e-9;
+  for (double x = -45; x <= 45; x += 7.5) {
+    const double on_sphere = std::sqrt((R + r) * (R + r) - x * x * 0.5 - x * x * 0.25) - r;
+    const double below = std::sqrt((R - sag + r) * (R - sag + r) - x * x * 0.75) - r;
+    const double z = s.drop(Cutter::ball(6), x * std::sqrt(0.5), x * 0.5).z;
+    EXPECT_LE(z, on_sphere + 1e-9) << x;
+    EXPECT_GE(z, below - 1e-9) << x;
+  }
+}
+
+TEST(DropCutter, EdgeContactsMatchOneDimensionalSearch) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-5, 5);
+  const Cutter cutters[] = {Cutter::flat(6), Cutter::ball(6), Cutter::bull(6, 1), Cutter::bull(8, 3.5),
+                            Cutter::bull(6, 0.2)};
+  int compared = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Vec3 P(u(rng), u(rng), u(rng)), Q(u(rng), u(rng), u(rng));
+    const double x = u(rng) * 0.6, y = u(rng) * 0.6;
+    for (const Cutter& c : cutters) {
+      const CutterProfile cp(c);
+      double exact = std::max({edge_contact(cp, x, y, P.data(), Q.data()), vertex_contact(cp, x, y, P.data()),
+                               vertex_contact(cp, x, y, Q.data())});
+      const double ref = edge_reference(c, x, y, P, Q);
+      if (ref == kNoContact) {
+        EXPECT_EQ(exact, kNoContact);
+        continue;
+      }
+      ASSERT_NEAR(exact, ref, 1e-7) << cutter_type_name(c.type) << " trial " << trial;
+      ++compared;
+    }
+    if (trial == 300) break;  // keeps the suite fast; 300 x 5 edges are plenty
+  }
+  EXPECT_GT(compared, 500);
+}
+
+TEST(DropCutter, TrianglesNeverPenetratedAndTouchedAtDenseSamples) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-4, 4);
+  const Cutter cutters[] = {Cutter::flat(6), Cutter::ball(6), Cutter::bull(6, 1.5)};
+  for (int trial = 0; trial < 60; ++trial) {
+    const Vec3 a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng)), c(u(rng), u(rng), u(rng));
+    const MeshSurface s(one_triangle(a, b, c));
+    const double x = u(rng) * 0.5, y = u(rng) * 0.5;
+    for (const Cutter& cut : cutters) {
+      const CutterProfile cp(cut);
+      const Drop d = s.drop(cut, x, y);
+      double sampled = kNoContact;
+      const int n = 300;
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j) {
+          const Vec3 p = a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n);
+          const double dist = std::hypot(p.x() - x, p.y() - y);
+          if (dist <= cp.R) sampled = std::max(sampled, p.z() - cp.height(dist));
+        }
+      if (sampled == kNoContact) continue;
+      ASSERT_TRUE(d.touched);
+      EXPECT_GE(d.z, sampled - 1e-9) << "cutter goes into the triangle, trial " << trial;
+      EXPECT_LE(d.z, sampled + 0.05) << "cutter floats above the triangle, trial " << trial;
+    }
+  }
+}
+
+TEST(DropCutter, IndexEqualsBruteForceOnPrimitives) {
+  std::mt19937 rng(3);
+  for (const char* name : {"cube", "cylinder", "dome", "cone", "cavity"}) {
+    const MeshSurface s(make_primitive(name));
+    std::uniform_real_distribution<double> u(-70, 70);
+    for (const Cutter& c : {Cutter::flat(10), Cutter::ball(6), Cutter::bull(12, 3)}) {
+      std::vector<Vec2> xy(400);
+      for (Vec2& p : xy) p = Vec2(u(rng), u(rng));
+      std::vector<Drop> out(xy.size());
+      s.drop_many(c, xy.data(), xy.size(), out.data());
+      for (size_t i = 0; i < xy.size(); ++i) {
+        const Drop ref = s.drop_brute_force(c, xy[i].x(), xy[i].y());
+        ASSERT_EQ(out[i].touched, ref.touched) << name;
+        ASSERT_NEAR(out[i].z, ref.z, 1e-9) << name << " at " << xy[i].transpose();
+      }
+    }
+  }
+}
+
+TEST(DropCutter, OffsetCutterKeepsAllowance) {
+  const MeshSurface s(make_primitive("cube"));
+  const Cutter g = offset_cutter(Cutter::flat(10), 0.5);
+  EXPECT_EQ(g.type, CutterType::BullNose);
+  EXPECT_DOUBLE_EQ(g.diameter, 11.0);
+  EXPECT_NEAR(s.drop(g, 30, 30).z + 0.5, 60.5, 1e-12);
+  // Beside the wall the grown cutter stops 0.5 further out.
+  EXPECT_TRUE(s.drop(g, 65.4, 30).touched);
+  EXPECT_FALSE(s.drop(g, 65.6, 30).touched);
+}

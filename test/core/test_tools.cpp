@@ -1,0 +1,85 @@
+// Tool table: the shipped config/tools.yaml reads, and every kind of bad entry is refused with a message that
+// names the file, the tool and the field.
+#include <gtest/gtest.h>
+
+#include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/error.hpp"
+
+using namespace rosmill;
+
+namespace {
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_tool_table(yaml, "t.yaml");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kGood =
+    "tools:\n"
+    "  - {id: 7, name: bull, type: bull, diameter: 8, corner_radius: 1, flute_length: 25, shank_diameter: 8,\n"
+    "     spindle_rpm: 12000, feed: 1400, plunge_feed: 350, stepover: 2, stepdown: 1.5}\n";
+
+std::string with(const std::string& from, const std::string& to) {
+  std::string s = kGood;
+  const size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST(ToolTable, ShippedTableReads) {
+  const ToolTable t = read_tool_table(ROSMILL_SOURCE_DIR "/config/tools.yaml");
+  ASSERT_GE(t.tools.size(), 4u);
+  const Tool& ball = t.get(2);
+  EXPECT_EQ(ball.cutter.type, CutterType::BallEnd);
+  EXPECT_DOUBLE_EQ(ball.cutter.diameter, 6.0);
+  EXPECT_DOUBLE_EQ(ball.cutter.corner_radius, 3.0);
+  EXPECT_GT(ball.feed, ball.plunge_feed);
+  EXPECT_EQ(t.get(4).cutter.type, CutterType::BullNose);
+  EXPECT_DOUBLE_EQ(t.get(4).cutter.corner_radius, 1.0);
+  EXPECT_THROW(t.get(99), Error);
+}
+
+TEST(ToolTable, GoodEntryFields) {
+  const ToolTable t = parse_tool_table(kGood, "t.yaml");
+  const Tool& b = t.get(7);
+  EXPECT_EQ(b.name, "bull");
+  EXPECT_DOUBLE_EQ(b.cutter.flute_length, 25);
+  EXPECT_DOUBLE_EQ(b.spindle_rpm, 12000);
+  EXPECT_DOUBLE_EQ(b.stepover, 2);
+  EXPECT_DOUBLE_EQ(b.stepdown, 1.5);
+}
+
+TEST(ToolTable, ErrorsNameFileToolAndField) {
+  EXPECT_EQ(error_of(with("diameter: 8", "diameter: -8")), "t.yaml: tool 7: field 'diameter' must be > 0, got '-8'");
+  EXPECT_EQ(error_of(with("feed: 1400", "feed: fast")), "t.yaml: tool 7: field 'feed' is not a number, got 'fast'");
+  EXPECT_EQ(error_of(with("type: bull", "type: drill")), "t.yaml: tool 7: field 'type' must be flat, ball or bull, got 'drill'");
+  EXPECT_EQ(error_of(with("corner_radius: 1", "corner_radius: 5")),
+            "t.yaml: tool 7: field 'corner_radius' is larger than half the diameter");
+  EXPECT_EQ(error_of(with(", stepdown: 1.5", "")), "t.yaml: tool 7: field 'stepdown' is missing");
+  EXPECT_EQ(error_of(with("stepover: 2", "stepover: 20")), "t.yaml: tool 7: field 'stepover' is larger than the diameter");
+  EXPECT_EQ(error_of(with("name: bull", "nmae: bull")), "t.yaml: tool 7: unknown field 'nmae'");
+  EXPECT_EQ(error_of(with("id: 7", "id: 2.5")), "t.yaml: tool 2.5: field 'id' must be a whole number >= 1");
+  EXPECT_EQ(error_of(std::string(kGood) + std::string(kGood).substr(7)), "t.yaml: tool 7: field 'id' is used twice");
+  EXPECT_EQ(error_of("tools: []"), "t.yaml: 'tools' must be a non-empty list");
+  EXPECT_NE(error_of("tools: [ {id: 1").find("t.yaml:1: not valid YAML"), std::string::npos);
+  EXPECT_NE(error_of(with("type: bull, diameter: 8, corner_radius: 1", "type: ball, diameter: 8, corner_radius: 1"))
+                .find("field 'corner_radius' must be half the diameter"),
+            std::string::npos);
+}
+
+TEST(ToolTable, ResolveSpecOrId) {
+  const ToolTable t = parse_tool_table(kGood, "t.yaml");
+  EXPECT_EQ(resolve_tool("7", &t).id, 7);
+  EXPECT_THROW(resolve_tool("7", nullptr), Error);
+  const Tool b = resolve_tool("ball:6", nullptr);
+  EXPECT_EQ(b.cutter.type, CutterType::BallEnd);
+  EXPECT_DOUBLE_EQ(b.stepover, 0.6);
+  EXPECT_THROW(resolve_tool("ball:x", &t), Error);
+  EXPECT_THROW(read_tool_table("/nonexistent/tools.yaml"), Error);
+}
