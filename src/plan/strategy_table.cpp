@@ -1,5 +1,6 @@
 #include <sstream>
 
+#include "rosmill/cloud/cloud_plan.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/plan/strategy.hpp"
 
@@ -8,6 +9,10 @@ namespace rosmill {
 // Every strategy, one line each. A strategy's own header declares its function.
 const std::vector<StrategyEntry>& strategies() {
   static const std::vector<StrategyEntry> table = {
+      {"cloud-rough", "seed 004 roughing of a point cloud: flat 10 mm, grid 2R-0.5δ, levels of d", false, true, cloud_rough_strategy},
+      {"cloud-semi", "seed 004 semi-finishing of a point cloud: ball 5 mm raster, buffer points", false, true, cloud_semi_strategy},
+      {"cloud-finish", "seed 004 finishing of a point cloud: ball 3 mm raster, buffer points", false, true, cloud_finish_strategy},
+      {"cloud-all", "seed 004 rough + semi + finish of a point cloud (three toolpaths)", false, true, cloud_all_strategy},
   };
   return table;
 }
