@@ -1,5 +1,6 @@
 #include <sstream>
 
+#include "rosmill/cloud/cloud_plan.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/plan/strategy.hpp"
 #include "rosmill/plan/raster.hpp"
@@ -16,6 +17,10 @@ const std::vector<StrategyEntry>& strategies() {
       {"waterline", "closed z-level finishing loops every step-down", false, false, on_surface(waterline_strategy)},
       {"rough", "z-level zigzag area clearing with ramp entry", false, false, on_surface(rough_strategy)},
       {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true, false, plan_contour},
+      {"cloud-rough", "seed 004 roughing of a point cloud: flat 10 mm, grid 2R-0.5δ, levels of d", false, true, cloud_rough_strategy},
+      {"cloud-semi", "seed 004 semi-finishing of a point cloud: ball 5 mm raster, buffer points", false, true, cloud_semi_strategy},
+      {"cloud-finish", "seed 004 finishing of a point cloud: ball 3 mm raster, buffer points", false, true, cloud_finish_strategy},
+      {"cloud-all", "seed 004 rough + semi + finish of a point cloud (three toolpaths)", false, true, cloud_all_strategy},
   };
   return table;
 }

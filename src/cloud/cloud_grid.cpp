@@ -1,0 +1,138 @@
+#include "rosmill/cloud/cloud_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "rosmill/error.hpp"
+
+namespace rosmill {
+
+CloudGrid::CloudGrid(const std::vector<Vec3>& points, double cell, size_t max_cells) {
+  if (!(cell > 0) || !std::isfinite(cell)) throw Error("cloud grid", "cell size must be a positive number");
+  for (const Vec3& p : points) bounds_.add(p);
+  if (points.empty()) {
+    nx_ = ny_ = 1;
+    start_.assign(2, 0);
+    zmax_.assign(1, -std::numeric_limits<double>::infinity());
+    return;
+  }
+  if (points.size() >= std::numeric_limits<uint32_t>::max()) throw Error("cloud grid", "too many points");
+  x0_ = bounds_.min.x();
+  y0_ = bounds_.min.y();
+  const double w = bounds_.max.x() - x0_, h = bounds_.max.y() - y0_;
+  // Grow the cell until the grid fits the cap (a few stray far points must not exhaust memory).
+  for (;;) {
+    const double cx = std::floor(w / cell) + 1, cy = std::floor(h / cell) + 1;
+    if (cx * cy <= double(max_cells)) {
+      nx_ = int(cx);
+      ny_ = int(cy);
+      break;
+    }
+    cell *= 1.5;
+  }
+  cell_ = cell;
+  const size_t ncell = size_t(nx_) * size_t(ny_);
+
+  // Counting sort into cells: two passes, no per-cell vectors.
+  std::vector<uint32_t> cell_of(points.size());
+  start_.assign(ncell + 1, 0);
+  for (size_t i = 0; i < points.size(); ++i) {
+    cell_of[i] = uint32_t(index(col(points[i].x()), row(points[i].y())));
+    ++start_[cell_of[i] + 1];
+  }
+  for (size_t c = 0; c < ncell; ++c) start_[c + 1] += start_[c];
+  std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+  points_.resize(points.size());
+  zmax_.assign(ncell, -std::numeric_limits<double>::infinity());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points[i];
+    const uint32_t c = cell_of[i];
+    points_[fill[c]++] = GridPoint{p.x(), p.y(), p.z()};
+    zmax_[c] = std::max(zmax_[c], p.z());
+  }
+}
+
+int CloudGrid::col(double x) const {
+  const double c = std::floor((x - x0_) / cell_);
+  return int(std::clamp(c, 0.0, double(nx_ - 1)));
+}
+
+int CloudGrid::row(double y) const {
+  const double r = std::floor((y - y0_) / cell_);
+  return int(std::clamp(r, 0.0, double(ny_ - 1)));
+}
+
+double auto_grid_cell(size_t n, double xy_area) {
+  if (n == 0 || !(xy_area > 0)) return 1.0;
+  // About four points per cell on a uniformly covered footprint.
+  return std::max(1e-3, std::sqrt(4.0 * xy_area / double(n)));
+}
+
+namespace {
+
+// Nearest-neighbour distance of point i: scan rings of cells outward until the ring's inner distance
+// exceeds the best distance found.
+double nearest_distance(const CloudGrid& g, const GridPoint& q) {
+  const int c0 = g.col(q.x), r0 = g.row(q.y);
+  double best2 = std::numeric_limits<double>::infinity();
+  const int max_ring = std::max(g.nx(), g.ny());
+  for (int ring = 0; ring <= max_ring; ++ring) {
+    const double inner = (ring - 1) * g.cell();
+    if (ring > 0 && inner > 0 && inner * inner > best2) break;
+    for (int r = r0 - ring; r <= r0 + ring; ++r) {
+      if (r < 0 || r >= g.ny()) continue;
+      const bool edge_row = (r == r0 - ring || r == r0 + ring);
+      for (int c = c0 - ring; c <= c0 + ring; c += (edge_row ? 1 : 2 * ring)) {
+        if (c >= 0 && c < g.nx()) {
+          const size_t cell = g.index(c, r);
+          for (const GridPoint* p = g.begin(cell); p != g.end(cell); ++p) {
+            const double dx = p->x - q.x, dy = p->y - q.y, dz = p->z - q.z;
+            const double d2 = dx * dx + dy * dy + dz * dz;
+            if (d2 > 0 && d2 < best2) best2 = d2;
+          }
+        }
+        if (ring == 0) break;
+      }
+    }
+  }
+  return std::isfinite(best2) ? std::sqrt(best2) : 0.0;
+}
+
+}  // namespace
+
+double mean_spacing(const CloudGrid& grid, size_t samples) {
+  const size_t n = grid.size();
+  if (n < 2) return 0.0;
+  const size_t m = std::min(n, samples);
+  const double stride = double(n) / double(m);
+  const double sum = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, m, 256), 0.0,
+      [&](const tbb::blocked_range<size_t>& range, double acc) {
+        for (size_t k = range.begin(); k != range.end(); ++k)
+          acc += nearest_distance(grid, grid.points()[size_t(double(k) * stride)]);
+        return acc;
+      },
+      [](double a, double b) { return a + b; });
+  return sum / double(m);
+}
+
+double spacing_quantile(const CloudGrid& grid, double q, size_t samples) {
+  const size_t n = grid.size();
+  if (n < 2) return 0.0;
+  const size_t m = std::min(n, samples);
+  const double stride = double(n) / double(m);
+  std::vector<double> d(m);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 256), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t k = range.begin(); k != range.end(); ++k) d[k] = nearest_distance(grid, grid.points()[size_t(double(k) * stride)]);
+  });
+  const size_t at = std::min(m - 1, size_t(std::clamp(q, 0.0, 1.0) * double(m - 1)));
+  std::nth_element(d.begin(), d.begin() + at, d.end());
+  return d[at];
+}
+
+}  // namespace rosmill
