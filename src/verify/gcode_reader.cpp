@@ -39,6 +39,20 @@ std::string strip_comments(const std::string& raw, const std::string& where) {
   return out;
 }
 
+// An RS274 number: optional sign, digits, optional point and digits (no exponent, no hex: "G0X5" is G0 X5).
+double parse_number(const std::string& text, size_t& i, const std::string& where, char letter) {
+  const size_t start = i;
+  if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
+  size_t digits = 0;
+  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
+  if (i < text.size() && text[i] == '.') {
+    ++i;
+    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
+  }
+  if (digits == 0) throw Error(where, std::string("word ") + letter + " has no number");
+  return std::strtod(text.substr(start, i - start).c_str(), nullptr);
+}
+
 Block parse_block(const std::string& text, const std::string& where) {
   Block b;
   size_t i = 0;
@@ -48,11 +62,7 @@ Block parse_block(const std::string& text, const std::string& where) {
     if (letter < 'A' || letter > 'Z')
       throw Error(where, std::string("unexpected '") + letter + "' (parameters and expressions are not supported)");
     ++i;
-    const char* start = text.c_str() + i;
-    char* end = nullptr;
-    const double v = std::strtod(start, &end);
-    if (end == start || !std::isfinite(v)) throw Error(where, std::string("word ") + letter + " has no number");
-    i += static_cast<size_t>(end - start);
+    const double v = parse_number(text, i, where, letter);
     if (letter == 'G') {
       b.g.push_back(static_cast<int>(std::lround(v * 10)));
     } else if (letter == 'M') {

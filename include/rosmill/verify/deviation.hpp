@@ -1,0 +1,57 @@
+// Machined minus design, cell by cell, and the figures a machinist reads before running a program: the deepest
+// gouge and the line that made it, the material left, the scallop of the finishing passes, the area never cut.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "rosmill/verify/height_field.hpp"
+#include "rosmill/verify/material_removal.hpp"
+#include "rosmill/verify/program.hpp"
+
+namespace rosmill::verify {
+
+struct CompareOptions {
+  double tolerance = 0.01;  // mm: deviations within ±tolerance count as on the design
+  double stepover = 0.0;    // mm of the finishing passes; 0: the program's own (toolpath files), else unknown
+};
+
+// Per-cell deviation on the stock's grid (for images, and for the ROS layer's coloured cloud). NaN in `design`
+// and `deviation` where the design is unknown (cloud gaps).
+struct DeviationGrid {
+  GridSpec grid;
+  std::vector<float> machined;
+  std::vector<float> design;
+  std::vector<float> deviation;  // machined - design: < 0 gouge, > 0 material left
+  double tolerance = 0.01;
+};
+
+struct DeviationReport {
+  // Gouge: the deepest cell below the design by more than the tolerance (0 and no location when none).
+  double max_gouge_mm = 0.0;
+  bool gouged = false;
+  Vec3 gouge_at = Vec3::Zero();     // cell centre at the machined height
+  uint32_t gouge_move = Stock::kNoMove;  // index in the program's moves
+  uint32_t gouge_source = 0;        // its G-code line or toolpath move number (0 when unknown)
+  size_t gouge_cells = 0;
+  // Material left (machined above design), over the compared cells.
+  double max_rest_mm = 0.0;
+  double mean_rest_mm = 0.0;
+  // Scallop: the highest rest of the cells the finishing tool (the last tool) cut that lie within stepover/2 of its
+  // path (R/2 when the stepover is unknown) where the design is nearly flat (slope under 0.2) within the cutter
+  // radius, since the theory is for a flat floor and material a cutter cannot reach by a wall is no scallop. Theory: the profile at s/2.
+  double scallop_mm = 0.0;
+  double scallop_theory_mm = -1.0;  // -1 when the stepover is unknown
+  double stepover_mm = 0.0;
+  // Cells that still have material to remove (rest above the tolerance) and that no move ever cut.
+  double unreached_area_mm2 = 0.0;
+  size_t cells = 0;           // cells of the grid
+  size_t compared_cells = 0;  // cells with a known design height
+  size_t rapid_cut_cells = 0;
+  uint32_t first_rapid_cut_source = 0;
+};
+
+DeviationReport compare(const Stock& stock, const std::vector<float>& design, const MachineProgram& program,
+                        const SimulationResult& sim, const CompareOptions& options = {},
+                        DeviationGrid* grid = nullptr);
+
+}  // namespace rosmill::verify

@@ -1,0 +1,75 @@
+#include "rosmill/verify/verify.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <type_traits>
+#include <cstdlib>
+#include <sstream>
+
+#include "rosmill/error.hpp"
+#include "rosmill/verify/design_height.hpp"
+
+namespace rosmill::verify {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Stock make_stock(const StockSpec& spec, const Box3& design_bounds, double resolution) {
+  const Box3 b = spec.kind == StockSpec::Kind::Box    ? spec.box
+                 : spec.kind == StockSpec::Kind::Mesh ? spec.mesh->bbox
+                                                      : design_bounds;
+  if (b.empty()) throw Error("--stock", "the stock is empty");
+  const GridSpec grid = GridSpec::covering(b.min.head<2>(), b.max.head<2>(), resolution);
+  Stock stock = Stock::box(grid, b.min.z(), b.max.z());
+  if (spec.kind == StockSpec::Kind::Mesh) stock.top = design_heights(*spec.mesh, grid, b.min.z());
+  return stock;
+}
+
+template <class Design>
+VerifyResult run(const Design& design, const Box3& bounds, const MachineProgram& program, const StockSpec& spec,
+                 const VerifyOptions& options, double floor) {
+  const auto start = Clock::now();
+  Stock stock = make_stock(spec, bounds, options.resolution);
+  std::vector<float> heights;
+  if constexpr (std::is_same_v<Design, rosmill::Mesh>) heights = design_heights(design, stock.grid, floor);
+  else heights = design_heights(design, stock.grid);
+  const SimulationResult sim = simulate(program, stock, options.simulation);
+  VerifyResult result;
+  result.report = compare(stock, heights, program, sim, options.compare, &result.grid);
+  result.simulation_seconds = sim.seconds;
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+StockSpec StockSpec::parse_box(const std::string& text, const std::string& where) {
+  StockSpec s;
+  if (text.empty() || text == "box") return s;
+  std::vector<double> v;
+  std::stringstream ss(text);
+  for (std::string part; std::getline(ss, part, ',');) {
+    char* end = nullptr;
+    const double x = std::strtod(part.c_str(), &end);
+    if (part.empty() || *end != '\0' || !std::isfinite(x)) throw Error(where, "'" + part + "' is not a number");
+    v.push_back(x);
+  }
+  if (v.size() != 6) throw Error(where, "expected box or x0,y0,z0,x1,y1,z1 (mm), got '" + text + "'");
+  s.kind = Kind::Box;
+  s.box.add(Vec3(v[0], v[1], v[2]));
+  s.box.add(Vec3(v[3], v[4], v[5]));
+  if (!(s.box.size().minCoeff() > 0)) throw Error(where, "the stock box has no volume");
+  return s;
+}
+
+VerifyResult verify_program(const rosmill::Mesh& design, const MachineProgram& program, const StockSpec& stock,
+                            const VerifyOptions& options) {
+  return run(design, design.bbox, program, stock, options, design.bbox.min.z());
+}
+
+VerifyResult verify_program(const PointCloud& design, const MachineProgram& program, const StockSpec& stock,
+                            const VerifyOptions& options) {
+  return run(design, design.bbox, program, stock, options, design.bbox.min.z());
+}
+
+}  // namespace rosmill::verify
