@@ -33,20 +33,6 @@ struct Profile {
 
 }  // namespace
 
-Cutter offset_cutter(const Cutter& cutter, double allowance) {
-  if (!(allowance >= 0)) throw Error("allowance", "must be >= 0");
-  if (allowance == 0.0) return cutter;
-  Cutter c = cutter;
-  c.diameter += 2 * allowance;
-  if (cutter.type == CutterType::BallEnd) {
-    c.corner_radius = 0.5 * c.diameter;
-  } else {
-    c.type = CutterType::BullNose;
-    c.corner_radius = (cutter.type == CutterType::FlatEnd ? 0.0 : cutter.corner_radius) + allowance;
-  }
-  return c;
-}
-
 CloudSurface::CloudSurface(const PointCloud& cloud, const CloudSurfaceOptions& options) { build(cloud.points, options); }
 
 CloudSurface::CloudSurface(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) { build(points, options); }

@@ -69,17 +69,4 @@ double torus_line_argmax(const CutterProfile& cp, double d0sq, double m, double 
   return w;
 }
 
-Cutter offset_cutter(const Cutter& c, double allowance) {
-  if (!(allowance >= 0)) throw Error("allowance", "must be >= 0");
-  if (allowance == 0) return c;
-  Cutter g = c;
-  g.diameter = c.diameter + 2 * allowance;
-  switch (c.type) {
-    case CutterType::BallEnd: g.corner_radius = 0.5 * g.diameter; break;
-    case CutterType::FlatEnd: g.type = CutterType::BullNose; g.corner_radius = allowance; break;
-    case CutterType::BullNose: g.corner_radius = c.corner_radius + allowance; break;
-  }
-  return g;
-}
-
 }  // namespace rosmill

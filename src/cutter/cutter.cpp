@@ -30,6 +30,19 @@ double positive_number(const std::string& text, const std::string& where, const 
 
 }  // namespace
 
+Cutter offset_cutter(const Cutter& cutter, double allowance) {
+  if (!(allowance >= 0)) throw Error("allowance", "must be >= 0");
+  if (allowance == 0.0) return cutter;
+  Cutter grown = cutter;
+  grown.diameter += 2 * allowance;
+  switch (cutter.type) {
+    case CutterType::BallEnd: grown.corner_radius = 0.5 * grown.diameter; break;
+    case CutterType::FlatEnd: grown.type = CutterType::BullNose; grown.corner_radius = allowance; break;
+    case CutterType::BullNose: grown.corner_radius = cutter.corner_radius + allowance; break;
+  }
+  return grown;
+}
+
 Cutter parse_cutter_spec(const std::string& spec, const std::string& where) {
   std::vector<std::string> parts;
   std::stringstream ss(spec);

@@ -151,8 +151,17 @@ Rs274Result run_rs274(const std::vector<std::string>& lines, const std::string& 
   posix_spawn_file_actions_addopen(&actions, 1, logs.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
   posix_spawn_file_actions_addchdir_np(&actions, dirs.c_str());
+  // LinuxCNC 2.9 keeps the loaded tool table in $HOME/.tool.mmap: runs side by side would read each other's
+  // tables, so each run gets its own HOME (the temporary folder).
+  std::vector<std::string> env_strings;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, "HOME=", 5) != 0) env_strings.emplace_back(*e);
+  env_strings.push_back("HOME=" + dirs);
+  std::vector<char*> envp;
+  for (auto& e : env_strings) envp.push_back(e.data());
+  envp.push_back(nullptr);
   pid_t pid;
-  const int rc = posix_spawnp(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(&pid, executable.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw Error("rs274", "cannot start '" + executable + "' (package linuxcnc-uspace): " + std::strerror(rc));
   int status = 0;

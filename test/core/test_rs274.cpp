@@ -89,7 +89,8 @@ TEST(Rs274Verify, EveryStrategyOnEverySeedPrimitive) {
       if (!s.needs_cloud) in.mesh = &mesh;
       if (!s.needs_mesh) in.cloud = &cloud;
       PlanParams params;
-      params.tool.cutter = Cutter::ball(6);
+      // Contour machining offsets by a flat end mill's radius; the other strategies take a ball.
+      params.tool.cutter = s.name == "contour" ? Cutter::flat(6) : Cutter::ball(6);
       params.tool.stepover = 3;
       params.tool.stepdown = 5;
       params.tolerance = 0.05;

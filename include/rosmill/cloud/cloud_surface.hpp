@@ -46,8 +46,4 @@ class CloudSurface : public Surface {
   double spacing_ = 0.0;
 };
 
-// The cutter that, dropped and then lifted by `allowance`, leaves `allowance` of stock on every surface: each
-// radius grows by the allowance (a flat end mill becomes a bull nose of corner radius `allowance`).
-Cutter offset_cutter(const Cutter& cutter, double allowance);
-
 }  // namespace rosmill

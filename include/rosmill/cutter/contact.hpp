@@ -138,8 +138,4 @@ inline double triangle_contact(const CutterProfile& cp, double x, double y, cons
   return z;
 }
 
-// A cutter grown by `allowance` on every side (its tip `allowance` lower): dropping it and adding the
-// allowance to the tip height keeps that much stock on every surface.
-Cutter offset_cutter(const Cutter& c, double allowance);
-
 }  // namespace rosmill

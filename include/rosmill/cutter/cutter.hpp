@@ -34,6 +34,11 @@ struct Tool {
 };
 
 const char* cutter_type_name(CutterType t);
+
+// The cutter grown by `allowance` on every side (each radius larger by it; a flat end mill becomes a bull nose
+// of corner radius `allowance`): dropped, then lifted by `allowance`, it leaves that much stock on every surface.
+// Throws Error for a negative or NaN allowance.
+Cutter offset_cutter(const Cutter& cutter, double allowance);
 // Parses a cutter spec "ball:D", "flat:D" or "bull:D:r" (D diameter, r corner radius); throws Error naming
 // `where` on anything else (unknown type, missing or non-positive numbers, r > D/2).
 Cutter parse_cutter_spec(const std::string& spec, const std::string& where = "--tool");
