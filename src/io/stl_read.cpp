@@ -46,7 +46,27 @@ size_t checked_binary_count(const char* data, size_t size, const std::string& na
   return static_cast<size_t>(count);
 }
 
-void parse_soup(const char* data, size_t size, const std::string& name, io::StlSoup& soup, bool& ascii) {
+// What the parser produced: a corner soup (ASCII, or binary to be welded with a tolerance) or, for binary files
+// welded exactly, the indexed mesh itself.
+struct Parsed {
+  bool ascii = false;
+  io::StlSoup soup;
+  io::StlIndexed indexed;
+  bool is_indexed = false;
+};
+
+void parse_binary_body(const char* data, size_t size, const std::string& name, bool weld_directly, Parsed& out) {
+  out.ascii = false;
+  const size_t count = checked_binary_count(data, size, name);
+  if (weld_directly) {
+    io::parse_binary_welded(data, count, name, out.indexed);
+    out.is_indexed = true;
+  } else {
+    io::parse_binary(data, count, name, out.soup);
+  }
+}
+
+void parse(const char* data, size_t size, const std::string& name, bool weld_directly, Parsed& out) {
   if (size == 0) throw Error(name, "empty file");
   const bool solid = io::starts_with_solid(data, size);
   const bool has_prefix = size >= kStlBinaryPrefix;
@@ -54,24 +74,22 @@ void parse_soup(const char* data, size_t size, const std::string& name, io::StlS
   const uint64_t needed = kStlBinaryPrefix + kStlRecordBytes * declared;
 
   if (has_prefix && needed == size) {  // size agrees with the count: binary, whatever the header says
-    ascii = false;
-    io::parse_binary(data, checked_binary_count(data, size, name), name, soup);
+    parse_binary_body(data, size, name, weld_directly, out);
     return;
   }
   if (solid) {
     try {
-      ascii = true;
-      io::parse_ascii(data, size, name, soup);
+      out.ascii = true;
+      io::parse_ascii(data, size, name, out.soup);
       return;
     } catch (const Error&) {
       // A binary body followed by extra bytes under a header that starts with "solid", or a binary file that is
       // broken (it is judged as binary, since its bytes are not text).
       const bool binary_fits = has_prefix && declared > 0 && needed < size;
       if (!binary_fits && !(has_prefix && !looks_like_text(data, std::min<size_t>(size, 4096)))) throw;
-      soup = io::StlSoup{};
+      out.soup = io::StlSoup{};
     }
-    ascii = false;
-    io::parse_binary(data, checked_binary_count(data, size, name), name, soup);
+    parse_binary_body(data, size, name, weld_directly, out);
     return;
   }
   if (!has_prefix) {
@@ -81,8 +99,7 @@ void parse_soup(const char* data, size_t size, const std::string& name, io::StlS
   }
   if (looks_like_text(data, std::min<size_t>(size, 4096)))
     throw Error(name, "not an STL file: text that does not begin with 'solid'");
-  ascii = false;
-  io::parse_binary(data, checked_binary_count(data, size, name), name, soup);
+  parse_binary_body(data, size, name, weld_directly, out);
 }
 
 }  // namespace
@@ -93,19 +110,20 @@ Mesh read_stl_buffer(const char* data, size_t size, const std::string& name, con
     const std::vector<char> plain = io::gunzip(data, size, name);
     return read_stl_buffer(plain.data(), plain.size(), name, options, info);
   }
-  io::StlSoup soup;
-  bool ascii = false;
-  parse_soup(data, size, name, soup, ascii);
+  Parsed parsed;
+  parse(data, size, name, options.weld.tolerance <= 0.0, parsed);
   const double scale = mm_per_unit(options.units);
   // Weld in the file's units (exact welding compares the file's own numbers); the tolerance is in millimetres.
   WeldOptions weld = options.weld;
   weld.tolerance /= scale;
-  Mesh mesh = build_mesh(soup.corners, weld);
+  Mesh mesh = parsed.is_indexed ? mesh_from_indexed(std::move(parsed.indexed.vertices), std::move(parsed.indexed.faces))
+                                : build_mesh(parsed.soup.corners, weld);
   scale_mesh(mesh, scale);
   if (info) {
-    info->ascii = ascii;
-    info->solids = ascii ? soup.solids : 0;
-    info->stored_normal_mismatches = soup.stored_normal_mismatches;
+    info->ascii = parsed.ascii;
+    info->solids = parsed.ascii ? parsed.soup.solids : 0;
+    info->stored_normal_mismatches =
+        parsed.is_indexed ? parsed.indexed.stored_normal_mismatches : parsed.soup.stored_normal_mismatches;
   }
   return mesh;
 }

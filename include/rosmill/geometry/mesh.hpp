@@ -62,6 +62,9 @@ struct WeldOptions {
 // Builds a mesh from corners (3 per triangle). Degenerate triangles are kept (zero area, zero normal) so that
 // reports can count them; consumers skip faces whose area is zero.
 Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options = {});
+// Builds a mesh from welded vertices and faces (normals, areas, edges, box); throws Error when a face names a
+// vertex that does not exist.
+Mesh mesh_from_indexed(std::vector<Vec3> vertices, std::vector<Mesh::Face> faces);
 
 // Scales vertices in place (a unit change); areas and bbox are updated, normals are unchanged.
 void scale_mesh(Mesh& mesh, double factor);
