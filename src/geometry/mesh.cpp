@@ -29,7 +29,7 @@ struct VertexKeyHash {
 
 // Tolerance weld on a grid of cells the size of the tolerance: a corner joins the first earlier vertex within
 // the tolerance found in its own or a neighbouring cell.
-void weld_tolerance(const std::vector<Vec3>& corners, double tol, Mesh& mesh) {
+void weld_tolerance(const std::vector<Vec3>& corners, double tol, IndexedTriangles& mesh) {
   std::unordered_map<VertexKey, std::vector<uint32_t>, VertexKeyHash> cells;
   auto cell_of = [tol](double v) { return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v / tol))); };
   mesh.faces.resize(corners.size() / 3);
@@ -199,28 +199,33 @@ bool Mesh::closed() const {
   return true;
 }
 
-Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options) {
-  Mesh mesh;
+IndexedTriangles weld_corners(const std::vector<Vec3>& corners, const WeldOptions& options) {
+  IndexedTriangles out;
   if (options.tolerance > 0.0) {
-    weld_tolerance(corners, options.tolerance, mesh);
-  } else {
-    static_assert(sizeof(Mesh::Face) == 3 * sizeof(uint32_t), "faces are three packed vertex ids");
-    mesh.faces.resize(corners.size() / 3);
-    VertexWelder welder(corners.size() / 5 + 16);  // closed meshes have about one vertex per six corners
-    welder.add_many(corners.data(), 3 * mesh.faces.size(), mesh.faces.empty() ? nullptr : mesh.faces[0].data());
-    mesh.vertices = welder.take_vertices();
+    weld_tolerance(corners, options.tolerance, out);
+    return out;
   }
-  return finish_mesh(std::move(mesh));
+  static_assert(sizeof(Mesh::Face) == 3 * sizeof(uint32_t), "faces are three packed vertex ids");
+  out.faces.resize(corners.size() / 3);
+  VertexWelder welder(corners.size() / 5 + 16);  // closed meshes have about one vertex per six corners
+  welder.add_many(corners.data(), 3 * out.faces.size(), out.faces.empty() ? nullptr : out.faces[0].data());
+  out.vertices = welder.take_vertices();
+  return out;
 }
 
-Mesh mesh_from_indexed(std::vector<Vec3> vertices, std::vector<Mesh::Face> faces) {
-  Mesh mesh;
-  for (const Mesh::Face& t : faces)
+Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options) {
+  return mesh_from_indexed(weld_corners(corners, options));
+}
+
+Mesh mesh_from_indexed(IndexedTriangles triangles) {
+  for (const Mesh::Face& t : triangles.faces)
     for (uint32_t v : t)
-      if (v >= vertices.size())
-        throw Error("mesh", "a face uses vertex " + std::to_string(v) + " of " + std::to_string(vertices.size()));
-  mesh.vertices = std::move(vertices);
-  mesh.faces = std::move(faces);
+      if (v >= triangles.vertices.size())
+        throw Error("mesh", "a face uses vertex " + std::to_string(v) + " of " +
+                                std::to_string(triangles.vertices.size()));
+  Mesh mesh;
+  mesh.vertices = std::move(triangles.vertices);
+  mesh.faces = std::move(triangles.faces);
   return finish_mesh(std::move(mesh));
 }
 

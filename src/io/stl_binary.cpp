@@ -73,7 +73,8 @@ void weld_range(const char* data, size_t first, size_t last, const std::string& 
 // Large files are welded in two halves side by side; the second half's vertices are then added to the first
 // half's welder in their own order, which numbers every vertex exactly as one pass over the file would (first
 // appearance), and the second half's faces are renumbered.
-void parse_binary_welded(const char* data, size_t count, const std::string& name, StlIndexed& out) {
+void parse_binary_welded(const char* data, size_t count, const std::string& name, IndexedTriangles& out,
+                         size_t& stored_normal_mismatches) {
   out.faces.resize(count);
   const int parts = count >= 200000 ? 2 : 1;
   std::vector<VertexWelder> welders;
@@ -100,7 +101,7 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
     for (int64_t t = first; t < last; ++t)
       for (uint32_t& v : out.faces[t]) v = global[v];
   }
-  for (size_t m : mismatches) out.stored_normal_mismatches += m;
+  for (size_t m : mismatches) stored_normal_mismatches += m;
   out.vertices = welders[0].take_vertices();
 }
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rosmill/geometry/types.hpp"
+#include "rosmill/geometry/mesh.hpp"
 
 namespace rosmill::io {
 
@@ -32,12 +32,8 @@ void parse_binary(const char* data, size_t count, const std::string& name, StlSo
 
 // Parses a binary body straight into welded vertices and faces (exact weld), without a corner soup: the body of
 // a large file is touched once and no per-corner array is written. Throws like parse_binary().
-struct StlIndexed {
-  std::vector<Vec3> vertices;
-  std::vector<std::array<uint32_t, 3>> faces;
-  size_t stored_normal_mismatches = 0;
-};
-void parse_binary_welded(const char* data, size_t count, const std::string& name, StlIndexed& out);
+void parse_binary_welded(const char* data, size_t count, const std::string& name, IndexedTriangles& out,
+                         size_t& stored_normal_mismatches);
 
 // Parses ASCII text; throws Error("name:line", what) on the first problem.
 void parse_ascii(const char* data, size_t size, const std::string& name, StlSoup& soup);

@@ -51,7 +51,8 @@ size_t checked_binary_count(const char* data, size_t size, const std::string& na
 struct Parsed {
   bool ascii = false;
   io::StlSoup soup;
-  io::StlIndexed indexed;
+  IndexedTriangles indexed;
+  size_t indexed_mismatches = 0;
   bool is_indexed = false;
 };
 
@@ -59,7 +60,7 @@ void parse_binary_body(const char* data, size_t size, const std::string& name, b
   out.ascii = false;
   const size_t count = checked_binary_count(data, size, name);
   if (weld_directly) {
-    io::parse_binary_welded(data, count, name, out.indexed);
+    io::parse_binary_welded(data, count, name, out.indexed, out.indexed_mismatches);
     out.is_indexed = true;
   } else {
     io::parse_binary(data, count, name, out.soup);
@@ -104,11 +105,11 @@ void parse(const char* data, size_t size, const std::string& name, bool weld_dir
 
 }  // namespace
 
-Mesh read_stl_buffer(const char* data, size_t size, const std::string& name, const StlReadOptions& options,
-                     StlInfo* info) {
+IndexedTriangles read_stl_triangles_buffer(const char* data, size_t size, const std::string& name,
+                                           const StlReadOptions& options, StlInfo* info) {
   if (io::is_gzip(data, size)) {
     const std::vector<char> plain = io::gunzip(data, size, name);
-    return read_stl_buffer(plain.data(), plain.size(), name, options, info);
+    return read_stl_triangles_buffer(plain.data(), plain.size(), name, options, info);
   }
   Parsed parsed;
   parse(data, size, name, options.weld.tolerance <= 0.0, parsed);
@@ -116,21 +117,29 @@ Mesh read_stl_buffer(const char* data, size_t size, const std::string& name, con
   // Weld in the file's units (exact welding compares the file's own numbers); the tolerance is in millimetres.
   WeldOptions weld = options.weld;
   weld.tolerance /= scale;
-  Mesh mesh = parsed.is_indexed ? mesh_from_indexed(std::move(parsed.indexed.vertices), std::move(parsed.indexed.faces))
-                                : build_mesh(parsed.soup.corners, weld);
-  scale_mesh(mesh, scale);
+  IndexedTriangles triangles = parsed.is_indexed ? std::move(parsed.indexed) : weld_corners(parsed.soup.corners, weld);
+  if (scale != 1.0)
+    for (Vec3& v : triangles.vertices) v *= scale;
   if (info) {
     info->ascii = parsed.ascii;
     info->solids = parsed.ascii ? parsed.soup.solids : 0;
-    info->stored_normal_mismatches =
-        parsed.is_indexed ? parsed.indexed.stored_normal_mismatches : parsed.soup.stored_normal_mismatches;
+    info->stored_normal_mismatches = parsed.is_indexed ? parsed.indexed_mismatches : parsed.soup.stored_normal_mismatches;
   }
-  return mesh;
+  return triangles;
+}
+
+Mesh read_stl_buffer(const char* data, size_t size, const std::string& name, const StlReadOptions& options,
+                     StlInfo* info) {
+  return mesh_from_indexed(read_stl_triangles_buffer(data, size, name, options, info));
+}
+
+IndexedTriangles read_stl_triangles(const std::string& path, const StlReadOptions& options, StlInfo* info) {
+  const io::FileBytes bytes(path);
+  return read_stl_triangles_buffer(bytes.data(), bytes.size(), path, options, info);
 }
 
 Mesh read_stl(const std::string& path, const StlReadOptions& options, StlInfo* info) {
-  const io::FileBytes bytes(path);
-  return read_stl_buffer(bytes.data(), bytes.size(), path, options, info);
+  return mesh_from_indexed(read_stl_triangles(path, options, info));
 }
 
 }  // namespace rosmill
