@@ -85,4 +85,12 @@ std::string resume_first_line(const std::vector<std::string>& program, size_t fr
   return out + line;
 }
 
+std::vector<std::string> resumed_program(const std::vector<std::string>& program, const SendOptions& o,
+                                         const std::string& dialect) {
+  std::vector<std::string> out = resume_preamble(program, o, dialect);
+  out.push_back(resume_first_line(program, o.from_line));
+  out.insert(out.end(), program.begin() + static_cast<std::ptrdiff_t>(o.from_line), program.end());
+  return out;
+}
+
 }  // namespace rosmill::control

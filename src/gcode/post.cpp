@@ -263,11 +263,16 @@ Program post(const Job& job, const PostOptions& o) {
   return prog;
 }
 
-void write_program(const std::string& path, const Program& program) {
+void write_program(const std::string& path, const Program& program) { write_program_lines(path, program.lines); }
+
+void write_program_lines(const std::string& path, const std::vector<std::string>& lines) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw Error(path, "cannot open for writing");
-  const std::string text = program.text();
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  for (const std::string& l : lines) {
+    out.write(l.data(), static_cast<std::streamsize>(l.size()));
+    out.put('\n');
+  }
+  out.flush();
   if (!out) throw Error(path, "write failed");
 }
 

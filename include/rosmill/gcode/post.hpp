@@ -48,6 +48,8 @@ struct Program {
 Program post(const Job& job, const PostOptions& options = {});
 
 void write_program(const std::string& path, const Program& program);
+// Writes lines, each ended by '\n'; throws Error naming the file.
+void write_program_lines(const std::string& path, const std::vector<std::string>& lines);
 // Reads a program file into lines (no line ends); throws Error naming the file.
 std::vector<std::string> read_program_lines(const std::string& path);
 
