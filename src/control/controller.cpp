@@ -91,7 +91,7 @@ std::unique_ptr<Controller> open_controller(const std::string& url, const Contro
       }
     }
     if (device.empty() || device.front() != '/') throw Error("--controller " + url, "expected a device path like /dev/ttyUSB0");
-    return std::make_unique<GrblController>([device, baud] { return open_serial(device, baud); }, url, o);
+    return std::make_unique<GrblController>([device, baud] { return open_serial(device, baud); }, url, o, 2.5);
   }
   if (scheme == "file") {
     if (rest.empty() || rest.front() != '/') throw Error("--controller " + url, "expected file:///ABSOLUTE/DIR");
