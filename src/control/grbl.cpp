@@ -72,8 +72,9 @@ void GrblController::start(const std::vector<std::string>& program, const SendOp
     const std::string text = compact(pre);
     if (!text.empty()) queue_.push_back({text, 0});
   }
+  const std::vector<std::string> rest = resumed_rest(program, o.from_line);
   for (size_t i = o.from_line; i <= program.size(); ++i) {
-    const std::string text = compact(i == o.from_line ? resume_first_line(program, i) : program[i - 1]);
+    const std::string text = compact(rest[i - o.from_line]);
     if (text.empty() || text == "%") continue;  // nothing for GRBL to answer
     if (text.size() + 1 > opt_.rx_buffer)
       throw Error(describe_ + " line " + std::to_string(i), "longer than GRBL's receive buffer: " + text);

@@ -70,8 +70,9 @@ std::unique_ptr<Controller> open_controller(const std::string& url, const Contro
 // before it, then the way to where the line starts. `dialect` is "linuxcnc" or "grbl" (tool change words).
 std::vector<std::string> resume_preamble(const std::vector<std::string>& program, const SendOptions& options,
                                          const std::string& dialect);
-// Program line `from_line` as it must be sent first: with the modal motion word when the line relies on it.
-std::string resume_first_line(const std::vector<std::string>& program, size_t from_line);
+// Program lines from `from_line` on as they must be sent after the preamble: the first line that moves gets the
+// program's modal motion word (G0..G3) back when it relies on it.
+std::vector<std::string> resumed_rest(const std::vector<std::string>& program, size_t from_line);
 // What a controller receives to run `program` from options.from_line: the preamble, the first line, the rest.
 std::vector<std::string> resumed_program(const std::vector<std::string>& program, const SendOptions& options,
                                          const std::string& dialect);
