@@ -96,7 +96,7 @@ void bench_million_moves() {
 
 void bench_arc_reduction() {
   std::printf("arc fitting on the seed primitives' contour toolpaths (flat end mill 6 mm, step-down 5 mm)\n");
-  std::printf("  %-9s %7s %12s %22s %22s\n", "primitive", "moves", "line blocks", "arcs 0.005 mm", "arcs 0.02 mm");
+  std::printf("  %-9s %7s %12s %23s %23s\n", "primitive", "moves", "line blocks", "arcs 0.005 mm", "arcs 0.02 mm");
   for (const std::string& name : primitive_names()) {
     const Mesh mesh = make_primitive(name);
     PlanInput in;
@@ -119,7 +119,7 @@ void bench_arc_reduction() {
       o.arcs = true;
       o.arc_tolerance = tol;
       const size_t fitted = gcode::post(job, o).motion_blocks();
-      std::printf(" %10zu (-%5.1f%%)  ", fitted, 100.0 * (1.0 - double(fitted) / double(base)));
+      std::printf(" %8zu (%5.1f%% fewer)", fitted, 100.0 * (1.0 - double(fitted) / double(base)));
     }
     std::printf("\n");
   }
