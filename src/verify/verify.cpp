@@ -33,10 +33,13 @@ VerifyResult run(const Design& design, const Box3& bounds, const MachineProgram&
   std::vector<float> heights;
   if constexpr (std::is_same_v<Design, rosmill::Mesh>) heights = design_heights(design, stock.grid, floor);
   else heights = design_heights(design, stock.grid);
-  const SimulationResult sim = simulate(program, stock, options.simulation);
+  SimulationOptions so = options.simulation;
+  if (!(so.trace_radius > 0)) so.trace_radius = scallop_window(program, options.compare, stock.grid.cell);
+  const SimulationResult sim = simulate(program, stock, so);
   VerifyResult result;
   result.report = compare(stock, heights, program, sim, options.compare, &result.grid);
   result.simulation_seconds = sim.seconds;
+  result.cells_visited = sim.cells_visited;
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

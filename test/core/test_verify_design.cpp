@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "rosmill/geometry/primitives.hpp"
-#include "rosmill/verify/cutter_profile.hpp"
 #include "rosmill/verify/design_height.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"

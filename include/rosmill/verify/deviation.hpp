@@ -50,6 +50,14 @@ struct DeviationReport {
   uint32_t first_rapid_cut_source = 0;
 };
 
+// Theoretical scallop of parallel passes at `stepover` on a flat floor: the profile's height half-way between two
+// passes (for a ball of radius R: R - sqrt(R^2 - (s/2)^2); capped at the full radius's when s > 2R).
+double scallop_theory(const Cutter& cutter, double stepover);
+
+// How far from the finishing path a cell counts as between two of its passes: half the stepover (half the
+// finishing cutter's radius when the stepover is unknown) plus half a cell. The simulation's trace radius.
+double scallop_window(const MachineProgram& program, const CompareOptions& options, double cell);
+
 DeviationReport compare(const Stock& stock, const std::vector<float>& design, const MachineProgram& program,
                         const SimulationResult& sim, const CompareOptions& options = {},
                         DeviationGrid* grid = nullptr);

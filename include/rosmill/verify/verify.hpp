@@ -32,6 +32,7 @@ struct VerifyResult {
   DeviationReport report;
   DeviationGrid grid;
   double simulation_seconds = 0.0;
+  size_t cells_visited = 0;  // cell evaluations of the simulation
   double seconds = 0.0;  // the whole verification (grid, design heights, simulation, comparison)
 };
 
