@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
     if (++number != only && only != 0) continue;
     const std::string text = raster_program(c.dome_radius, c.ball, c.lines, c.moves_per_line);
     auto t0 = Clock::now();
-    const MachineProgram program = parse_gcode(text, "bench.ngc", tools_from_specs({"ball:" + std::to_string(c.ball)}));
+    const MachineProgram program = parse_gcode(text, "bench.ngc", tool_setup({"1=ball:" + std::to_string(c.ball)}));
     const double read = since(t0);
     const Mesh dome = build_mesh(dome_corners(c.dome_radius));
     StockSpec stock;

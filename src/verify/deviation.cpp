@@ -68,6 +68,7 @@ DeviationReport compare(const Stock& stock, const std::vector<float>& design, co
   DeviationReport r;
   r.cells = g.cells();
   const double tol = options.tolerance;
+  r.from_gcode = program.from_gcode;
   r.stepover_mm = stepover_of(program, options);
   const CutterProfile finish = finishing_profile(program);
   if (r.stepover_mm > 0) r.scallop_theory_mm = scallop_theory(program.tools[sim.finishing_tool].cutter, r.stepover_mm);
@@ -78,6 +79,8 @@ DeviationReport compare(const Stock& stock, const std::vector<float>& design, co
     grid->machined = stock.top;
     grid->design = design;
     grid->deviation.assign(g.cells(), std::numeric_limits<float>::quiet_NaN());
+    grid->cut.resize(g.cells());
+    for (size_t c = 0; c < g.cells(); ++c) grid->cut[c] = stock.cut_by[c] != Stock::kNoMove;
     grid->tolerance = tol;
   }
   const std::vector<uint8_t> flat = flat_floor_cells(design, g, kFlatSlope, finish.R);

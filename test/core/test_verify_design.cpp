@@ -8,21 +8,15 @@
 #include "rosmill/verify/design_height.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
+#include "test_verify_programs.hpp"
 
 using namespace rosmill;
 using namespace rosmill::verify;
+using namespace verify_test;
 
 namespace {
 
-std::map<int, Tool> tools(const std::string& spec) { return tools_from_specs({spec}); }
-
-StockSpec box(double x0, double y0, double z0, double x1, double y1, double z1) {
-  StockSpec s;
-  s.kind = StockSpec::Kind::Box;
-  s.box.add(Vec3(x0, y0, z0));
-  s.box.add(Vec3(x1, y1, z1));
-  return s;
-}
+ToolSetup tools(const std::string& spec) { return tool_setup({spec}); }
 
 // A zig-zag raster along x at height z: lines y = y0, y0 + step, ... up to y1 (inclusive), from x0 to x1.
 std::string raster(double x0, double x1, double y0, double y1, double step, double z) {
@@ -76,7 +70,7 @@ TEST(VerifyDesign, CubeFacedAndContouredLeavesOnlyTheSquareCorners) {
   program += "G0 Z80\nG0 X-5 Y-5\nG1 Z0\nG1 X65\nG1 Y65\nG1 X-5\nG1 Y-5\nG0 Z80\nM30\n";
   VerifyOptions o;
   o.resolution = 0.25;
-  const VerifyResult r = verify_program(make_primitive("cube"), parse_gcode(program, "cube.ngc", tools("flat:10")),
+  const VerifyResult r = verify_program(make_primitive("cube"), parse_gcode(program, "cube.ngc", tools("1=flat:10")),
                                         box(-10, -10, 0, 70, 70, 70), o);
   EXPECT_FALSE(r.report.gouged);
   EXPECT_EQ(r.report.max_gouge_mm, 0.0);

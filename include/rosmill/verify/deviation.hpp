@@ -22,6 +22,7 @@ struct DeviationGrid {
   std::vector<float> machined;
   std::vector<float> design;
   std::vector<float> deviation;  // machined - design: < 0 gouge, > 0 material left
+  std::vector<uint8_t> cut;      // 1 where some move lowered the cell
   double tolerance = 0.01;
 };
 
@@ -32,6 +33,7 @@ struct DeviationReport {
   Vec3 gouge_at = Vec3::Zero();     // cell centre at the machined height
   uint32_t gouge_move = Stock::kNoMove;  // index in the program's moves
   uint32_t gouge_source = 0;        // its G-code line or toolpath move number (0 when unknown)
+  bool from_gcode = false;          // gouge_source is a G-code line (else a toolpath move number)
   size_t gouge_cells = 0;
   // Material left (machined above design), over the compared cells.
   double max_rest_mm = 0.0;

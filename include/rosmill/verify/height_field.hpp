@@ -10,6 +10,10 @@
 
 namespace rosmill::verify {
 
+// The largest grid the verifier allocates (about 32 bytes a cell for the stock, the design, the deviation and the
+// trace): a larger one is refused with a message, never allocated from what an input asks for.
+constexpr size_t kMaxGridCells = 25'000'000;
+
 struct GridSpec {
   double x0 = 0.0, y0 = 0.0;  // lower-left corner of cell (0, 0) in mm
   double cell = 1.0;          // cell edge length in mm (the resolution)
@@ -26,8 +30,9 @@ struct GridSpec {
   int first_y(double a) const { return first_index((a - y0) / cell, ny); }
   int last_y(double b) const { return last_index((b - y0) / cell, ny); }
 
-  // A grid covering [min, max] in XY at `cell` mm (at least one cell each way).
-  static GridSpec covering(const Vec2& min, const Vec2& max, double cell);
+  // A grid covering [min, max] in XY at `cell` mm (at least one cell each way). Throws Error (naming
+  // --resolution) for a cell size that is not a positive number or a grid of more than `max_cells` cells.
+  static GridSpec covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells = kMaxGridCells);
 
  private:
   static int first_index(double u, int n) {

@@ -24,6 +24,7 @@ struct StockSpec {
 
 struct VerifyOptions {
   double resolution = 0.5;  // cell size in mm
+  size_t max_cells = kMaxGridCells;
   CompareOptions compare;
   SimulationOptions simulation;
 };
