@@ -49,10 +49,12 @@ void retract(ToolpathPass& pass, const Vec3& at, double safe_z) {
   if (at.z() < safe_z) pass.moves.push_back(Move{Vec3(at.x(), at.y(), safe_z), MoveType::Rapid, 0.0});
 }
 
-// Rapid at safe_z to above `to`, rapid down to `free_z` (known free), plunge to `to`.
+// Rapid at safe_z (the clearance height) to above `to`, then down at feed: rapids stay at or above the clearance
+// height (issue 7's rule, checked by the machine limits), so the descent to `free_z` (known free: material a
+// previous level removed) goes at the cutting feed and the rest, into the material, at the plunge feed.
 void approach(ToolpathPass& pass, const Vec3& to, double safe_z, double free_z, const Tool& tool) {
   pass.moves.push_back(Move{Vec3(to.x(), to.y(), safe_z), MoveType::Rapid, 0.0});
-  if (free_z < safe_z && free_z > to.z()) pass.moves.push_back(Move{Vec3(to.x(), to.y(), free_z), MoveType::Rapid, 0.0});
+  if (free_z < safe_z && free_z > to.z()) pass.moves.push_back(Move{Vec3(to.x(), to.y(), free_z), MoveType::Feed, tool.feed});
   pass.moves.push_back(Move{to, MoveType::Plunge, tool.plunge_feed});
 }
 
@@ -238,7 +240,10 @@ LinePlan plan_line(const CloudSurface& s, const Zigzag& zz, size_t j, const Cutt
   std::vector<Drop> drops(n);
   s.drop_many(grown, xy.data(), n, drops.data());
   std::vector<Vec3> cl(n);
-  for (size_t i = 0; i < n; ++i) cl[i] = Vec3(xy[i].x(), xy[i].y(), drops[i].z + delta);
+  // Never below the floor (the cloud's lowest point: the table the scan stands on). A ball that touches the
+  // last points of the cloud with its side would otherwise hang its tip below them, beyond the part.
+  const double floor_z = s.bounds().min.z();
+  for (size_t i = 0; i < n; ++i) cl[i] = Vec3(xy[i].x(), xy[i].y(), std::max(drops[i].z, floor_z) + delta);
   const std::vector<bool> blocked = blocked_samples(s, xy, R + delta, o.holes);
   for (size_t i = j > 0 ? 1 : 0; i < n; ++i) lp.skipped += blocked[i];
   std::vector<uint32_t> kept;

@@ -121,7 +121,7 @@ size_t checked_move(const CloudSurface& s, const Cutter& cutter, double delta, d
     out.push_back(b);
     return 1;
   }
-  const Vec3 mid(m.x(), m.y(), s.drop(cutter, m.x(), m.y()).z + delta);
+  const Vec3 mid(m.x(), m.y(), std::max(s.drop(cutter, m.x(), m.y()).z, s.bounds().min.z()) + delta);  // the floor
   const size_t n = 1 + checked_move(s, cutter, delta, t, a, mid, out, depth + 1);
   return n + checked_move(s, cutter, delta, t, mid, b, out, depth + 1);
 }

@@ -7,10 +7,10 @@
 // drop of the cutter grown by δ, lifted by δ (never closer than δ to a point); between samples it moves up first
 // or down last (a staircase), and the samples are close enough that the footprints of two neighbours cover the
 // band swept between them (cloud_plan.cpp): no straight move can cut a point. Stretches where the level cuts
-// nothing new are skipped (retract, rapid, plunge at most d back in).
+// nothing new are skipped (retract, rapid at safe_z, feed down to 1 mm over the level above, plunge).
 //
 // Semi-finish / finish (seed 3.3.2-3.3.3): zigzag raster with a ball (5 mm, then 3 mm), CL at z_p + sqrt(R² - d²)
-// - R + δ (highest point wins); CL points every 2R along a line (the seed's interval on flat ground) and buffer
+// - R + δ (highest point wins; never below the floor, the cloud's lowest point, + δ); CL points every 2R along a line (the seed's interval on flat ground) and buffer
 // points inserted by the seed's interpolation: for two CL P1, P2 and the true CL Pi between them, the step error
 // ε = Pi.z - (P1.z - (P1.x - Pi.x)(P1.z - P2.z)/(P1.x - P2.x)); where |ε| exceeds half the tolerance the worst Pi
 // becomes a buffer point and both halves are checked again (a binary tree). Pi are drops on a fine sampling step
