@@ -317,3 +317,46 @@ TEST(CloudPlan, OrganisedCloudWithNaNsBreaksNothing) {
   EXPECT_EQ(r.dropped_nonfinite, 1000u);
   EXPECT_EQ(kept.points.size(), raw.points.size());
 }
+
+TEST(CloudPlan, HolesAreBridgedOrSkippedNeverPlungedInto) {
+  // Level ground at z = 4 (0.5 mm pitch, 60 x 40 mm) with an 8 x 8 mm hole of missing data, a block 10 mm
+  // high (work for the rough) away from it, and the floor below.
+  std::vector<Vec3> pts;
+  for (double x = 0; x <= 60 + 1e-9; x += 0.5)
+    for (double y = 0; y <= 40 + 1e-9; y += 0.5)
+      if (!(x > 26 && x < 34 && y > 16 && y < 24))
+        pts.push_back(Vec3(x, y, x >= 4 && x <= 16 && y >= 5 && y <= 35 ? 14.0 : 4.0));
+  pts.push_back(Vec3(0, 0, 0));  // the floor
+  const PointCloud cloud = cloud_of(pts);
+  CloudPlanOptions o = quick_options();
+  const CloudSurface s(cloud, cloud_surface_options(o));
+  ASSERT_EQ(s.holes().holes().size(), 1u);
+  const Hole& hole = s.holes().holes()[0];
+  EXPECT_NEAR(hole.lid_z, 4.0, 1e-9);
+  // Bridge: the finish crosses the hole on its lid: cutter locations on it, moves within the tolerance t.
+  CloudStageReport r;
+  const Toolpath bridged = plan_cloud_raster(s, o.finish, "cloud-finish", o, {}, &r);
+  EXPECT_EQ(r.skipped_samples, 0u);
+  size_t over = 0;
+  for (const Vec3& p : cloudtest::cut_positions(bridged, 2))
+    if (p.x() > 27 && p.x() < 33 && p.y() > 17 && p.y() < 23) {
+      ASSERT_GE(p.z(), 4.0 - o.tolerance - 1e-9) << p.transpose();  // moves stay within t of the surface
+      ++over;
+    }
+  EXPECT_GT(over, 10u);
+  // Skip: no cutting position has the cutter's footprint over the hole; the samples left out are reported.
+  o.holes = HolePolicy::Skip;
+  for (int stage = 0; stage < 2; ++stage) {
+    const Toolpath tp = stage == 0 ? plan_cloud_rough(s, o, {}, &r) : plan_cloud_raster(s, o.finish, "cloud-finish", o, {}, &r);
+    EXPECT_GT(r.skipped_samples, 0u) << tp.strategy;
+    const double reach = (stage == 0 ? o.rough : o.finish).tool.cutter.radius();
+    size_t cutting = 0;
+    for (const Vec3& p : cloudtest::cut_positions(tp, 1)) {
+      if (p.z() >= tp.safe_z - 1e-9) continue;
+      ASSERT_FALSE(s.holes().disc_touches_hole(p.x(), p.y(), reach - 1e-6)) << tp.strategy << " at " << p.transpose();
+      ++cutting;
+    }
+    EXPECT_GT(cutting, 50u) << tp.strategy;
+    expect_rapids_above_clearance(tp);
+  }
+}
