@@ -17,6 +17,7 @@
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/plan/strategy.hpp"
+#include "rosmill/heap_reuse.hpp"
 
 using namespace rosmill;
 
@@ -128,6 +129,7 @@ void bench_arc_reduction() {
 }  // namespace
 
 int main() {
+  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   bench_million_moves();
   bench_arc_reduction();
   return 0;

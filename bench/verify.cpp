@@ -15,6 +15,7 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
+#include "rosmill/heap_reuse.hpp"
 
 using namespace rosmill;
 using namespace rosmill::verify;
@@ -68,6 +69,7 @@ std::string raster_program(double r, double ball, int lines, int moves) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   const int only = argc > 2 ? std::atoi(argv[2]) : 0;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);

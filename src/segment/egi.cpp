@@ -97,7 +97,7 @@ EgiSet::EgiSet(const SurfacePatches& patches, const EgiBins& bins) : patches_(&p
   const Mesh& mesh = patches.mesh();
   const int64_t n = int64_t(mesh.face_count());
   std::vector<uint32_t> bin(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 20000)
   for (int64_t f = 0; f < n; ++f) bin[f] = bins_.bin_of(mesh.normals[f]);
 
   // Each patch's facets are contiguous in facet_order: sum into a dense histogram, then keep the bins touched.

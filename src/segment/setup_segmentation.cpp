@@ -107,7 +107,7 @@ std::vector<uint8_t> reachable_facets(const EgiSet& egis, const SetupFilter& fil
   std::vector<uint8_t> reach(n);
   const uint32_t* label = patches.labels().data();
   const ReachTest reaches(filter);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 20000)
   for (int64_t f = 0; f < n; ++f) {
     const Verdict v = verdict[label[f]];
     reach[f] = v == Verdict::Mixed ? uint8_t(reaches(mesh.normals[f])) : uint8_t(v);
