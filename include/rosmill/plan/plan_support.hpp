@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "rosmill/plan/region.hpp"
 #include "rosmill/plan/strategy.hpp"
 #include "rosmill/plan/surface.hpp"
 
@@ -55,13 +56,13 @@ class MoveWriter {
 void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, const Vec2& b, double step,
                     std::vector<Vec3>& out);
 
-// Parallel lines at `angle_deg` spaced `spacing` apart, clipped to a rectangle and (when not empty) a boundary
-// polygon; each line gives the [start, end] pieces inside, ordered along the direction.
+// Parallel lines at `angle_deg` spaced `spacing` apart, clipped to a rectangle and (when not empty) a region;
+// each line gives the [start, end] pieces inside, ordered along the direction.
 struct ScanLine {
   std::vector<std::pair<Vec2, Vec2>> pieces;
 };
 std::vector<ScanLine> scan_lines(const Vec2& lo, const Vec2& hi, double angle_deg, double spacing,
-                                 const std::vector<Vec2>& boundary);
+                                 const Region& region);
 
 // Runs f over [0, n) in parallel, in blocks, reporting progress between blocks (cancel throws Error).
 void parallel_blocks(size_t n, const PlanProgress& progress, double from, double to,
