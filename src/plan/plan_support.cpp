@@ -93,12 +93,30 @@ Vec3 cl_point(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B
   return Vec3(p.x(), p.y(), cl_height(s, f, p.x(), p.y()));
 }
 
+// A chord shorter than the minimum step that still misses the tolerance holds a jump of the CL height (a wall, or
+// the rim of the cutter just reaching an edge) or a feature narrower than the step: it is crossed at the highest
+// height sampled on it. Going up first and down last never gouges where the CL is monotone across it, as it is
+// at a wall. When the path has just come down at A, it stays up instead of going straight back (a run of such
+// chords, e.g. along a line at the exact rim distance from an edge, is crossed as one plateau, not as thousands
+// of up-and-down steps).
+void step_over(const Vec3& A, const Vec3& B, double top, std::vector<Vec3>& out) {
+  const size_t n = out.size();
+  if (n >= 2 && out[n - 1] == A && out[n - 2].head<2>() == A.head<2>() && out[n - 2].z() > A.z()) {
+    top = std::max(top, out[n - 2].z());
+    out.pop_back();
+  }
+  if (top > out.back().z()) out.emplace_back(A.x(), A.y(), top);
+  if (top > B.z()) out.emplace_back(B.x(), B.y(), top);
+  out.push_back(B);
+}
+
 // Refinement of the chord A-B, whose true CL points at a quarter, half and three quarters are q[0..2]. The
 // chord stands when all three lie within half the tolerance of it; a midpoint alone is not enough, since where
 // two contacts meet (a ridge) the CL can rise above the chord near one end and fall below it at the middle.
-// Otherwise it is split at its midpoint, each half reusing one quarter point as its own midpoint.
-void refine(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B, const Vec3 (&q)[3], int depth,
-            std::vector<Vec3>& out) {
+// Otherwise it is split at its midpoint, each half reusing one quarter point as its own midpoint, down to
+// `min_step`: the number of drops per chord is bounded (at most 2 step / min_step), however steep the wall.
+void refine(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B, const Vec3 (&q)[3],
+            double min_step, std::vector<Vec3>& out) {
   bool within = true;
   for (int i = 0; i < 3; ++i)
     within = within && std::abs(q[i].z() - (A.z() + 0.25 * (i + 1) * (B.z() - A.z()))) <= 0.5 * f.tolerance;
@@ -106,19 +124,15 @@ void refine(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B, 
     out.push_back(B);
     return;
   }
-  if (depth >= 24 || (B.head<2>() - A.head<2>()).norm() < 1e-6) {
-    // A jump: go up before the horizontal step, come down after it.
-    const double top = std::max({A.z(), B.z(), q[0].z(), q[1].z(), q[2].z()});
-    if (top > A.z()) out.emplace_back(A.x(), A.y(), top);
-    if (top > B.z()) out.emplace_back(B.x(), B.y(), top);
-    out.push_back(B);
+  if ((B.head<2>() - A.head<2>()).norm() <= min_step) {
+    step_over(A, B, std::max({A.z(), B.z(), q[0].z(), q[1].z(), q[2].z()}), out);
     return;
   }
   const Vec3& M = q[1];
   const Vec3 left[3] = {cl_point(s, f, A, M, 0.25), q[0], cl_point(s, f, A, M, 0.75)};
-  refine(s, f, A, M, left, depth + 1, out);
+  refine(s, f, A, M, left, min_step, out);
   const Vec3 right[3] = {cl_point(s, f, M, B, 0.25), q[2], cl_point(s, f, M, B, 0.75)};
-  refine(s, f, M, B, right, depth + 1, out);
+  refine(s, f, M, B, right, min_step, out);
 }
 
 }  // namespace
@@ -134,7 +148,7 @@ void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, c
     const Vec3 cur(p.x(), p.y(), cl_height(surface, f, p.x(), p.y()));
     const Vec3 q[3] = {cl_point(surface, f, prev, cur, 0.25), cl_point(surface, f, prev, cur, 0.5),
                        cl_point(surface, f, prev, cur, 0.75)};
-    refine(surface, f, prev, cur, q, 0, out);
+    refine(surface, f, prev, cur, q, kMinSampleStep, out);
     prev = cur;
   }
 }

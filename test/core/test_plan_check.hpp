@@ -100,9 +100,10 @@ inline GougeReport check_toolpath(const Toolpath& tp, const Mesh& mesh, double a
   return r;
 }
 
-// The gouge assertions every strategy test makes.
-inline void expect_no_gouge(const Toolpath& tp, const Mesh& mesh, double allowance, const std::string& what) {
-  const GougeReport r = check_toolpath(tp, mesh, allowance);
+// The gouge assertions every strategy test makes (the tolerance is the one the toolpath was planned with).
+inline void expect_no_gouge(const Toolpath& tp, const Mesh& mesh, double allowance, const std::string& what,
+                            double tolerance = kGougeTolerance, double step = kAlongMoveStep) {
+  const GougeReport r = check_toolpath(tp, mesh, allowance, step, tolerance);
   SCOPED_TRACE(what + ": " + r.str());
   EXPECT_GT(r.cl_points, 0u);
   EXPECT_EQ(r.gouges, 0u) << "the cutter goes deeper than the tolerance into the part plus allowance";

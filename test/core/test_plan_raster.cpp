@@ -3,6 +3,9 @@
 // the tolerance, zigzag and one-way linking, and a boundary (a polygon, a segmentation patch).
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cmath>
+
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
@@ -66,13 +69,20 @@ TEST(PlanRaster, NoGougeOnRealModels) {
 TEST(PlanRaster, NoGougeOnPrimitives) {
   for (const std::string& name : primitive_names()) {
     const Mesh m = make_primitive(name);
-    expect_no_gouge(raster(m, params_for(Cutter::ball(6), 5.0, 0.2, 15.0)), m, 0.2, name + " ball 6");
-    expect_no_gouge(raster(m, params_for(Cutter::flat(10), 7.0)), m, 0.0, name + " flat 10");
+    // Coarse stepovers keep the check quick; the walls, rims and edges are crossed all the same. Inside the
+    // cavity the reference is slow (the ball nearly fits the hollow, so little is pruned): points along its
+    // moves are checked every 0.4 mm there, every CL point still.
+    const bool cavity = name == "cavity";
+    expect_no_gouge(raster(m, params_for(Cutter::ball(6), cavity ? 15.0 : 11.0, 0.2, 15.0)), m, 0.2,
+                    name + " ball 6", kGougeTolerance, cavity ? 0.4 : kAlongMoveStep);
+    if (name == "cube" || name == "cone")  // the flat cutter's rim on a wall's edge and on a slope
+      expect_no_gouge(raster(m, params_for(Cutter::flat(10), 17.0)), m, 0.0, name + " flat 10");
   }
 }
 
 // Every cutting chord's end points touch part + allowance (the drop is exact), and points a quarter, a half and
-// three quarters along it lie within the tolerance of the true CL height (adaptive sampling).
+// three quarters along it lie within the tolerance of the true CL height (adaptive sampling); the steps over
+// walls lie above it and are a small part of the path.
 TEST(PlanRaster, ChordsWithinToleranceOfTheSurface) {
   const Mesh m = read_stl(ROSMILL_TEST_DATA "/mount_rush.stl");
   const double allowance = 0.25, tol = 0.01;
@@ -85,20 +95,39 @@ TEST(PlanRaster, ChordsWithinToleranceOfTheSurface) {
   std::vector<std::pair<Vec3, Vec3>> chords;
   for_each_chord(tp, [&](const Vec3& a, const Vec3& b) { chords.emplace_back(a, b); });
   ASSERT_GT(chords.size(), 1000u);
-  std::vector<double> end_error(chords.size()), mid_error(chords.size());
+  // Signed errors (path minus true CL): below is towards the part. A step over a wall (plan_support.hpp) is a
+  // level chord that lies above the CL on purpose; every other chord ends on the CL.
+  std::vector<double> end_error(chords.size()), below(chords.size()), above(chords.size());
   tbb::parallel_for(size_t(0), chords.size(), [&](size_t i) {
     const auto& [a, b] = chords[i];
-    end_error[i] = std::abs(true_cl(b) - b.z());
+    end_error[i] = b.z() - true_cl(b);
+    below[i] = std::max(0.0, -end_error[i]);
+    above[i] = std::max(0.0, end_error[i]);
     for (double f : {0.25, 0.5, 0.75}) {
       const Vec3 q = a + f * (b - a);
-      mid_error[i] = std::max(mid_error[i], std::abs(true_cl(q) - q.z()));
+      const double e = q.z() - true_cl(q);
+      below[i] = std::max(below[i], -e), above[i] = std::max(above[i], e);
     }
   });
-  const size_t worst_end = std::max_element(end_error.begin(), end_error.end()) - end_error.begin();
-  const size_t worst_mid = std::max_element(mid_error.begin(), mid_error.end()) - mid_error.begin();
-  EXPECT_LE(end_error[worst_end], 1e-6) << chords[worst_end].second.transpose();
-  EXPECT_LE(mid_error[worst_mid], tol) << chords[worst_mid].first.transpose() << " to "
-                                       << chords[worst_mid].second.transpose();
+  double chord_length = 0, step_length = 0, worst_below = 0, worst_above = 0, worst_end = 0;
+  size_t steps = 0;
+  for (size_t i = 0; i < chords.size(); ++i) {
+    const auto& [a, b] = chords[i];
+    const double len = (b - a).head<2>().norm();
+    chord_length += len;
+    worst_below = std::max(worst_below, below[i]);
+    EXPECT_LE(below[i], tol) << a.transpose() << " to " << b.transpose();
+    if (a.z() == b.z() && above[i] > tol) {  // a step over a wall: level, above the CL
+      ++steps, step_length += len;
+      continue;
+    }
+    worst_above = std::max(worst_above, above[i]), worst_end = std::max(worst_end, std::abs(end_error[i]));
+    EXPECT_LE(std::abs(end_error[i]), 1e-6) << b.transpose();
+    EXPECT_LE(above[i], tol) << a.transpose() << " to " << b.transpose();
+  }
+  std::printf("  %zu chords, %.1f mm; %zu steps over walls, %.2f mm; worst below %.2g, above %.2g, end %.2g\n",
+              chords.size(), chord_length, steps, step_length, worst_below, worst_above, worst_end);
+  EXPECT_LT(step_length, 0.01 * chord_length);  // steps over walls are short: the rest follows the CL
   // Adaptive: flat stretches need few points, the relief many; a coarse tolerance needs fewer than a fine one.
   PlanParams fine = p;
   fine.tolerance = 0.001;
@@ -212,5 +241,44 @@ TEST(PlanRaster, AllowanceLiftsTheFlatFloor) {
     // Beside the walls the grown cutter stops a further `a` out.
     expect_no_gouge(tp, m, a, "cube flat 10 allowance " + std::to_string(a));
     EXPECT_LE(b.min.x(), -5 - a + 1e-9);
+  }
+}
+
+// The models on which adaptive sampling once exploded (millions of moves, kilometres of up-and-down steps at
+// walls, where a line runs at exactly the cutter's radius from an edge and the drop flickered between touching
+// and not): the machine test's coarse settings (ball 6, stepover 6, tolerance 0.1). Planning is quick, the
+// moves are a few per sampling step, the path is not much longer than the lines themselves, and nothing gouges
+// deeper than that tolerance.
+TEST(PlanRaster, BoundedAtWallsOfRealModels) {
+  StlReadOptions inch;
+  inch.units = Units::Inch;
+  const std::pair<const char*, Mesh> models[] = {
+      {"pycam-textbox", read_stl(ROSMILL_TEST_DATA "/pycam-textbox.stl")},
+      {"featuretype (inch)", read_stl(ROSMILL_TEST_DATA "/featuretype.STL", inch)},
+      {"ktoolcav (inch)", read_stl(ROSMILL_TEST_DATA "/ktoolcav.stl", inch)},
+      {"wheel_in_box", read_stl(ROSMILL_TEST_DATA "/wheel_in_box.stl")},
+  };
+  PlanParams p = params_for(Cutter::ball(6), 6.0);
+  p.tolerance = 0.1;
+  for (const auto& [name, mesh] : models) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Toolpath tp = raster(mesh, p);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const ToolpathStats st = toolpath_stats(tp);
+    // What the lines alone measure: the part's box grown by the radius, cut in lines a stepover apart, plus
+    // the links between them.
+    const Vec3 size = mesh.bbox.max - mesh.bbox.min;
+    const double w = size.x() + 6.0, h = size.y() + 6.0;
+    const double lines = w * (std::floor(h / 6.0) + 1) + h;
+    const double sampling_steps = lines / std::min(0.25 * 3.0, 1.0);
+    std::printf("  %s: %.3f s, %zu moves, cutting %.0f mm (lines %.0f mm), %.0f sampling steps\n", name, seconds,
+                st.moves, st.cutting_length, lines, sampling_steps);
+    EXPECT_LT(seconds, 5.0) << name;
+    EXPECT_LT(double(st.moves), 2.0 * sampling_steps) << name;
+    // Up and down walls adds at most twice the part's height per wall crossed; a few hundred crossings at most.
+    EXPECT_LT(st.cutting_length, lines + 400 * size.z()) << name;
+    EXPECT_GT(st.cutting_length, 0.9 * lines) << name;
+    // The chords may pass the tolerance (0.1 here) below the true CL, not more.
+    expect_no_gouge(tp, mesh, 0.0, std::string(name) + " ball 6 stepover 6 tolerance 0.1", p.tolerance);
   }
 }
