@@ -31,29 +31,6 @@ struct Profile {
   }
 };
 
-// Largest value of a concave f over [lo, hi]: golden section until the bracket stops shrinking.
-template <class F>
-double golden_max(const F& f, double lo, double hi) {
-  double best = std::max(f(lo), f(hi));
-  if (!(hi > lo)) return best;
-  double a = lo, b = hi;
-  double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  for (int it = 0; it < 200 && b - a > 1e-15; ++it) {
-    if (f1 < f2) {
-      a = x1, x1 = x2, f1 = f2;
-      x2 = a + kGolden * (b - a);
-      f2 = f(x2);
-    } else {
-      b = x2, x2 = x1, f2 = f1;
-      x1 = b - kGolden * (b - a);
-      f1 = f(x1);
-    }
-    best = std::max({best, f1, f2});
-  }
-  return std::max({best, f1, f2});
-}
-
 // Smallest value of a convex f over [lo, hi] and where it is.
 template <class F>
 std::pair<double, double> golden_min(const F& f, double lo, double hi) {
@@ -61,6 +38,7 @@ std::pair<double, double> golden_min(const F& f, double lo, double hi) {
   double a = lo, b = hi;
   double x1 = b - kGolden * (b - a), x2 = a + kGolden * (b - a);
   double f1 = f(x1), f2 = f(x2);
+  best = std::min({best, std::make_pair(f1, x1), std::make_pair(f2, x2)});
   for (int it = 0; it < 200 && b - a > 1e-15; ++it) {
     if (f1 > f2) {
       a = x1, x1 = x2, f1 = f2;
@@ -74,6 +52,13 @@ std::pair<double, double> golden_min(const F& f, double lo, double hi) {
     best = std::min({best, std::make_pair(f1, x1), std::make_pair(f2, x2)});
   }
   return best;
+}
+
+// Largest value of a concave f over [lo, hi]: the smallest of -f.
+template <class F>
+double golden_max(const F& f, double lo, double hi) {
+  if (!(hi > lo)) return std::max(f(lo), f(hi));
+  return -golden_min([&](double x) { return -f(x); }, lo, hi).first;
 }
 
 // The end of the feasible interval between a feasible s_in and an infeasible s_out, by bisection.
