@@ -105,7 +105,13 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--units", o->units, "units of the file: mm, inch, m (STL default mm, clouds m)");
   cmd->add_flag("--json", o->json, "print one JSON object");
   cmd->add_option("-o,--out", o->out, "write toolpath.json");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, cmd] {
+    // NaN means "the tool's default" inside PlanParams: a NaN typed on the command line must not pass as that.
+    for (const char* name : {"--stepover", "--stepdown", "--allowance", "--tolerance", "--angle"})
+      if (cmd->count(name) && !std::isfinite(cmd->get_option(name)->as<double>()))
+        throw Error(name, "must be a finite number");
+    run(*o);
+  });
 });
 
 }  // namespace
