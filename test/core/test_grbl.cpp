@@ -46,6 +46,23 @@ std::unique_ptr<Controller> grbl(const GrblSimulation& sim) {
   return open_controller("grbl+tcp://127.0.0.1:" + std::to_string(sim.port()));
 }
 
+// Streams `program` through a connection that the simulation drops: the driver must report it, and its message
+// must say where to resume (--from-line N). Returns N; 0 (and a test failure) when either is missing.
+size_t resume_line_after_drop(Controller& c, const std::vector<std::string>& program) {
+  try {
+    run_to_end(c, program, SendOptions{});
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("connection"), std::string::npos) << what;
+    const size_t at = what.find("--from-line ");
+    if (at != std::string::npos) return std::stoul(what.substr(at + 12));
+    ADD_FAILURE() << "no line to resume from in: " << what;
+    return 0;
+  }
+  ADD_FAILURE() << "the dropped connection was not reported";
+  return 0;
+}
+
 }  // namespace
 
 TEST(GrblSimulationStream, TenThousandLinesEachAcknowledgedOnceInOrder) {
@@ -75,22 +92,14 @@ TEST(GrblSimulationStream, DisconnectAtARandomLineThenResumeLosesAndRepeatsNothi
   std::mt19937 rng(20261122);
   for (int round = 0; round < 2; ++round) {
     const long drop = std::uniform_int_distribution<long>(200, 9500)(rng);
+    SCOPED_TRACE("connection dropped after " + std::to_string(drop) + " executed lines");
     GrblSimulation sim;
     sim.schedule_drop_after(drop);
     auto c = grbl(sim);
     c->connect();
     const auto program = numbered_program(10000);
-    size_t resume_from = 0;
-    try {
-      run_to_end(*c, program, SendOptions{});
-      FAIL() << "the dropped connection was not reported";
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find("connection"), std::string::npos) << what;
-      const size_t at = what.find("--from-line ");
-      ASSERT_NE(at, std::string::npos) << what;
-      resume_from = std::stoul(what.substr(at + 12));
-    }
+    const size_t resume_from = resume_line_after_drop(*c, program);
+    ASSERT_GT(resume_from, 0u);
     // Every line acknowledged before the drop was executed; nothing after it.
     EXPECT_EQ(sim.executed().size(), static_cast<size_t>(drop));
     c->connect();
@@ -112,6 +121,39 @@ TEST(GrblSimulationStream, DisconnectAtARandomLineThenResumeLosesAndRepeatsNothi
   }
 }
 
+TEST(GrblSimulationStream, AResetConnectionLosesNothingAndRepeatsOnlyUnansweredLines) {
+  // Pulled cable: the connection is reset and the "ok"s in transit are lost, so the driver cannot know that the
+  // last few lines ran. Resuming after its last acknowledged line loses nothing; the lines it re-sends are only
+  // those whose answer was lost (no more than GRBL's buffer held), and the resume preamble first brings the tool to
+  // where the first of them starts, so running one again retraces its own path.
+  std::mt19937 rng(7);
+  const long drop = std::uniform_int_distribution<long>(500, 9000)(rng);
+  SCOPED_TRACE("connection reset after " + std::to_string(drop) + " executed lines");
+  GrblSimulation sim;
+  sim.schedule_drop_after(drop, true);
+  auto c = grbl(sim);
+  c->connect();
+  const auto program = numbered_program(10000);
+  SendOptions o;
+  o.from_line = resume_line_after_drop(*c, program);
+  ASSERT_GT(o.from_line, 0u);
+  const std::vector<long> before = executed_numbers(sim);
+  c->connect();
+  EXPECT_EQ(run_to_end(*c, program, o).state, RunState::Finished);
+  const std::vector<long> all = executed_numbers(sim);
+  ASSERT_GE(before.size(), 1u);
+  // The two runs: 1..D, then F..10000 with F <= D + 1 (nothing lost) and D - F + 1 repeats.
+  const long d = before.back(), f = all[before.size()];
+  EXPECT_LE(f, d + 1) << "lines " << d + 1 << ".." << f - 1 << " were lost";
+  EXPECT_EQ(static_cast<long>(all.size()), 10000 + (d - f + 1));
+  for (size_t i = 0; i < all.size(); ++i) {
+    const long expected = i < before.size() ? static_cast<long>(i) + 1 : f + static_cast<long>(i - before.size());
+    ASSERT_EQ(all[i], expected) << "position " << i;
+  }
+  // Repeats are bounded by what fits in the 128-byte buffer (these lines are at least 8 bytes long).
+  EXPECT_LE(d - f + 1, 128 / 8);
+}
+
 TEST(GrblSimulationStream, ErrorAndAlarmAreReportedWithTheLine) {
   GrblSimulation sim;
   auto c = grbl(sim);
@@ -130,11 +172,47 @@ TEST(GrblSimulationStream, ErrorAndAlarmAreReportedWithTheLine) {
     EXPECT_NE(std::string(e.what()).find("ALARM:2"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("--from-line 3"), std::string::npos) << e.what();
   }
+  // A critical alarm leaves the lines after it unanswered: no new program until a soft reset.
+  try {
+    c->start({"G0 X2", "M30"}, SendOptions{});
+    FAIL() << "started over unanswered lines";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("abort (soft reset) first"), std::string::npos) << e.what();
+  }
+  c->abort();
   // The alarm stays until unlocked on request: a new program is refused, then runs after $X.
   EXPECT_THROW(run_to_end(*c, {"G0 X2", "M30"}, SendOptions{}), Error);
   c->unlock();
   const ControllerStatus s = run_to_end(*c, {"G0 X2", "M30"}, SendOptions{});
   EXPECT_EQ(s.state, RunState::Finished);
+  EXPECT_EQ(sim.executed().back(), "M30");
+}
+
+TEST(GrblSimulationStream, ARefusedLineIsNeverCountedAsAcknowledged) {
+  GrblSimulation sim;
+  auto c = grbl(sim);
+  c->connect();
+  // GRBL refuses line 6 and goes on with the lines it had buffered behind it.
+  std::vector<std::string> program = numbered_program(200);
+  program.insert(program.begin() + 5, "G64 P0.02");
+  try {
+    run_to_end(*c, program, SendOptions{});
+    FAIL() << "error:20 not reported";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("error:20 at program line 6"), std::string::npos) << what;
+    EXPECT_NE(what.find("--from-line 6"), std::string::npos) << what;
+  }
+  const ControllerStatus s = c->poll(0.2);
+  EXPECT_EQ(s.state, RunState::Error);
+  EXPECT_EQ(s.acknowledged_line, 5u);
+  // What ran behind the refused line is said, with its range.
+  const size_t ran = executed_numbers(sim).size();  // the N lines, from program line 7 on
+  if (ran > 0) {
+    EXPECT_NE(s.error.find("lines 7.." + std::to_string(6 + ran) + " were already in GRBL's buffer and ran"),
+              std::string::npos) << s.error << " (" << ran << " ran)";
+  }
+  c->abort();
 }
 
 TEST(GrblSimulationStream, FeedHoldStopsAndResumeFinishes) {
