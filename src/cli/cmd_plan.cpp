@@ -168,7 +168,11 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--voxel", o->voxel, "cloud: voxel downsampling leaf, mm (0: off)");
   cmd->add_option("--outliers", o->outliers, "cloud: statistical outlier removal over K neighbours (0: off)");
   cmd->add_option("--holes", o->holes, "cloud: bridge holes at the highest neighbour, or skip them");
-  cmd->callback([o, tool, tolerance] {
+  cmd->callback([o, cmd, tool, tolerance] {
+    // NaN means "the default" inside PlanParams: a NaN typed on the command line must not pass as that.
+    for (const char* name : {"--stepover", "--stepdown", "--allowance", "--tolerance", "--angle"})
+      if (cmd->count(name) && !std::isfinite(cmd->get_option(name)->as<double>()))
+        throw Error(name, "must be a finite number");
     o->tool_given = tool->count() > 0;
     o->tolerance_given = tolerance->count() > 0;
     run(*o);

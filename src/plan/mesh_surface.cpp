@@ -36,63 +36,64 @@ MeshSurface::MeshSurface(const Mesh& mesh) : bounds_(mesh.bbox) {
   const size_t n = mesh.face_count();
   if (bounds_.empty())
     for (const Vec3& v : mesh.vertices) bounds_.add(v);
-  const std::vector<unsigned char> own = ownership(mesh);
-  std::vector<ContactTriangle> by_face(n);
-  std::vector<double> cx(n), cy(n);
-  for (size_t f = 0; f < n; ++f) {
-    by_face[f] = make_contact_triangle(mesh.corner(f, 0).data(), mesh.corner(f, 1).data(),
-                                       mesh.corner(f, 2).data(), own[f]);
-    cx[f] = 0.5 * (by_face[f].xmin + by_face[f].xmax);
-    cy[f] = 0.5 * (by_face[f].ymin + by_face[f].ymax);
-  }
-  tris_ = std::move(by_face);
   if (n == 0) return;
+  // The tree is built over a permutation of compact face boxes; the (large) contact records are then made once,
+  // directly in leaf order, on both cores.
+  std::vector<FaceBox> boxes(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t f) {
+    const Vec3 &a = mesh.corner(f, 0), &b = mesh.corner(f, 1), &c = mesh.corner(f, 2);
+    boxes[f] = {std::min({a.x(), b.x(), c.x()}), std::max({a.x(), b.x(), c.x()}), std::min({a.y(), b.y(), c.y()}),
+                std::max({a.y(), b.y(), c.y()}), std::max({a.z(), b.z(), c.z()})};
+  });
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
   nodes_.reserve(2 * n / kLeafSize + 2);
   nodes_.push_back({});
-  build(0, 0, static_cast<uint32_t>(n), cx, cy);
+  build(0, 0, static_cast<uint32_t>(n), boxes, order);
+  const std::vector<unsigned char> own = ownership(mesh);
+  tris_.resize(n);
+  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+    const uint32_t f = order[i];
+    tris_[i] = make_contact_triangle(mesh.corner(f, 0).data(), mesh.corner(f, 1).data(), mesh.corner(f, 2).data(),
+                                     own[f]);
+  });
 }
 
-// Median split on the longer side of the centroids' extent; triangles are reordered in place so that a leaf
-// is one contiguous run (cache-friendly queries).
-void MeshSurface::build(uint32_t node, uint32_t begin, uint32_t end, std::vector<double>& cx,
-                        std::vector<double>& cy) {
+// Median split on the longer side of the centres' extent (centre of each face's XY box), so that a leaf is one
+// contiguous run of `order` and so of tris_ (cache-friendly queries).
+void MeshSurface::build(uint32_t node, uint32_t begin, uint32_t end, const std::vector<FaceBox>& boxes,
+                        std::vector<uint32_t>& order) {
   Node nd{1e300, 1e300, -1e300, -1e300, -1e300, begin, end - begin};
   double cxmin = 1e300, cxmax = -1e300, cymin = 1e300, cymax = -1e300;
   for (uint32_t i = begin; i < end; ++i) {
-    const ContactTriangle& t = tris_[i];
-    nd.xmin = std::min(nd.xmin, t.xmin), nd.xmax = std::max(nd.xmax, t.xmax);
-    nd.ymin = std::min(nd.ymin, t.ymin), nd.ymax = std::max(nd.ymax, t.ymax);
-    nd.zmax = std::max(nd.zmax, t.zmax);
-    cxmin = std::min(cxmin, cx[i]), cxmax = std::max(cxmax, cx[i]);
-    cymin = std::min(cymin, cy[i]), cymax = std::max(cymax, cy[i]);
+    const FaceBox& b = boxes[order[i]];
+    nd.xmin = std::min(nd.xmin, b.xmin), nd.xmax = std::max(nd.xmax, b.xmax);
+    nd.ymin = std::min(nd.ymin, b.ymin), nd.ymax = std::max(nd.ymax, b.ymax);
+    nd.zmax = std::max(nd.zmax, b.zmax);
+    const double cx = b.xmin + b.xmax, cy = b.ymin + b.ymax;  // twice the centre: only the order matters
+    cxmin = std::min(cxmin, cx), cxmax = std::max(cxmax, cx);
+    cymin = std::min(cymin, cy), cymax = std::max(cymax, cy);
   }
   if (end - begin <= kLeafSize) {
     nodes_[node] = nd;
     return;
   }
   const bool split_x = cxmax - cxmin >= cymax - cymin;
-  const std::vector<double>& key = split_x ? cx : cy;
-  std::vector<uint32_t> order(end - begin);
-  std::iota(order.begin(), order.end(), begin);
   const uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin(), order.begin() + (mid - begin), order.end(),
-                   [&](uint32_t a, uint32_t b) { return key[a] < key[b]; });
-  std::vector<ContactTriangle> t(end - begin);
-  std::vector<double> nx(end - begin), ny(end - begin);
-  for (uint32_t i = 0; i < end - begin; ++i) t[i] = tris_[order[i]], nx[i] = cx[order[i]], ny[i] = cy[order[i]];
-  std::copy(t.begin(), t.end(), tris_.begin() + begin);
-  std::copy(nx.begin(), nx.end(), cx.begin() + begin);
-  std::copy(ny.begin(), ny.end(), cy.begin() + begin);
+  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end, [&](uint32_t a, uint32_t b) {
+    const FaceBox &ba = boxes[a], &bb = boxes[b];
+    return split_x ? ba.xmin + ba.xmax < bb.xmin + bb.xmax : ba.ymin + ba.ymax < bb.ymin + bb.ymax;
+  });
 
   nd.count = 0;
   nodes_[node] = nd;
   const uint32_t left = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back({});
-  build(left, begin, mid, cx, cy);
+  build(left, begin, mid, boxes, order);
   const uint32_t right = static_cast<uint32_t>(nodes_.size());
   nodes_.push_back({});
   nodes_[node].first = right;
-  build(right, mid, end, cx, cy);
+  build(right, mid, end, boxes, order);
 }
 
 Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint32_t& hint) const {
@@ -161,14 +162,6 @@ void MeshSurface::drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop
     uint32_t hint = kNone;
     for (size_t i = range.begin(); i != range.end(); ++i) out[i] = drop_hinted(cp, xy[i].x(), xy[i].y(), hint);
   });
-}
-
-Drop MeshSurface::drop_brute_force(const Cutter& cutter, double x, double y) const {
-  const CutterProfile cp(cutter);
-  double best = kNoContact;
-  for (const ContactTriangle& t : tris_) best = std::max(best, triangle_contact(cp, x, y, t));
-  if (best == kNoContact) return {bounds_.min.z(), false};
-  return {best, true};
 }
 
 }  // namespace rosmill

@@ -88,26 +88,51 @@ void MoveWriter::feed(const Vec3& p) {
 
 namespace {
 
-// Midpoint refinement of the chord A-B (B is appended last).
-void refine(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B, int depth, std::vector<Vec3>& out) {
-  const Vec2 m = 0.5 * (A.head<2>() + B.head<2>());
-  const double zm = cl_height(s, f, m.x(), m.y());
-  const double chord = 0.5 * (A.z() + B.z());
-  if (std::abs(zm - chord) <= 0.5 * f.tolerance) {
+Vec3 cl_point(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B, double at) {
+  const Vec2 p = A.head<2>() + at * (B.head<2>() - A.head<2>());
+  return Vec3(p.x(), p.y(), cl_height(s, f, p.x(), p.y()));
+}
+
+// A chord shorter than the minimum step that still misses the tolerance holds a jump of the CL height (a wall, or
+// the rim of the cutter just reaching an edge) or a feature narrower than the step: it is crossed at the highest
+// height sampled on it. Going up first and down last never gouges where the CL is monotone across it, as it is
+// at a wall. When the path has just come down at A, it stays up instead of going straight back (a run of such
+// chords, e.g. along a line at the exact rim distance from an edge, is crossed as one plateau, not as thousands
+// of up-and-down steps).
+void step_over(const Vec3& A, const Vec3& B, double top, std::vector<Vec3>& out) {
+  const size_t n = out.size();
+  if (n >= 2 && out[n - 1] == A && out[n - 2].head<2>() == A.head<2>() && out[n - 2].z() > A.z()) {
+    top = std::max(top, out[n - 2].z());
+    out.pop_back();
+  }
+  if (top > out.back().z()) out.emplace_back(A.x(), A.y(), top);
+  if (top > B.z()) out.emplace_back(B.x(), B.y(), top);
+  out.push_back(B);
+}
+
+// Refinement of the chord A-B, whose true CL points at a quarter, half and three quarters are q[0..2]. The
+// chord stands when all three lie within half the tolerance of it; a midpoint alone is not enough, since where
+// two contacts meet (a ridge) the CL can rise above the chord near one end and fall below it at the middle.
+// Otherwise it is split at its midpoint, each half reusing one quarter point as its own midpoint, down to
+// `min_step`: the number of drops per chord is bounded (at most 2 step / min_step), however steep the wall.
+void refine(const Surface& s, const PlanFrame& f, const Vec3& A, const Vec3& B, const Vec3 (&q)[3],
+            double min_step, std::vector<Vec3>& out) {
+  bool within = true;
+  for (int i = 0; i < 3; ++i)
+    within = within && std::abs(q[i].z() - (A.z() + 0.25 * (i + 1) * (B.z() - A.z()))) <= 0.5 * f.tolerance;
+  if (within) {
     out.push_back(B);
     return;
   }
-  if (depth >= 24 || (B.head<2>() - A.head<2>()).norm() < 1e-6) {
-    // A jump: go up before the horizontal step, come down after it.
-    const double top = std::max({A.z(), B.z(), zm});
-    if (top > A.z()) out.emplace_back(A.x(), A.y(), top);
-    if (top > B.z()) out.emplace_back(B.x(), B.y(), top);
-    out.push_back(B);
+  if ((B.head<2>() - A.head<2>()).norm() <= min_step) {
+    step_over(A, B, std::max({A.z(), B.z(), q[0].z(), q[1].z(), q[2].z()}), out);
     return;
   }
-  const Vec3 M(m.x(), m.y(), zm);
-  refine(s, f, A, M, depth + 1, out);
-  refine(s, f, M, B, depth + 1, out);
+  const Vec3& M = q[1];
+  const Vec3 left[3] = {cl_point(s, f, A, M, 0.25), q[0], cl_point(s, f, A, M, 0.75)};
+  refine(s, f, A, M, left, min_step, out);
+  const Vec3 right[3] = {cl_point(s, f, M, B, 0.25), q[2], cl_point(s, f, M, B, 0.75)};
+  refine(s, f, M, B, right, min_step, out);
 }
 
 }  // namespace
@@ -121,13 +146,15 @@ void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, c
   for (int i = 1; i <= n; ++i) {
     const Vec2 p = a + (b - a) * (double(i) / n);
     const Vec3 cur(p.x(), p.y(), cl_height(surface, f, p.x(), p.y()));
-    refine(surface, f, prev, cur, 0, out);
+    const Vec3 q[3] = {cl_point(surface, f, prev, cur, 0.25), cl_point(surface, f, prev, cur, 0.5),
+                       cl_point(surface, f, prev, cur, 0.75)};
+    refine(surface, f, prev, cur, q, kMinSampleStep, out);
     prev = cur;
   }
 }
 
 std::vector<ScanLine> scan_lines(const Vec2& lo, const Vec2& hi, double angle_deg, double spacing,
-                                 const std::vector<Vec2>& boundary) {
+                                 const Region& region) {
   const double a = angle_deg * M_PI / 180.0;
   const Vec2 u(std::cos(a), std::sin(a)), v(-std::sin(a), std::cos(a));
   double vmin = 1e300, vmax = -1e300;
@@ -154,35 +181,31 @@ std::vector<ScanLine> scan_lines(const Vec2& lo, const Vec2& hi, double angle_de
       lines.push_back(line);
       continue;
     }
-    if (boundary.size() < 3) {
+    if (region.empty()) {
       line.pieces.emplace_back(origin + s0 * u, origin + s1 * u);
       lines.push_back(line);
       continue;
     }
-    // Crossings with the boundary, even-odd inside.
+    // Crossings with every loop of the region; each span between crossings is wholly inside or outside.
     std::vector<double> cuts = {s0, s1};
-    for (size_t i = 0; i < boundary.size(); ++i) {
-      const Vec2& p = boundary[i];
-      const Vec2& q = boundary[(i + 1) % boundary.size()];
-      const double dp = (p - origin).dot(v), dq = (q - origin).dot(v);
-      if ((dp > 0) == (dq > 0)) continue;
-      const Vec2 x = p + (q - p) * (dp / (dp - dq));
-      const double s = (x - origin).dot(u);
-      if (s > s0 && s < s1) cuts.push_back(s);
-    }
+    for (const std::vector<Vec2>& loop : region)
+      for (size_t i = 0; i < loop.size(); ++i) {
+        const Vec2& p = loop[i];
+        const Vec2& q = loop[(i + 1) % loop.size()];
+        const double dp = (p - origin).dot(v), dq = (q - origin).dot(v);
+        if ((dp > 0) == (dq > 0)) continue;
+        const double s = (p + (q - p) * (dp / (dp - dq)) - origin).dot(u);
+        if (s > s0 && s < s1) cuts.push_back(s);
+      }
     std::sort(cuts.begin(), cuts.end());
     for (size_t i = 0; i + 1 < cuts.size(); ++i) {
       if (cuts[i + 1] - cuts[i] < 1e-9) continue;
-      const Vec2 mid = origin + 0.5 * (cuts[i] + cuts[i + 1]) * u;
-      bool inside = false;
-      for (size_t j = 0, k2 = boundary.size() - 1; j < boundary.size(); k2 = j++) {
-        const Vec2& p = boundary[j];
-        const Vec2& q = boundary[k2];
-        if ((p.y() > mid.y()) != (q.y() > mid.y()) &&
-            mid.x() < (q.x() - p.x()) * (mid.y() - p.y()) / (q.y() - p.y()) + p.x())
-          inside = !inside;
-      }
-      if (inside) line.pieces.emplace_back(origin + cuts[i] * u, origin + cuts[i + 1] * u);
+      if (!inside_region(region, origin + 0.5 * (cuts[i] + cuts[i + 1]) * u)) continue;
+      // Adjacent inside spans (split at a crossing of two loops' shared point) are one piece.
+      if (!line.pieces.empty() && (line.pieces.back().second - (origin + cuts[i] * u)).norm() < 1e-9)
+        line.pieces.back().second = origin + cuts[i + 1] * u;
+      else
+        line.pieces.emplace_back(origin + cuts[i] * u, origin + cuts[i + 1] * u);
     }
     lines.push_back(line);
   }

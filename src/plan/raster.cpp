@@ -1,6 +1,7 @@
 #include "rosmill/plan/raster.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <Eigen/Geometry>
 
@@ -22,6 +23,19 @@ void drop_collinear(std::vector<Vec3>& pts) {
   pts[w++] = pts.back();
   pts.resize(w);
 }
+
+namespace {
+
+// A link may stay down only when it keeps the axis inside the region (checked every `step`).
+bool link_inside(const Region& region, const Vec2& a, const Vec2& b, double step) {
+  if (region.empty()) return true;
+  const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+  for (int k = 1; k < n; ++k)
+    if (!inside_region(region, a + (b - a) * (double(k) / n))) return false;
+  return true;
+}
+
+}  // namespace
 
 Job raster_on(const Surface& surface, const PlanParams& params, const RasterOptions& options,
               const PlanProgress& progress) {
@@ -57,7 +71,8 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
     for (const auto& pts : line) {
       const Vec3& start = pts.front();
       const double gap = (start.head<2>() - w.position().head<2>()).norm();
-      if (!w.at_safe() && options.zigzag && options.boundary.empty() && gap <= 1.5 * f.stepover + 1e-9) {
+      if (!w.at_safe() && options.zigzag && gap <= 1.5 * f.stepover + 1e-9 &&
+          link_inside(options.boundary, w.position().head<2>(), start.head<2>(), step)) {
         // Zigzag link along the surface to the next line's start.
         std::vector<Vec3> link;
         sample_segment(surface, f, w.position().head<2>(), start.head<2>(), step, link);

@@ -1,11 +1,15 @@
 // Drop-cutter: each contact type against analytic answers, the bull-nose edge against a 1-D brute-force search,
-// whole triangles against dense sampling, and the indexed surface against the all-triangles reference.
+// whole triangles against dense sampling, and the indexed surface against the independent all-triangles
+// reference (cutter/reference_drop: a concave maximisation that shares no code with the contact kernels) on the
+// seed primitives and on real models.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "rosmill/cutter/contact.hpp"
+#include "rosmill/cutter/reference_drop.hpp"
+#include "rosmill/io/stl.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 
@@ -156,26 +160,108 @@ TEST(DropCutter, TrianglesNeverPenetratedAndTouchedAtDenseSamples) {
       ASSERT_TRUE(d.touched);
       EXPECT_GE(d.z, sampled - 1e-9) << "cutter goes into the triangle, trial " << trial;
       EXPECT_LE(d.z, sampled + 0.05) << "cutter floats above the triangle, trial " << trial;
+      // The reference obeys the same bounds (so it is checked by something other than the code it checks).
+      const double ref = reference_triangle_drop(cut, x, y, a, b, c);
+      EXPECT_GE(ref, sampled - 1e-9) << "reference, trial " << trial;
+      EXPECT_LE(ref, sampled + 0.05) << "reference, trial " << trial;
     }
   }
 }
 
-TEST(DropCutter, IndexEqualsBruteForceOnPrimitives) {
-  std::mt19937 rng(3);
-  for (const char* name : {"cube", "cylinder", "dome", "cone", "cavity"}) {
-    const MeshSurface s(make_primitive(name));
-    std::uniform_real_distribution<double> u(-70, 70);
-    for (const Cutter& c : {Cutter::flat(10), Cutter::ball(6), Cutter::bull(12, 3)}) {
-      std::vector<Vec2> xy(400);
-      for (Vec2& p : xy) p = Vec2(u(rng), u(rng));
-      std::vector<Drop> out(xy.size());
-      s.drop_many(c, xy.data(), xy.size(), out.data());
-      for (size_t i = 0; i < xy.size(); ++i) {
-        const Drop ref = s.drop_brute_force(c, xy[i].x(), xy[i].y());
-        ASSERT_EQ(out[i].touched, ref.touched) << name;
-        ASSERT_NEAR(out[i].z, ref.z, 1e-9) << name << " at " << xy[i].transpose();
-      }
+// Random axis positions over the model's box grown by the cutter, the indexed drops against the reference.
+void expect_equal_to_reference(const Mesh& mesh, const Cutter& c, int points, unsigned seed, const char* name) {
+  const MeshSurface s(mesh);
+  std::mt19937 rng(seed);
+  const double R = c.radius();
+  std::uniform_real_distribution<double> ux(mesh.bbox.min.x() - R, mesh.bbox.max.x() + R);
+  std::uniform_real_distribution<double> uy(mesh.bbox.min.y() - R, mesh.bbox.max.y() + R);
+  std::vector<Vec2> xy(points);
+  for (Vec2& p : xy) p = Vec2(ux(rng), uy(rng));
+  std::vector<Drop> out(xy.size());
+  s.drop_many(c, xy.data(), xy.size(), out.data());
+  int touched = 0;
+  for (size_t i = 0; i < xy.size(); ++i) {
+    const double ref = reference_drop(c, mesh, xy[i].x(), xy[i].y());
+    ASSERT_EQ(out[i].touched, ref > -1e300) << name << " " << cutter_type_name(c.type) << " at " << xy[i].transpose();
+    if (!out[i].touched) continue;
+    ++touched;
+    ASSERT_NEAR(out[i].z, ref, 1e-6) << name << " " << cutter_type_name(c.type) << " at " << xy[i].transpose();
+  }
+  EXPECT_GT(touched, points / 4) << name;
+}
+
+TEST(DropCutter, IndexEqualsReferenceOnPrimitives) {
+  unsigned seed = 3;
+  for (const char* name : {"cube", "cylinder", "dome", "cone", "cavity"})
+    for (const Cutter& c : {Cutter::flat(10), Cutter::ball(6), Cutter::bull(12, 3)})
+      expect_equal_to_reference(make_primitive(name), c, 150, seed++, name);
+}
+
+TEST(DropCutter, IndexEqualsReferenceOnRealModels) {
+  StlReadOptions inch;
+  inch.units = Units::Inch;
+  const std::pair<const char*, Mesh> models[] = {
+      {"mount_rush", read_stl(ROSMILL_TEST_DATA "/mount_rush.stl")},
+      {"pycam-textbox", read_stl(ROSMILL_TEST_DATA "/pycam-textbox.stl")},
+      {"wheel_in_box", read_stl(ROSMILL_TEST_DATA "/wheel_in_box.stl")},
+      {"ktoolcav (inch to mm)", read_stl(ROSMILL_TEST_DATA "/ktoolcav.stl", inch)},
+  };
+  unsigned seed = 21;
+  for (const auto& [name, mesh] : models)
+    for (const Cutter& c : {Cutter::flat(10), Cutter::ball(6), Cutter::bull(8, 1)})
+      expect_equal_to_reference(mesh, c, 150, seed++, name);
+}
+
+// The reference itself against answers known in closed form.
+TEST(DropCutter, ReferenceMatchesClosedForms) {
+  const Mesh cube = make_primitive("cube");
+  EXPECT_NEAR(reference_drop(Cutter::ball(6), cube, 62, 30), 57.0 + std::sqrt(5.0), 1e-9);
+  EXPECT_NEAR(reference_drop(Cutter::flat(10), cube, 64.9, 10), 60.0, 1e-12);
+  EXPECT_EQ(reference_drop(Cutter::flat(10), cube, 65.1, 10), -std::numeric_limits<double>::infinity());
+  const double d = 4.2, e = d - 3.0;
+  EXPECT_NEAR(reference_drop(Cutter::bull(10, 2), cube, 60 + d / std::sqrt(2.0), 60 + d / std::sqrt(2.0)),
+              60.0 - (2.0 - std::sqrt(4.0 - e * e)), 1e-9);
+  const double slope = 0.5, R = 3;
+  const Mesh ramp = build_mesh({Vec3(-50, -50, -25), Vec3(50, -50, 25), Vec3(50, 50, 25), Vec3(-50, -50, -25),
+                                Vec3(50, 50, 25), Vec3(-50, 50, -25)});
+  EXPECT_NEAR(reference_drop(Cutter::ball(6), ramp, 3, 4), 0.5 * 3 + R * std::sqrt(1 + slope * slope) - R, 1e-9);
+  const double nz = 1 / std::sqrt(1 + slope * slope);
+  EXPECT_NEAR(reference_drop(Cutter::bull(10, 2), ramp, 3, 4), 0.5 * (3 + 3) + 2 / nz - 2, 1e-9);
+}
+
+// The gouge decision (branch and bound) agrees with the reference drop of the eroded cutter: just below that
+// drop it finds a gouge deeper than the depth, just above it none.
+TEST(DropCutter, ReferenceGougeAgreesWithReferenceDrop) {
+  const Mesh m = read_stl(ROSMILL_TEST_DATA "/mount_rush.stl");
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> ux(-40, 44), uy(-24, 18);
+  const double depth = 0.01;
+  int checked = 0;
+  for (const auto& [c, eroded] : {std::make_pair(Cutter::ball(6), Cutter::ball(6 - 2 * depth)),
+                                  std::make_pair(Cutter::flat(10), Cutter::flat(10 - 2 * depth)),
+                                  std::make_pair(Cutter::bull(8, 1), Cutter::bull(8 - 2 * depth, 1 - depth))}) {
+    for (int i = 0; i < 60; ++i) {
+      const double x = ux(rng), y = uy(rng);
+      const double z = reference_drop(eroded, m, x, y) - depth;  // tip of the real cutter
+      if (z < -1e300) continue;  // nothing under the cutter (the relief is not a full rectangle)
+      ++checked;
+      EXPECT_TRUE(reference_gouges(c, m, Vec3(x, y, z - 1e-6), depth)) << cutter_type_name(c.type) << " " << x << " " << y;
+      EXPECT_FALSE(reference_gouges(c, m, Vec3(x, y, z + 1e-6), depth)) << cutter_type_name(c.type) << " " << x << " " << y;
     }
+  }
+  EXPECT_GT(checked, 150);
+}
+
+// A ball beside a horizontal edge at exactly its radius touches at its equator: the rounding of the distance
+// must not lose that contact (the grid of `rosmill dropcutter` starts exactly there, at xmin - R).
+TEST(DropCutter, RimTangentEdgeKeepsItsContact) {
+  const Mesh box = read_stl(ROSMILL_TEST_DATA "/pycam-textbox.stl");
+  const MeshSurface s(box);
+  for (double x : {18.0, 27.8, 39.0, 41.8, 88.3}) {
+    const Drop d = s.drop(Cutter::ball(6), x, -3.0);
+    EXPECT_TRUE(d.touched) << x;
+    EXPECT_NEAR(d.z, -3.0, 1e-6) << x;
+    EXPECT_EQ(check_drop(Cutter::ball(6), box, x, -3.0, d.z, box.bbox.min.z(), 1e-6), ReferenceCheck::Equal);
   }
 }
 

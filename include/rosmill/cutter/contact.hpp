@@ -93,7 +93,10 @@ inline double edge_contact(const CutterProfile& cp, double x, double y, const do
   if (L2 < 1e-24) return kNoContact;  // vertical edge: its top corner is the contact
   const double px = x - P[0], py = y - P[1];
   const double t0 = (px * ex + py * ey) / L2;  // foot of the axis on the edge's line
-  const double d0sq = std::max(0.0, px * px + py * py - t0 * t0 * L2);
+  // Squared distance of the axis from the line by the cross product: no cancellation when the axis is at the
+  // rim's distance (|p|^2 - t0^2 L^2 loses the digits that the chord's half length, a square root, needs).
+  const double cross = px * ey - py * ex;
+  const double d0sq = cross * cross / L2;
   if (d0sq > cp.R2) return kNoContact;
   const double L = std::sqrt(L2);
   const double half = std::sqrt(cp.R2 - d0sq) / L;  // half the chord of the footprint, in t

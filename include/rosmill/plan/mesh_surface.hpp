@@ -20,8 +20,6 @@ class MeshSurface : public Surface {
   // Parallel over both cores (TBB); consecutive points reuse the previous winner as the first bound.
   void drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const override;
 
-  // The reference: every triangle, the same exact contacts, no index (for checks and benchmarks).
-  Drop drop_brute_force(const Cutter& cutter, double x, double y) const;
   size_t triangle_count() const { return tris_.size(); }
 
   // Drop with a hint: the index of a triangle likely to hold the contact (updated to the winner).
@@ -33,7 +31,11 @@ class MeshSurface : public Surface {
     uint32_t first;  // leaf: first triangle; inner: index of the right child (the left is the next node)
     uint32_t count;  // leaf: triangle count; inner: 0
   };
-  void build(uint32_t node, uint32_t begin, uint32_t end, std::vector<double>& cx, std::vector<double>& cy);
+  struct FaceBox {
+    double xmin, xmax, ymin, ymax, zmax;
+  };
+  void build(uint32_t node, uint32_t begin, uint32_t end, const std::vector<FaceBox>& boxes,
+             std::vector<uint32_t>& order);
 
   std::vector<ContactTriangle> tris_;  // in tree order
   std::vector<Node> nodes_;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <vector>
 
+#include "rosmill/plan/region.hpp"
 #include "rosmill/plan/strategy.hpp"
 #include "rosmill/plan/surface.hpp"
 
@@ -49,19 +50,25 @@ class MoveWriter {
   bool at_safe_ = true;
 };
 
-// CL points from a to b (inclusive) on the surface: first every `step`, then midpoints inserted until every
-// chord is within half the tolerance of the CL height at its midpoint; where the CL height jumps (a vertical
-// wall under a flat cutter) the chord is replaced by a step that goes up first or comes down last.
+// The shortest chord adaptive sampling makes (mm): below it a chord that still misses the tolerance is a jump
+// of the CL height (a wall) and is crossed over its highest sampled point (see sample_segment).
+constexpr double kMinSampleStep = 0.01;
+
+// CL points from a to b (inclusive) on the surface: first every `step`, then chords halved until the CL points
+// at a quarter, half and three quarters of each lie within half the tolerance of it, but never below
+// kMinSampleStep; a chord that short still out of tolerance (a vertical wall, the rim of the cutter reaching an
+// edge) is replaced by a step that goes up first or comes down last, and consecutive such steps are one plateau.
+// So a line costs at most a few drops and moves per kMinSampleStep of its length, whatever the part.
 void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, const Vec2& b, double step,
                     std::vector<Vec3>& out);
 
-// Parallel lines at `angle_deg` spaced `spacing` apart, clipped to a rectangle and (when not empty) a boundary
-// polygon; each line gives the [start, end] pieces inside, ordered along the direction.
+// Parallel lines at `angle_deg` spaced `spacing` apart, clipped to a rectangle and (when not empty) a region;
+// each line gives the [start, end] pieces inside, ordered along the direction.
 struct ScanLine {
   std::vector<std::pair<Vec2, Vec2>> pieces;
 };
 std::vector<ScanLine> scan_lines(const Vec2& lo, const Vec2& hi, double angle_deg, double spacing,
-                                 const std::vector<Vec2>& boundary);
+                                 const Region& region);
 
 // Runs f over [0, n) in parallel, in blocks, reporting progress between blocks (cancel throws Error).
 void parallel_blocks(size_t n, const PlanProgress& progress, double from, double to,

@@ -9,8 +9,8 @@
 namespace rosmill {
 
 struct RasterOptions {
-  bool zigzag = true;          // false: every line in the same direction, retracting between lines
-  std::vector<Vec2> boundary;  // XY polygon of the cutter axis; empty: the part's box grown by the radius
+  bool zigzag = true;  // false: every line in the same direction, retracting between lines
+  Region boundary;     // where the cutter axis may go (region.hpp); empty: the part's box grown by the radius
 };
 
 Job raster_on(const Surface& surface, const PlanParams& params, const RasterOptions& options,

@@ -1,0 +1,116 @@
+// `rosmill dropcutter` and `rosmill plan` end to end: the grid exactly as the issue defines it (origin at the
+// box's min corner less the radius, nx and ny, row by row, z never below zmin, x y z lines, JSON fields), the
+// plan JSON, and a clear error with a failing status for each bad option.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rosmill/cutter/reference_drop.hpp"
+#include "rosmill/io/stl.hpp"
+
+using nlohmann::json;
+using namespace rosmill;
+
+namespace {
+
+struct CliRun {
+  int status = -1;
+  std::string out;
+};
+
+// Runs the rosmill tool with `args`, stdout and stderr together.
+CliRun run_cli(const std::string& args) {
+  CliRun run;
+  FILE* pipe = ::popen((std::string(ROSMILL_CLI) + " " + args + " 2>&1").c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
+  const int rc = ::pclose(pipe);
+  run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  return run;
+}
+
+const std::string kBox = ROSMILL_TEST_DATA "/pycam-textbox.stl";
+
+}  // namespace
+
+TEST(PlanCli, DropcutterGridAsSpecified) {
+  const std::string out = ::testing::TempDir() + "rosmill_dropcutter_grid.xyz";
+  const double S = 7.5, R = 3.0;
+  const CliRun run = run_cli("dropcutter " + kBox + " --tool ball:6 --spacing 7.5 --threads 2 --json --out " + out);
+  ASSERT_EQ(run.status, 0) << run.out;
+  const json j = json::parse(run.out);
+  const Mesh mesh = read_stl(kBox);
+  const Box3& b = mesh.bbox;
+  const long nx = static_cast<long>(std::floor((b.max.x() + R - (b.min.x() - R)) / S)) + 1;
+  const long ny = static_cast<long>(std::floor((b.max.y() + R - (b.min.y() - R)) / S)) + 1;
+  EXPECT_EQ(j["points"].get<long>(), nx * ny);
+  EXPECT_GT(j["seconds"].get<double>(), 0.0);
+  EXPECT_NEAR(j["points_per_second"].get<double>(), nx * ny / j["seconds"].get<double>(), 1e-6 * nx * ny);
+  std::ifstream in(out);
+  std::vector<std::array<double, 3>> pts;
+  for (std::array<double, 3> p; in >> p[0] >> p[1] >> p[2];) pts.push_back(p);
+  ASSERT_EQ(static_cast<long>(pts.size()), nx * ny);
+  for (long row = 0; row < ny; ++row)
+    for (long col = 0; col < nx; ++col) {
+      const auto& p = pts[row * nx + col];  // y outer, x inner
+      ASSERT_NEAR(p[0], b.min.x() - R + col * S, 1e-6) << row << " " << col;
+      ASSERT_NEAR(p[1], b.min.y() - R + row * S, 1e-6) << row << " " << col;
+      ASSERT_GE(p[2], b.min.z() - 1e-9);
+    }
+  // Every 7th point against the independent reference (the file holds 10 significant digits).
+  for (size_t k = 0; k < pts.size(); k += 7) {
+    const auto& p = pts[k];
+    const double ref = std::max(reference_drop(Cutter::ball(6), mesh, p[0], p[1]), b.min.z());
+    EXPECT_NEAR(p[2], ref, 1e-6) << p[0] << " " << p[1];
+  }
+}
+
+TEST(PlanCli, PlanJsonFields) {
+  for (const char* strategy : {"raster", "waterline", "rough"}) {
+    const CliRun run = run_cli("plan " + kBox + " --strategy " + strategy +
+                               " --tool flat:6 --stepover 5 --stepdown 5 --allowance 0.2 --tolerance 0.01 --json");
+    ASSERT_EQ(run.status, 0) << strategy << ": " << run.out;
+    const json j = json::parse(run.out);
+    EXPECT_EQ(j["strategy"], strategy);
+    EXPECT_GT(j["moves"].get<long>(), 10) << strategy;
+    EXPECT_GT(j["cutting_length"].get<double>(), 100.0) << strategy;
+    EXPECT_GT(j["rapid_length"].get<double>(), 0.0) << strategy;
+    EXPECT_GT(j["estimated_seconds"].get<double>(), 0.0) << strategy;
+    EXPECT_GT(j["seconds"].get<double>(), 0.0) << strategy;
+  }
+}
+
+TEST(PlanCli, BadOptionsFailWithAClearError) {
+  const std::string tools = " --tools " ROSMILL_SOURCE_DIR "/config/tools.yaml";
+  const std::pair<std::string, std::string> cases[] = {
+      {"plan " + kBox + " --strategy raster --stepover -1", "stepover"},
+      {"plan " + kBox + " --strategy raster --stepover nan", "--stepover"},
+      {"plan " + kBox + " --strategy raster --tolerance nan", "--tolerance"},
+      {"plan " + kBox + " --strategy raster --angle inf", "--angle"},
+      {"plan " + kBox + " --strategy raster --allowance -2", "allowance"},
+      {"plan " + kBox + " --strategy raster --tool flat:0", "diameter"},
+      {"plan " + kBox + " --strategy raster --tool 999" + tools, "999"},
+      {"plan " + kBox + " --strategy nosuch", "nosuch"},
+      {"dropcutter " + kBox + " --tool ball:0 --spacing 1", "diameter"},
+      {"dropcutter " + kBox + " --tool bull:6:4 --spacing 1", "corner radius"},
+      {"dropcutter " + kBox + " --tool ball:6 --spacing 0", "--spacing"},
+      {"dropcutter " + kBox + " --tool ball:6 --spacing nan", "--spacing"},
+      {"dropcutter " + kBox + " --tool ball:6 --spacing -2", "--spacing"},
+      {"dropcutter " + kBox + " --tool drill:6 --spacing 1", "drill:6"},
+  };
+  for (const auto& [args, word] : cases) {
+    const CliRun run = run_cli(args);
+    EXPECT_NE(run.status, 0) << args;
+    EXPECT_NE(run.out.find("error"), std::string::npos) << args << ": " << run.out;
+    EXPECT_NE(run.out.find(word), std::string::npos) << args << ": " << run.out;
+  }
+}

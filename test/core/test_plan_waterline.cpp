@@ -1,0 +1,113 @@
+// Waterline: closed CL loops at the exact level, clear of the part (the independent reference over all
+// triangles at every loop point and every 0.1 mm along the moves), and sane at the height of a flat face:
+// pycam-textbox.stl at z = -5.000, where OpenCAMLib returns hundreds of junk loops.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
+#include "rosmill/plan/waterline.hpp"
+#include "test_plan_check.hpp"
+
+using namespace rosmill;
+using namespace rosmill::test;
+
+namespace {
+
+struct Levels {
+  Toolpath tp;
+  std::vector<std::vector<Loop>> loops;
+};
+
+Levels waterline(const Mesh& mesh, const Cutter& c, const std::vector<double>& levels, double allowance = 0.0) {
+  PlanParams p;
+  p.tool = default_tool(c);
+  p.allowance = allowance;
+  WaterlineOptions o;
+  o.levels = levels;
+  Levels out;
+  const Job job = waterline_on(MeshSurface(mesh), p, o, {}, &out.loops);
+  EXPECT_EQ(job.size(), 1u);
+  out.tp = job.at(0);
+  return out;
+}
+
+// Every loop: at least three points, all at exactly the level and each on the contour (the cutter grown by
+// 0.01 mm touches part + allowance; the gouge check proves it clear of them). The chords, the closing one (last
+// to first) included, are probed at a quarter, half and three quarters: almost all of those points are on the
+// contour too. A chain that did not close would show as a closing chord across free space or through the part.
+// (Not all: the loop refinement checks chord midpoints only, so where two arcs of the contour meet a chord can
+// stand off it by more than 0.01 mm, on the free side.)
+void expect_loops_on_contour(const std::vector<Loop>& loops, double z, const Mesh& mesh, const Cutter& c,
+                             double allowance, const std::string& what) {
+  constexpr double kNear = 0.01;
+  const Cutter grown = grown_by_hand(c, allowance + kNear);
+  std::vector<Vec3> probes;
+  std::vector<char> vertex;
+  for (const Loop& loop : loops) {
+    ASSERT_GE(loop.size(), 3u) << what;
+    for (size_t k = 0; k < loop.size(); ++k) {
+      EXPECT_EQ(loop[k].z(), z) << what;
+      const Vec3 &a = loop[k], &b = loop[(k + 1) % loop.size()];
+      for (double f : {0.0, 0.25, 0.5, 0.75}) probes.push_back(a + f * (b - a)), vertex.push_back(f == 0.0);
+    }
+  }
+  std::vector<char> touches(probes.size());
+  tbb::parallel_for(size_t(0), probes.size(), [&](size_t i) {
+    touches[i] = reference_gouges(grown, mesh, probes[i] - Vec3(0, 0, allowance + kNear), 0.0);
+  });
+  size_t off = 0;
+  for (size_t i = 0; i < probes.size(); ++i) {
+    if (vertex[i]) EXPECT_TRUE(touches[i]) << what << ": loop point " << probes[i].transpose() << " off the contour";
+    else off += !touches[i];
+  }
+  std::printf("  %s: %zu loops, %zu chord points probed, %zu off the contour by more than %.2f mm\n", what.c_str(),
+              loops.size(), probes.size(), off, kNear);
+  EXPECT_LE(off, probes.size() / 100) << what;
+}
+
+}  // namespace
+
+TEST(PlanWaterline, TextboxAtTheFlatFaceHeightGivesFewClosedLoops) {
+  const Mesh box = read_stl(ROSMILL_TEST_DATA "/pycam-textbox.stl");
+  const Cutter ball = Cutter::ball(6);
+  for (double z : {-5.0, -6.0}) {  // the flat face's height and one below it
+    const Levels w = waterline(box, ball, {z});
+    ASSERT_EQ(w.loops.size(), 1u);
+    EXPECT_GE(w.loops[0].size(), 1u) << z;
+    EXPECT_LE(w.loops[0].size(), 20u) << z;  // the outline and the letters' islands, not hundreds of scraps
+    expect_loops_on_contour(w.loops[0], z, box, ball, 0.0, "textbox z " + std::to_string(z));
+    expect_no_gouge(w.tp, box, 0.0, "textbox waterline z " + std::to_string(z));
+  }
+}
+
+TEST(PlanWaterline, ClosedAndClearOnModelsAndPrimitives) {
+  StlReadOptions inch;
+  inch.units = Units::Inch;
+  const Mesh kt = read_stl(ROSMILL_TEST_DATA "/ktoolcav.stl", inch);
+  const Mesh rush = read_stl(ROSMILL_TEST_DATA "/mount_rush.stl");
+  const Mesh cone = make_primitive("cone");
+  struct Case {
+    const char* name;
+    const Mesh& mesh;
+    Cutter cutter;
+    double allowance;
+  };
+  for (const Case& c : {Case{"ktoolcav (inch) ball 6", kt, Cutter::ball(6), 0.3},
+                        Case{"mount_rush bull 8 r1", rush, Cutter::bull(8, 1), 0.0},
+                        Case{"cone flat 10", cone, Cutter::flat(10), 0.5}}) {
+    const double zmin = c.mesh.bbox.min.z(), zmax = c.mesh.bbox.max.z();
+    const std::vector<double> levels = {zmin + 0.3 * (zmax - zmin), zmin + 0.7 * (zmax - zmin)};
+    const Levels w = waterline(c.mesh, c.cutter, levels, c.allowance);
+    size_t loops = 0;
+    for (size_t i = 0; i < levels.size(); ++i) {
+      expect_loops_on_contour(w.loops[i], levels[i], c.mesh, c.cutter, c.allowance, c.name);
+      loops += w.loops[i].size();
+    }
+    EXPECT_GE(loops, 2u) << c.name;
+    expect_no_gouge(w.tp, c.mesh, c.allowance, c.name);
+  }
+}
