@@ -27,15 +27,6 @@ const Model kModels[] = {
     {"wheel_in_box.stl", Units::Millimetre},  {"mount_rush.stl", Units::Millimetre},
 };
 
-// Planner defects found by this test, reported to the coordinator (not this area's code). Listed so that the test
-// stays quick and green while they stand, and says each time that it left them out:
-//  - raster's adaptive sampling explodes on these models (millions of moves, kilometres of up-and-down steps at
-//    walls, 10-50 s to plan and a minute for rs274): not planned here.
-bool raster_explodes(const std::string& strategy, const std::string& model) {
-  return strategy == "raster" && (model == "pycam-textbox.stl" || model == "featuretype.STL" ||
-                                  model == "ktoolcav.stl" || model == "wheel_in_box.stl");
-}
-
 class EveryStrategyOnModel : public ::testing::TestWithParam<Model> {};
 
 std::string model_name(const ::testing::TestParamInfo<Model>& info) {
@@ -55,7 +46,7 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
   cloud.points = mesh.vertices;
   cloud.recompute_bbox();
   const MachineLimits machine = load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml");
-  size_t verified = 0, left_out = 0;
+  size_t verified = 0;
   for (const StrategyEntry& s : strategies()) {
     PlanInput in;
     if (!s.needs_cloud) in.mesh = &mesh;
@@ -67,11 +58,6 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
     params.tool.stepdown = 10;
     params.tolerance = 0.1;
     const std::string what = s.name + " on " + model.file;
-    if (raster_explodes(s.name, model.file)) {
-      std::printf("NOTE: %s left out: known planner defect (raster sampling explodes), reported\n", what.c_str());
-      ++left_out;
-      continue;
-    }
     Job job;
     try {
       job = plan(s.name, in, params);
@@ -96,7 +82,7 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
       ++verified;
     }
   }
-  EXPECT_EQ(verified, 2 * (strategies().size() - left_out));
+  EXPECT_EQ(verified, 2 * strategies().size());
 }
 
 INSTANTIATE_TEST_SUITE_P(BundledModels, EveryStrategyOnModel, ::testing::ValuesIn(kModels), model_name);
