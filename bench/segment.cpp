@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/wavy_solid.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 
@@ -43,44 +44,6 @@ double median_seconds(int runs, const std::function<void()>& work) {
   return t[t.size() / 2];
 }
 
-// A closed box 200 x 200 whose top is the wave z = 50 + 2 sin(2 pi x / 100) sin(2 pi y / 100) on a 1000 x 1000
-// grid (2,000,000 triangles), one row of wall triangles per grid column (8,000) and a bottom fan (4,000).
-Mesh wavy_solid() {
-  const int n = 1000;
-  const double size = 200.0, step = size / n;
-  auto top = [&](int i, int j) {
-    const double x = i * step, y = j * step;
-    return Vec3(x, y, 50 + 2 * std::sin(2 * M_PI * x / 100) * std::sin(2 * M_PI * y / 100));
-  };
-  std::vector<Vec3> c;
-  c.reserve(3 * size_t(2 * n * n + 12 * n));
-  auto tri = [&](const Vec3& a, const Vec3& b, const Vec3& d) {
-    c.push_back(a);
-    c.push_back(b);
-    c.push_back(d);
-  };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      tri(top(i, j), top(i + 1, j), top(i + 1, j + 1));
-      tri(top(i, j), top(i + 1, j + 1), top(i, j + 1));
-    }
-  // The rim, counter-clockwise seen from above, and the walls below it.
-  std::vector<Vec3> rim;
-  for (int k = 0; k < n; ++k) rim.push_back(top(k, 0));
-  for (int k = 0; k < n; ++k) rim.push_back(top(n, k));
-  for (int k = n; k > 0; --k) rim.push_back(top(k, n));
-  for (int k = n; k > 0; --k) rim.push_back(top(0, k));
-  const Vec3 centre(size / 2, size / 2, 0);
-  for (size_t k = 0; k < rim.size(); ++k) {
-    const Vec3& a = rim[k];
-    const Vec3& b = rim[(k + 1) % rim.size()];
-    const Vec3 a0(a.x(), a.y(), 0), b0(b.x(), b.y(), 0);
-    tri(a0, b0, b);
-    tri(a0, b, a);
-    tri(centre, b0, a0);
-  }
-  return build_mesh(c);
-}
 
 void run(const std::string& name, const Mesh& mesh, double cgal) {
   SurfacePatches sp;
@@ -117,7 +80,7 @@ int main(int argc, char** argv) {
       std::printf("%-20s skipped: %s\n", m.name.c_str(), e.what());
     }
   }
-  const Mesh wavy = wavy_solid();
+  const Mesh wavy = build_mesh(wavy_solid_corners());
   run("2M wavy solid", wavy, 0.109);
   return 0;
 }

@@ -6,17 +6,13 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "rosmill/error.hpp"
+#include "rosmill/geometry/vertex_welder.hpp"
+
 namespace rosmill {
 namespace {
 
-// Bit pattern of a coordinate with -0 folded into +0, so that exact welding treats them as equal.
-uint64_t coord_bits(double v) {
-  if (v == 0.0) v = 0.0;
-  uint64_t bits;
-  std::memcpy(&bits, &v, sizeof bits);
-  return bits;
-}
-
+// Integer cell coordinates of the tolerance weld.
 struct VertexKey {
   uint64_t x, y, z;
   bool operator==(const VertexKey& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -31,23 +27,9 @@ struct VertexKeyHash {
   }
 };
 
-// Exact weld: one vertex per distinct corner position.
-void weld_exact(const std::vector<Vec3>& corners, Mesh& mesh) {
-  std::unordered_map<VertexKey, uint32_t, VertexKeyHash> index;
-  index.reserve(corners.size() / 2 + 16);
-  mesh.faces.resize(corners.size() / 3);
-  for (size_t i = 0; i < corners.size(); ++i) {
-    const Vec3& p = corners[i];
-    VertexKey key{coord_bits(p.x()), coord_bits(p.y()), coord_bits(p.z())};
-    auto [it, inserted] = index.emplace(key, static_cast<uint32_t>(mesh.vertices.size()));
-    if (inserted) mesh.vertices.push_back(p);
-    mesh.faces[i / 3][i % 3] = it->second;
-  }
-}
-
 // Tolerance weld on a grid of cells the size of the tolerance: a corner joins the first earlier vertex within
 // the tolerance found in its own or a neighbouring cell.
-void weld_tolerance(const std::vector<Vec3>& corners, double tol, Mesh& mesh) {
+void weld_tolerance(const std::vector<Vec3>& corners, double tol, IndexedTriangles& mesh) {
   std::unordered_map<VertexKey, std::vector<uint32_t>, VertexKeyHash> cells;
   auto cell_of = [tol](double v) { return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v / tol))); };
   mesh.faces.resize(corners.size() / 3);
@@ -80,6 +62,7 @@ void compute_face_geometry(Mesh& mesh) {
   const size_t n = mesh.faces.size();
   mesh.normals.resize(n);
   mesh.areas.resize(n);
+#pragma omp parallel for schedule(static) if (n > 20000)
   for (size_t f = 0; f < n; ++f) {
     const auto& t = mesh.faces[f];
     const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
@@ -95,44 +78,109 @@ void compute_face_geometry(Mesh& mesh) {
   }
 }
 
-// Edges from half-edges sorted by their undirected key; faces of an edge are grouped in edge_faces.
-void build_edges(Mesh& mesh) {
-  struct HalfEdge {
-    uint64_t key;  // min << 32 | max
-    uint32_t face;
-    uint8_t corner;
-    bool forward;  // runs from min to max
-  };
-  const size_t n = mesh.faces.size();
-  std::vector<HalfEdge> half(3 * n);
-  for (size_t f = 0; f < n; ++f)
-    for (int i = 0; i < 3; ++i) {
-      const uint32_t a = mesh.faces[f][i], b = mesh.faces[f][(i + 1) % 3];
-      const uint32_t lo = std::min(a, b), hi = std::max(a, b);
-      half[3 * f + i] = {(uint64_t(lo) << 32) | hi, uint32_t(f), uint8_t(i), a < b};
-    }
-  std::sort(half.begin(), half.end(), [](const HalfEdge& l, const HalfEdge& r) {
-    return l.key != r.key ? l.key < r.key : l.face < r.face;
-  });
-  mesh.face_edges.assign(n, {kNone, kNone, kNone});
-  mesh.edges.clear();
-  mesh.edge_faces.resize(half.size());
-  for (size_t i = 0; i < half.size();) {
-    size_t j = i;
-    MeshEdge e;
-    e.a = uint32_t(half[i].key >> 32);
-    e.b = uint32_t(half[i].key & 0xffffffffu);
-    e.first_face = uint32_t(i);
-    const uint32_t id = uint32_t(mesh.edges.size());
-    for (; j < half.size() && half[j].key == half[i].key; ++j) {
-      mesh.edge_faces[j] = half[j].face;
-      mesh.face_edges[half[j].face][half[j].corner] = id;
-    }
-    e.face_count = uint32_t(j - i);
-    e.consistent = e.face_count != 2 || half[i].forward != half[i + 1].forward;
-    mesh.edges.push_back(e);
-    i = j;
+// Edges by a counting sort of the half-edges on their lower vertex, then on the higher one within each vertex's
+// (short) list: O(n) with the locality of the vertex order, and the same order as sorting the keys (lo, hi, face).
+// The half-edges are sorted in place in edge_faces (as face << 2 | corner) to keep the memory touched small.
+namespace edges_detail {
+
+inline uint32_t lower(const Mesh::Face& t, uint32_t c) { return std::min(t[c], t[(c + 1) % 3]); }
+inline uint32_t higher(const Mesh::Face& t, uint32_t c) { return std::max(t[c], t[(c + 1) % 3]); }
+
+// Sorts one vertex's half-edges by their higher vertex (stable: faces stay in order); returns its edge count.
+uint32_t sort_vertex_list(const Mesh& mesh, uint32_t* first, uint32_t* last,
+                          std::vector<std::pair<uint32_t, uint32_t>>& scratch) {
+  const size_t k = size_t(last - first);
+  scratch.resize(k);
+  for (size_t i = 0; i < k; ++i) scratch[i] = {higher(mesh.faces[first[i] >> 2], first[i] & 3), first[i]};
+  if (k <= 16) {
+    for (size_t i = 1; i < k; ++i)  // insertion sort: most lists hold a handful
+      for (size_t j = i; j > 0 && scratch[j].first < scratch[j - 1].first; --j) std::swap(scratch[j], scratch[j - 1]);
+  } else {
+    std::stable_sort(scratch.begin(), scratch.end(),
+                     [](const auto& l, const auto& r) { return l.first < r.first; });
   }
+  uint32_t edges = 0;
+  for (size_t i = 0; i < k; ++i) {
+    first[i] = scratch[i].second;
+    edges += i == 0 || scratch[i].first != scratch[i - 1].first;
+  }
+  return edges;
+}
+
+}  // namespace edges_detail
+
+void build_edges(Mesh& mesh) {
+  using namespace edges_detail;
+  const size_t n = mesh.faces.size(), nv = mesh.vertices.size();
+  if (n >= (size_t(1) << 30)) throw Error("mesh", "more than 2^30 triangles");
+  std::vector<uint32_t> start(nv + 1, 0);
+  for (const Mesh::Face& t : mesh.faces)
+    for (uint32_t c = 0; c < 3; ++c) ++start[lower(t, c) + 1];
+  for (size_t v = 1; v <= nv; ++v) start[v] += start[v - 1];
+  std::vector<uint32_t>& half = mesh.edge_faces;
+  half.resize(3 * n);
+  for (size_t f = 0; f < n; ++f)  // start[v] runs to the end of v's list, then moves back below
+    for (uint32_t c = 0; c < 3; ++c) half[start[lower(mesh.faces[f], c)]++] = uint32_t(f << 2 | c);
+  for (size_t v = nv; v > 0; --v) start[v] = start[v - 1];
+  start[0] = 0;
+
+  // Two passes over vertex ranges, both cores: sort each list and count its edges, then number and emit them.
+  const int chunks = n > 50000 ? 2 * 8 : 1;
+  std::vector<uint32_t> chunk_edges(chunks + 1, 0);
+  auto chunk_bound = [&](int k) { return nv * size_t(k) / size_t(chunks); };
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
+  for (int k = 0; k < chunks; ++k) {
+    std::vector<std::pair<uint32_t, uint32_t>> scratch;
+    uint32_t count = 0;
+    for (size_t v = chunk_bound(k); v < chunk_bound(k + 1); ++v)
+      count += sort_vertex_list(mesh, half.data() + start[v], half.data() + start[v + 1], scratch);
+    chunk_edges[k + 1] = count;
+  }
+  for (int k = 0; k < chunks; ++k) chunk_edges[k + 1] += chunk_edges[k];
+  mesh.edges.resize(chunk_edges[chunks]);
+  mesh.face_edges.resize(n);
+  auto forward = [&](uint32_t fc) {  // the face runs the edge from its lower to its higher vertex
+    const Mesh::Face& t = mesh.faces[fc >> 2];
+    return t[fc & 3] < t[((fc & 3) + 1) % 3];
+  };
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
+  for (int k = 0; k < chunks; ++k) {
+    uint32_t id = chunk_edges[k];
+    for (size_t v = chunk_bound(k); v < chunk_bound(k + 1); ++v) {
+      const uint32_t end = start[v + 1];
+      uint32_t i = start[v];
+      uint32_t hi = i < end ? higher(mesh.faces[half[i] >> 2], half[i] & 3) : 0;
+      while (i < end) {
+        MeshEdge& e = mesh.edges[id];
+        e.a = uint32_t(v);
+        e.b = hi;
+        e.first_face = i;
+        const uint32_t fc0 = half[i], fc1 = i + 1 < end ? half[i + 1] : 0;
+        uint32_t j = i;
+        for (;;) {
+          mesh.face_edges[half[j] >> 2][half[j] & 3] = id;
+          half[j] >>= 2;  // now the face
+          if (++j == end) break;
+          const uint32_t next = higher(mesh.faces[half[j] >> 2], half[j] & 3);
+          if (next != hi) {
+            hi = next;
+            break;
+          }
+        }
+        e.face_count = j - i;
+        e.consistent = e.face_count != 2 || forward(fc0) != forward(fc1);
+        ++id;
+        i = j;
+      }
+    }
+  }
+}
+
+Mesh finish_mesh(Mesh mesh) {
+  for (const Vec3& v : mesh.vertices) mesh.bbox.add(v);
+  compute_face_geometry(mesh);
+  build_edges(mesh);
+  return mesh;
 }
 
 }  // namespace
@@ -151,16 +199,34 @@ bool Mesh::closed() const {
   return true;
 }
 
+IndexedTriangles weld_corners(const std::vector<Vec3>& corners, const WeldOptions& options) {
+  IndexedTriangles out;
+  if (options.tolerance > 0.0) {
+    weld_tolerance(corners, options.tolerance, out);
+    return out;
+  }
+  static_assert(sizeof(Mesh::Face) == 3 * sizeof(uint32_t), "faces are three packed vertex ids");
+  out.faces.resize(corners.size() / 3);
+  VertexWelder welder(corners.size() / 5 + 16);  // closed meshes have about one vertex per six corners
+  welder.add_many(corners.data(), 3 * out.faces.size(), out.faces.empty() ? nullptr : out.faces[0].data());
+  out.vertices = welder.take_vertices();
+  return out;
+}
+
 Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options) {
+  return mesh_from_indexed(weld_corners(corners, options));
+}
+
+Mesh mesh_from_indexed(IndexedTriangles triangles) {
+  for (const Mesh::Face& t : triangles.faces)
+    for (uint32_t v : t)
+      if (v >= triangles.vertices.size())
+        throw Error("mesh", "a face uses vertex " + std::to_string(v) + " of " +
+                                std::to_string(triangles.vertices.size()));
   Mesh mesh;
-  if (options.tolerance > 0.0)
-    weld_tolerance(corners, options.tolerance, mesh);
-  else
-    weld_exact(corners, mesh);
-  for (const Vec3& v : mesh.vertices) mesh.bbox.add(v);
-  compute_face_geometry(mesh);
-  build_edges(mesh);
-  return mesh;
+  mesh.vertices = std::move(triangles.vertices);
+  mesh.faces = std::move(triangles.faces);
+  return finish_mesh(std::move(mesh));
 }
 
 void scale_mesh(Mesh& mesh, double factor) {

@@ -1,5 +1,7 @@
 #include "rosmill/geometry/mesh_report.hpp"
 
+#include <Eigen/Geometry>
+
 namespace rosmill {
 
 MeshReport report(const Mesh& mesh) {

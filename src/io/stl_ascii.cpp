@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "rosmill/error.hpp"
 #include "stl_parse.hpp"
@@ -19,6 +20,30 @@ class AsciiParser {
  public:
   AsciiParser(const char* data, size_t size, const std::string& name, StlSoup& soup)
       : begin_(data), p_(data), end_(data + size), name_(name), soup_(soup) {}
+  // A parser over [first, last) of the file that starts at `data` (line numbers count from there).
+  AsciiParser(const char* data, const char* first, const char* last, const std::string& name, StlSoup& soup)
+      : begin_(data), p_(first), end_(last), name_(name), soup_(soup) {}
+
+  // Parses a chunk of a larger file: facets, and solids ending and beginning. `inside` says whether the chunk
+  // starts inside a solid (every chunk but the first starts at a facet) and comes back as the state at its end.
+  // Throws on anything unexpected; the caller then parses the whole file sequentially for the exact message.
+  void run_chunk(bool& inside) {
+    soup_.corners.reserve(3 * ((end_ - p_) / 200 + 1));
+    for (skip_space(); p_ != end_; skip_space()) {
+      if (inside && accept("facet")) {
+        read_facet();
+      } else if (inside && accept("endsolid")) {
+        skip_line();
+        inside = false;
+      } else if (!inside && accept("solid")) {
+        skip_line();
+        ++soup_.solids;
+        inside = true;
+      } else {
+        fail("unexpected " + found());
+      }
+    }
+  }
 
   void run() {
     // A facet takes ~250 bytes of text in typical files; reserving once avoids most regrowth.
@@ -162,7 +187,68 @@ bool starts_with_solid(const char* data, size_t size) {
   return p + 5 == end || is_space(p[5]);
 }
 
+namespace {
+
+// The start of the first line at or after `p` whose first word is "facet" (any case), or `end`.
+const char* next_facet_line(const char* p, const char* end) {
+  while (p < end) {
+    const void* nl = std::memchr(p, '\n', end - p);
+    if (!nl) return end;
+    p = static_cast<const char*>(nl) + 1;
+    const char* q = p;
+    while (q < end && (*q == ' ' || *q == '\t' || *q == '\r')) ++q;
+    if (end - q > 5 && (q[0] | 0x20) == 'f' && (q[1] | 0x20) == 'a' && (q[2] | 0x20) == 'c' &&
+        (q[3] | 0x20) == 'e' && (q[4] | 0x20) == 't' && is_space(q[5]))
+      return p;
+  }
+  return end;
+}
+
+// Large files in chunks on both cores. A valid file has facets only inside solids, so every chunk after the
+// first starts inside one and every chunk but the last ends inside one. Returns false (soup untouched) when
+// a chunk does not parse: the sequential parser then finds and reports the problem.
+bool parse_ascii_chunks(const char* data, size_t size, const std::string& name, StlSoup& soup) {
+  constexpr int kChunks = 8;  // a few per core, so an uneven split still balances
+  const char* end = data + size;
+  std::vector<const char*> bounds{data};
+  for (int k = 1; k < kChunks; ++k) {
+    const char* b = next_facet_line(std::max(bounds.back(), data + size * k / kChunks), end);
+    if (b != end) bounds.push_back(b);
+  }
+  bounds.push_back(end);
+  const int chunks = int(bounds.size()) - 1;
+  std::vector<StlSoup> parts(chunks);
+  std::vector<char> ok(chunks, 0);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < chunks; ++k) {
+    try {
+      bool inside = k > 0;
+      AsciiParser(data, bounds[k], bounds[k + 1], name, parts[k]).run_chunk(inside);
+      ok[k] = inside == (k + 1 < chunks);
+    } catch (const Error&) {
+      ok[k] = 0;
+    }
+  }
+  size_t corners = 0;
+  for (int k = 0; k < chunks; ++k) {
+    if (!ok[k]) return false;
+    corners += parts[k].corners.size();
+  }
+  if (corners == 0) return false;
+  soup.corners.reserve(soup.corners.size() + corners);
+  for (const StlSoup& part : parts) {
+    soup.corners.insert(soup.corners.end(), part.corners.begin(), part.corners.end());
+    soup.solids += part.solids;
+    soup.stored_normal_mismatches += part.stored_normal_mismatches;
+  }
+  return true;
+}
+
+}  // namespace
+
 void parse_ascii(const char* data, size_t size, const std::string& name, StlSoup& soup) {
+  constexpr size_t kChunkedFrom = 1 << 22;  // 4 MB: below it, threads cost more than they save
+  if (size >= kChunkedFrom && parse_ascii_chunks(data, size, name, soup)) return;
   AsciiParser(data, size, name, soup).run();
 }
 

@@ -2,11 +2,12 @@
 // Internal to src/io: read_stl() and read_stl_buffer() wrap these with format detection and welding.
 #pragma once
 #include <cstddef>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "rosmill/geometry/types.hpp"
+#include "rosmill/geometry/mesh.hpp"
 
 namespace rosmill::io {
 
@@ -28,6 +29,11 @@ bool starts_with_solid(const char* data, size_t size);
 
 // Parses a binary body: `count` triangles starting at byte 84 (size already checked). Throws on NaN or infinity.
 void parse_binary(const char* data, size_t count, const std::string& name, StlSoup& soup);
+
+// Parses a binary body straight into welded vertices and faces (exact weld), without a corner soup: the body of
+// a large file is touched once and no per-corner array is written. Throws like parse_binary().
+void parse_binary_welded(const char* data, size_t count, const std::string& name, IndexedTriangles& out,
+                         size_t& stored_normal_mismatches);
 
 // Parses ASCII text; throws Error("name:line", what) on the first problem.
 void parse_ascii(const char* data, size_t size, const std::string& name, StlSoup& soup);

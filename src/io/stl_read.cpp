@@ -46,7 +46,28 @@ size_t checked_binary_count(const char* data, size_t size, const std::string& na
   return static_cast<size_t>(count);
 }
 
-void parse_soup(const char* data, size_t size, const std::string& name, io::StlSoup& soup, bool& ascii) {
+// What the parser produced: a corner soup (ASCII, or binary to be welded with a tolerance) or, for binary files
+// welded exactly, the indexed mesh itself.
+struct Parsed {
+  bool ascii = false;
+  io::StlSoup soup;
+  IndexedTriangles indexed;
+  size_t indexed_mismatches = 0;
+  bool is_indexed = false;
+};
+
+void parse_binary_body(const char* data, size_t size, const std::string& name, bool weld_directly, Parsed& out) {
+  out.ascii = false;
+  const size_t count = checked_binary_count(data, size, name);
+  if (weld_directly) {
+    io::parse_binary_welded(data, count, name, out.indexed, out.indexed_mismatches);
+    out.is_indexed = true;
+  } else {
+    io::parse_binary(data, count, name, out.soup);
+  }
+}
+
+void parse(const char* data, size_t size, const std::string& name, bool weld_directly, Parsed& out) {
   if (size == 0) throw Error(name, "empty file");
   const bool solid = io::starts_with_solid(data, size);
   const bool has_prefix = size >= kStlBinaryPrefix;
@@ -54,24 +75,22 @@ void parse_soup(const char* data, size_t size, const std::string& name, io::StlS
   const uint64_t needed = kStlBinaryPrefix + kStlRecordBytes * declared;
 
   if (has_prefix && needed == size) {  // size agrees with the count: binary, whatever the header says
-    ascii = false;
-    io::parse_binary(data, checked_binary_count(data, size, name), name, soup);
+    parse_binary_body(data, size, name, weld_directly, out);
     return;
   }
   if (solid) {
     try {
-      ascii = true;
-      io::parse_ascii(data, size, name, soup);
+      out.ascii = true;
+      io::parse_ascii(data, size, name, out.soup);
       return;
     } catch (const Error&) {
       // A binary body followed by extra bytes under a header that starts with "solid", or a binary file that is
       // broken (it is judged as binary, since its bytes are not text).
       const bool binary_fits = has_prefix && declared > 0 && needed < size;
       if (!binary_fits && !(has_prefix && !looks_like_text(data, std::min<size_t>(size, 4096)))) throw;
-      soup = io::StlSoup{};
+      out.soup = io::StlSoup{};
     }
-    ascii = false;
-    io::parse_binary(data, checked_binary_count(data, size, name), name, soup);
+    parse_binary_body(data, size, name, weld_directly, out);
     return;
   }
   if (!has_prefix) {
@@ -81,38 +100,46 @@ void parse_soup(const char* data, size_t size, const std::string& name, io::StlS
   }
   if (looks_like_text(data, std::min<size_t>(size, 4096)))
     throw Error(name, "not an STL file: text that does not begin with 'solid'");
-  ascii = false;
-  io::parse_binary(data, checked_binary_count(data, size, name), name, soup);
+  parse_binary_body(data, size, name, weld_directly, out);
 }
 
 }  // namespace
 
-Mesh read_stl_buffer(const char* data, size_t size, const std::string& name, const StlReadOptions& options,
-                     StlInfo* info) {
+IndexedTriangles read_stl_triangles_buffer(const char* data, size_t size, const std::string& name,
+                                           const StlReadOptions& options, StlInfo* info) {
   if (io::is_gzip(data, size)) {
     const std::vector<char> plain = io::gunzip(data, size, name);
-    return read_stl_buffer(plain.data(), plain.size(), name, options, info);
+    return read_stl_triangles_buffer(plain.data(), plain.size(), name, options, info);
   }
-  io::StlSoup soup;
-  bool ascii = false;
-  parse_soup(data, size, name, soup, ascii);
+  Parsed parsed;
+  parse(data, size, name, options.weld.tolerance <= 0.0, parsed);
   const double scale = mm_per_unit(options.units);
   // Weld in the file's units (exact welding compares the file's own numbers); the tolerance is in millimetres.
   WeldOptions weld = options.weld;
   weld.tolerance /= scale;
-  Mesh mesh = build_mesh(soup.corners, weld);
-  scale_mesh(mesh, scale);
+  IndexedTriangles triangles = parsed.is_indexed ? std::move(parsed.indexed) : weld_corners(parsed.soup.corners, weld);
+  if (scale != 1.0)
+    for (Vec3& v : triangles.vertices) v *= scale;
   if (info) {
-    info->ascii = ascii;
-    info->solids = ascii ? soup.solids : 0;
-    info->stored_normal_mismatches = soup.stored_normal_mismatches;
+    info->ascii = parsed.ascii;
+    info->solids = parsed.ascii ? parsed.soup.solids : 0;
+    info->stored_normal_mismatches = parsed.is_indexed ? parsed.indexed_mismatches : parsed.soup.stored_normal_mismatches;
   }
-  return mesh;
+  return triangles;
+}
+
+Mesh read_stl_buffer(const char* data, size_t size, const std::string& name, const StlReadOptions& options,
+                     StlInfo* info) {
+  return mesh_from_indexed(read_stl_triangles_buffer(data, size, name, options, info));
+}
+
+IndexedTriangles read_stl_triangles(const std::string& path, const StlReadOptions& options, StlInfo* info) {
+  const io::FileBytes bytes(path);
+  return read_stl_triangles_buffer(bytes.data(), bytes.size(), path, options, info);
 }
 
 Mesh read_stl(const std::string& path, const StlReadOptions& options, StlInfo* info) {
-  const io::FileBytes bytes(path);
-  return read_stl_buffer(bytes.data(), bytes.size(), path, options, info);
+  return mesh_from_indexed(read_stl_triangles(path, options, info));
 }
 
 }  // namespace rosmill

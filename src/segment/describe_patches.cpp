@@ -20,9 +20,10 @@ int corner_of_edge(const Mesh& mesh, uint32_t f, uint32_t e) {
   return 0;
 }
 
-// Directed edges, in each facet's winding, that lie on the border of the facet's patch.
-std::vector<HalfEdge> border_half_edges(const Mesh& mesh, const std::vector<uint32_t>& labels,
-                                        const std::vector<uint32_t>& edges) {
+// Directed edges, in each facet's winding, that lie on the border of the facet's patch, grouped by patch (a
+// counting sort; within a patch in the order of `edges`). group_start[l] is where patch l's half-edges begin.
+std::vector<HalfEdge> border_half_edges(const Mesh& mesh, const std::vector<uint32_t>& labels, uint32_t count,
+                                        const std::vector<uint32_t>& edges, std::vector<uint32_t>& group_start) {
   std::vector<HalfEdge> half;
   for (uint32_t e : edges) {
     const MeshEdge& edge = mesh.edges[e];
@@ -36,42 +37,66 @@ std::vector<HalfEdge> border_half_edges(const Mesh& mesh, const std::vector<uint
       half.push_back({labels[f], mesh.faces[f][c], mesh.faces[f][(c + 1) % 3], edge.face_count == 1});
     }
   }
-  std::sort(half.begin(), half.end(), [](const HalfEdge& l, const HalfEdge& r) {
-    if (l.label != r.label) return l.label < r.label;
-    return l.from != r.from ? l.from < r.from : l.to < r.to;
-  });
-  return half;
+  group_start.assign(count + 1, 0);
+  for (const HalfEdge& h : half) ++group_start[h.label + 1];
+  for (uint32_t l = 0; l < count; ++l) group_start[l + 1] += group_start[l];
+  std::vector<HalfEdge> grouped(half.size());
+  std::vector<uint32_t> fill(group_start.begin(), group_start.end() - 1);
+  for (const HalfEdge& h : half) grouped[fill[h.label]++] = h;
+  return grouped;
 }
 
-// Chains one patch's border half-edges [begin, end) into loops by following each edge's end vertex.
-void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<char>& used, size_t used_base,
+// Chains one patch's border half-edges [begin, end) into loops by following each edge's end vertex. `head` and
+// `link` (sized to the mesh's vertices and kNone outside this call) list the half-edges leaving each vertex.
+// Each loop starts at its smallest vertex, so the output does not depend on the order of the half-edges.
+void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<uint32_t>& head, std::vector<uint32_t>& link,
                  std::vector<BoundaryLoop>& loops) {
-  auto next_from = [&](uint32_t v) -> const HalfEdge* {
-    const HalfEdge* it = std::lower_bound(begin, end, v, [](const HalfEdge& h, uint32_t x) { return h.from < x; });
-    for (; it != end && it->from == v; ++it)
-      if (!used[used_base + (it - begin)]) return it;
-    return nullptr;
+  const uint32_t n = uint32_t(end - begin);
+  link.assign(n, kNone);
+  for (uint32_t i = n; i-- > 0;) {  // lists in half-edge order
+    link[i] = head[begin[i].from];
+    head[begin[i].from] = i;
+  }
+  auto take_from = [&](uint32_t v) -> uint32_t {  // the first unused half-edge leaving v
+    const uint32_t i = head[v];
+    if (i != kNone) head[v] = link[i];
+    return i;
   };
-  for (const HalfEdge* start = begin; start != end; ++start) {
-    if (used[used_base + (start - begin)]) continue;
+  for (uint32_t s = 0; s < n; ++s) {
+    // Unused when still listed at its vertex (used ones are unlinked from the front of their list).
+    uint32_t first = kNone;
+    for (uint32_t i = head[begin[s].from]; i != kNone; i = link[i])
+      if (i == s) first = s;
+    if (first == kNone) continue;
+    // Unlink s (it may not be at the front when its vertex has several outgoing half-edges).
+    if (head[begin[s].from] == s) {
+      head[begin[s].from] = link[s];
+    } else {
+      for (uint32_t i = head[begin[s].from]; i != kNone; i = link[i])
+        if (link[i] == s) link[i] = link[s];
+    }
     BoundaryLoop loop;
     loop.mesh_border = true;
-    const HalfEdge* h = start;
+    const HalfEdge* h = begin + s;
     for (;;) {
-      used[used_base + (h - begin)] = 1;
       loop.vertices.push_back(h->from);
       loop.mesh_border = loop.mesh_border && h->open;
-      if (h->to == start->from) break;
-      const HalfEdge* next = next_from(h->to);
-      if (!next) {  // broken orientation or a non-manifold vertex: report the chain open
+      if (h->to == begin[s].from) break;
+      const uint32_t next = take_from(h->to);
+      if (next == kNone) {  // broken orientation or a non-manifold vertex: report the chain open
         loop.vertices.push_back(h->to);
         loop.closed = false;
         break;
       }
-      h = next;
+      h = begin + next;
+    }
+    if (loop.closed) {
+      std::rotate(loop.vertices.begin(), std::min_element(loop.vertices.begin(), loop.vertices.end()),
+                  loop.vertices.end());
     }
     loops.push_back(std::move(loop));
   }
+  for (const HalfEdge* h = begin; h != end; ++h) head[h->from] = kNone;
 }
 
 }  // namespace
@@ -108,14 +133,11 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
   }
   for (Patch& p : patches) std::sort(p.neighbours.begin(), p.neighbours.end());
 
-  const std::vector<HalfEdge> half = border_half_edges(mesh, labels, edges);
-  std::vector<char> used(half.size(), 0);
-  for (size_t i = 0; i < half.size();) {
-    size_t j = i;
-    while (j < half.size() && half[j].label == half[i].label) ++j;
-    chain_loops(half.data() + i, half.data() + j, used, i, patches[half[i].label].loops);
-    i = j;
-  }
+  std::vector<uint32_t> group_start;
+  const std::vector<HalfEdge> half = border_half_edges(mesh, labels, count, edges, group_start);
+  std::vector<uint32_t> head(mesh.vertex_count(), kNone), link;
+  for (uint32_t l = 0; l < count; ++l)
+    chain_loops(half.data() + group_start[l], half.data() + group_start[l + 1], head, link, patches[l].loops);
 }
 
 }  // namespace rosmill::segment::detail

@@ -13,18 +13,34 @@ double edge_length(const Mesh& mesh, uint32_t e) {
   return (mesh.vertices[edge.a] - mesh.vertices[edge.b]).norm();
 }
 
-// Sorts pairs and sums the lengths of equal pairs in place.
+// Sums the lengths of equal pairs in place and sorts what remains by (a, b). Pairs come one per border edge
+// (tens of thousands) but are few once reduced (hundreds): they are summed in a small open-addressing table
+// first, so only the distinct pairs are sorted.
 void reduce_pairs(std::vector<LabelPair>& pairs) {
-  std::sort(pairs.begin(), pairs.end(),
-            [](const LabelPair& l, const LabelPair& r) { return l.a != r.a ? l.a < r.a : l.b < r.b; });
+  size_t capacity = 64;
+  while (capacity < 2 * pairs.size()) capacity <<= 1;
+  std::vector<uint32_t> slot(capacity, kNone);  // index into the reduced prefix of `pairs`
+  const size_t mask = capacity - 1;
   size_t out = 0;
   for (size_t i = 0; i < pairs.size(); ++i) {
-    if (out > 0 && pairs[out - 1].a == pairs[i].a && pairs[out - 1].b == pairs[i].b)
-      pairs[out - 1].length += pairs[i].length;
-    else
-      pairs[out++] = pairs[i];
+    const LabelPair p = pairs[i];
+    const uint64_t key = uint64_t(p.a) << 32 | p.b;
+    for (size_t h = (key * 0x9E3779B97F4A7C15ull) >> 40 & mask;; h = (h + 1) & mask) {
+      if (slot[h] == kNone) {
+        slot[h] = uint32_t(out);
+        pairs[out++] = p;
+        break;
+      }
+      LabelPair& q = pairs[slot[h]];
+      if (q.a == p.a && q.b == p.b) {
+        q.length += p.length;
+        break;
+      }
+    }
   }
   pairs.resize(out);
+  std::sort(pairs.begin(), pairs.end(),
+            [](const LabelPair& l, const LabelPair& r) { return l.a != r.a ? l.a < r.a : l.b < r.b; });
 }
 
 bool is_small(const SizeRule& rule, size_t facets, double area, double total_area) {

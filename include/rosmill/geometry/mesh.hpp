@@ -59,9 +59,22 @@ struct WeldOptions {
   double tolerance = 0.0;
 };
 
+// Welded triangles: the vertices (in order of first appearance) and the faces that index them, before the
+// derived data of a Mesh. What a viewer needs, and what the well-known STL readers stop at.
+struct IndexedTriangles {
+  std::vector<Vec3> vertices;
+  std::vector<Mesh::Face> faces;
+};
+
+// Welds corners (3 per triangle) into vertices and faces.
+IndexedTriangles weld_corners(const std::vector<Vec3>& corners, const WeldOptions& options = {});
+
 // Builds a mesh from corners (3 per triangle). Degenerate triangles are kept (zero area, zero normal) so that
 // reports can count them; consumers skip faces whose area is zero.
 Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options = {});
+// Builds a mesh from welded triangles (normals, areas, edges, box); throws Error when a face names a vertex
+// that does not exist.
+Mesh mesh_from_indexed(IndexedTriangles triangles);
 
 // Scales vertices in place (a unit change); areas and bbox are updated, normals are unchanged.
 void scale_mesh(Mesh& mesh, double factor);

@@ -25,6 +25,13 @@ Mesh read_stl(const std::string& path, const StlReadOptions& options = {}, StlIn
 Mesh read_stl_buffer(const char* data, size_t size, const std::string& name, const StlReadOptions& options = {},
                      StlInfo* info = nullptr);
 
+// The welded triangles alone (no normals, areas or edges): for viewers and markers, and the figure the issue's
+// reference readers are compared on. Same checks and errors as read_stl().
+IndexedTriangles read_stl_triangles(const std::string& path, const StlReadOptions& options = {},
+                                    StlInfo* info = nullptr);
+IndexedTriangles read_stl_triangles_buffer(const char* data, size_t size, const std::string& name,
+                                           const StlReadOptions& options = {}, StlInfo* info = nullptr);
+
 void write_stl(const std::string& path, const Mesh& mesh, bool ascii = false);
 
 }  // namespace rosmill

@@ -1,0 +1,108 @@
+// STL loading speed (issue 2): every model of ../shared/data/stl and a generated 2,012,000-triangle binary wavy
+// solid, the file in the page cache, median of 3. "read+weld" is read_stl_triangles(): read, parse, exact
+// position weld — what the issue's reference readers measured, and what its targets are set on. "mesh" is
+// read_stl(): the same plus face normals and areas and the edge adjacency every later stage uses.
+// demo2.stl.gz is unpacked to a temporary file first, so its row measures ASCII parsing as the reference did.
+// Usage: bench_stl_load [STL_DIR]
+#include <zlib.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "rosmill/error.hpp"
+#include "rosmill/geometry/mesh.hpp"
+#include "rosmill/geometry/wavy_solid.hpp"
+#include "rosmill/io/stl.hpp"
+
+using namespace rosmill;
+namespace fs = std::filesystem;
+
+namespace {
+
+// The issue's table: the best of admesh, assimp and VTK (seconds, read plus a true position weld).
+double reference_seconds(const std::string& name) {
+  if (name == "demo2.stl.gz") return 0.199;
+  if (name == "counter.unitsmm.STL") return 0.024;
+  if (name == "wavy-2M (binary)") return 0.470;
+  return NAN;
+}
+
+template <class Load>
+double median_seconds(const Load& load) {
+  std::vector<double> t;
+  for (int k = 0; k < 3; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    load();
+    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(t.begin(), t.end());
+  return t[1];
+}
+
+// gzip -> plain file, so that the ASCII row times parsing and not inflation.
+std::string unpacked(const std::string& gz, const fs::path& dir) {
+  const fs::path out = dir / fs::path(gz).stem();
+  gzFile in = gzopen(gz.c_str(), "rb");
+  if (!in) throw Error(gz, "cannot open");
+  std::ofstream o(out, std::ios::binary);
+  std::vector<char> buf(1 << 20);
+  int n;
+  while ((n = gzread(in, buf.data(), unsigned(buf.size()))) > 0) o.write(buf.data(), n);
+  gzclose(in);
+  return out.string();
+}
+
+void row(const std::string& name, const std::string& path) {
+  IndexedTriangles triangles;
+  Mesh mesh;
+  StlInfo info;
+  const double s = median_seconds([&] { triangles = read_stl_triangles(path, {}, &info); });
+  const double full = median_seconds([&] { mesh = read_stl(path); });
+  const double mb = double(fs::file_size(path)) / 1e6;
+  const double target = info.ascii ? 500.0 : 1000.0;  // MB/s, read + weld
+  const double ref = reference_seconds(name);
+  std::printf("%-22s %-6s %7.1f %9zu %9zu %8.4f %7.0f %7.2f %6.0f %-4s", name.c_str(), info.ascii ? "ascii" : "binary",
+              mb, triangles.faces.size(), triangles.vertices.size(), s, mb / s, triangles.faces.size() / s / 1e6,
+              target, mb / s >= target ? "met" : "MISS");
+  if (std::isnan(ref))
+    std::printf(" %7s %6s", "-", "-");
+  else
+    std::printf(" %7.3f %5.1fx", ref, ref / s);
+  std::printf(" %8.4f %7.0f\n", full, mb / full);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string dir = argc > 1 ? argv[1] : ROSMILL_SHARED_DATA "/stl";
+  const fs::path tmp = fs::temp_directory_path() / "rosmill-bench-stl";
+  fs::create_directories(tmp);
+  std::printf("read+weld: read_stl_triangles; mesh: read_stl (+ normals, areas, edges); median of 3, page cache warm\n");
+  std::printf("%-22s %-6s %7s %9s %9s %8s %7s %7s %6s %-4s %7s %6s %8s %7s\n", "model", "format", "MB", "triangles",
+              "vertices", "rd+weld", "MB/s", "Mtri/s", "target", "", "ref s", "xref", "mesh s", "MB/s");
+  try {
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    for (const fs::path& f : files) {
+      const std::string name = f.filename().string();
+      row(name, f.extension() == ".gz" ? unpacked(f.string(), tmp) : f.string());
+    }
+    const fs::path wavy = tmp / "wavy-2M.stl";
+    write_stl(wavy.string(), build_mesh(wavy_solid_corners()), false);
+    row("wavy-2M (binary)", wavy.string());
+  } catch (const Error& e) {
+    std::fprintf(stderr, "bench_stl_load: %s\n", e.what());
+    fs::remove_all(tmp);
+    return 1;
+  }
+  fs::remove_all(tmp);
+  return 0;
+}
