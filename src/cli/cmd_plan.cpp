@@ -1,5 +1,6 @@
 // rosmill plan FILE --strategy NAME [--tool ID|ball:D|flat:D|bull:D:r] [--tools FILE] [--stepover ..]
-//   [--stepdown ..] [--allowance ..] [--tolerance ..] [--angle ..] [--units ..] [--json] [-o toolpath.json]
+//   [--stepdown ..] [--allowance ..] [--tolerance ..] [--angle ..] [--units ..] [--json]
+//   [-o toolpath.json | -o prog.ngc|.nc|.gcode [--dialect linuxcnc|grbl]]
 // Plans a toolpath through rosmill::plan() on a mesh (STL) or a cloud (PCD/PLY). Lengths in mm.
 #include <chrono>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include "command.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/post.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/strategy.hpp"
@@ -21,7 +23,7 @@ namespace rosmill::cli {
 namespace {
 
 struct Options {
-  std::string file, strategy, tool = "ball:6", tools, units, out;
+  std::string file, strategy, tool = "ball:6", tools, units, out, dialect = "linuxcnc";
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = 0.001, angle = 0.0;
   bool json = false;
 };
@@ -61,7 +63,11 @@ void run(const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   const Job job = plan(o.strategy, input, params);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!o.out.empty()) write_toolpath_file(o.out, job);
+  if (!o.out.empty() && gcode::is_program_path(o.out)) {
+    gcode::write_program(o.out, gcode::post(job, gcode::post_options_for(o.dialect)));
+  } else if (!o.out.empty()) {
+    write_toolpath_file(o.out, job);
+  }
 
   ToolpathStats total;
   for (const Toolpath& tp : job) {
@@ -104,7 +110,8 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--angle", o->angle, "raster direction, degrees");
   cmd->add_option("--units", o->units, "units of the file: mm, inch, m (STL default mm, clouds m)");
   cmd->add_flag("--json", o->json, "print one JSON object");
-  cmd->add_option("-o,--out", o->out, "write toolpath.json");
+  cmd->add_option("-o,--out", o->out, "write toolpath.json, or a G-code program when it ends in .ngc, .nc or .gcode");
+  cmd->add_option("--dialect", o->dialect, "G-code dialect for -o prog.ngc: linuxcnc or grbl")->capture_default_str();
   cmd->callback([o] { run(*o); });
 });
 

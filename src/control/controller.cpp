@@ -4,11 +4,11 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 
 #include "rosmill/control/grbl.hpp"
 #include "rosmill/control/linuxcnc.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/post.hpp"
 
 namespace rosmill::control {
 namespace {
@@ -23,16 +23,9 @@ class FileController : public Controller {
     status_.state = RunState::Idle;
   }
   void start(const std::vector<std::string>& program, const SendOptions& o) override {
-    const std::string path = dir_ + "/" + (name_.empty() ? "rosmill.ngc" : name_);
+    const std::string path = dir_ + "/" + (opt_.program_name.empty() ? "rosmill.ngc" : opt_.program_name);
     const std::string tmp = path + ".part";
-    {
-      std::ofstream out(tmp);
-      if (!out) throw Error(tmp, "cannot write");
-      for (const auto& l : resume_preamble(program, o, opt_.dialect.empty() ? "linuxcnc" : opt_.dialect)) out << l << '\n';
-      out << resume_first_line(program, o.from_line) << '\n';
-      for (size_t i = o.from_line + 1; i <= program.size(); ++i) out << program[i - 1] << '\n';
-      if (!out) throw Error(tmp, "write failed");
-    }
+    gcode::write_program_lines(tmp, resumed_program(program, o, opt_.dialect.empty() ? "linuxcnc" : opt_.dialect));
     // Renamed into place so a controller watching the folder never loads half a program.
     std::filesystem::rename(tmp, path);
     status_.total_lines = status_.acknowledged_line = program.size();
@@ -43,10 +36,9 @@ class FileController : public Controller {
   void resume() override { throw Error(describe(), "a folder cannot resume"); }
   void abort() override { status_.state = RunState::Idle; }
   void disconnect() override { status_.state = RunState::Disconnected; }
-  void set_name(std::string n) { name_ = std::move(n); }
 
  private:
-  std::string dir_, name_;
+  std::string dir_;
   ControllerOptions opt_;
   ControllerStatus status_;
 };
@@ -99,7 +91,7 @@ std::unique_ptr<Controller> open_controller(const std::string& url, const Contro
       }
     }
     if (device.empty() || device.front() != '/') throw Error("--controller " + url, "expected a device path like /dev/ttyUSB0");
-    return std::make_unique<GrblController>([device, baud] { return open_serial(device, baud); }, url, o);
+    return std::make_unique<GrblController>([device, baud] { return open_serial(device, baud); }, url, o, 2.5);
   }
   if (scheme == "file") {
     if (rest.empty() || rest.front() != '/') throw Error("--controller " + url, "expected file:///ABSOLUTE/DIR");

@@ -31,8 +31,8 @@ std::string compact(const std::string& line) {
 }  // namespace
 
 GrblController::GrblController(std::function<std::unique_ptr<Transport>()> open, std::string describe,
-                               const ControllerOptions& o)
-    : open_(std::move(open)), describe_(std::move(describe)), opt_(o) {}
+                               const ControllerOptions& o, double greeting_wait_s)
+    : open_(std::move(open)), describe_(std::move(describe)), opt_(o), greeting_wait_s_(greeting_wait_s) {}
 
 std::string GrblController::describe() const { return describe_; }
 
@@ -41,21 +41,40 @@ void GrblController::connect() {
   reader_ = std::make_unique<LineReader>(*transport_);
   status_ = ControllerStatus{};
   status_.state = RunState::Idle;
-  // A serial GRBL resets when the port opens and greets with "Grbl 1.1x ['$' for help]"; a TCP bridge may not.
+  forget_buffer();
+  // A serial GRBL resets when the port opens (its bootloader waits about a second) and greets with
+  // "Grbl 1.1x ['$' for help]"; a TCP bridge may not greet at all. A greeting that came only once a program
+  // streams would read as a reset in the middle of it, so wait for it here.
   std::string line;
   const auto start = Clock::now();
-  while (seconds_since(start) < 0.5 && reader_->next(line, 0.5 - seconds_since(start))) handle_line(line);
+  while (seconds_since(start) < greeting_wait_s_ && reader_->next(line, greeting_wait_s_ - seconds_since(start))) {
+    handle_line(line);
+    if (line.rfind("Grbl ", 0) == 0) break;
+  }
+}
+
+void GrblController::forget_buffer() {
+  in_flight_.clear();
+  buffered_ = 0;
 }
 
 void GrblController::start(const std::vector<std::string>& program, const SendOptions& o) {
   if (!transport_) throw Error(describe_, "not connected");
+  // Lines of an earlier program still in GRBL's buffer would take this program's first answers.
+  if (!in_flight_.empty())
+    throw Error(describe_, std::to_string(in_flight_.size()) +
+                               " lines of the previous program are still unanswered: abort (soft reset) first");
   queue_.clear();
-  in_flight_.clear();
   next_ = 0;
-  for (const std::string& pre : resume_preamble(program, o, opt_.dialect.empty() ? "grbl" : opt_.dialect))
-    queue_.push_back({compact(pre), 0});
+  error_line_ = 0;
+  ran_after_error_ = 0;
+  for (const std::string& pre : resume_preamble(program, o, opt_.dialect.empty() ? "grbl" : opt_.dialect)) {
+    const std::string text = compact(pre);
+    if (!text.empty()) queue_.push_back({text, 0});
+  }
+  const std::vector<std::string> rest = resumed_rest(program, o.from_line);
   for (size_t i = o.from_line; i <= program.size(); ++i) {
-    const std::string text = compact(i == o.from_line ? resume_first_line(program, i) : program[i - 1]);
+    const std::string text = compact(rest[i - o.from_line]);
     if (text.empty() || text == "%") continue;  // nothing for GRBL to answer
     if (text.size() + 1 > opt_.rx_buffer)
       throw Error(describe_ + " line " + std::to_string(i), "longer than GRBL's receive buffer: " + text);
@@ -98,11 +117,16 @@ void GrblController::handle_line(const std::string& line) {
     buffered_ -= item.text.size() + 1;
     in_flight_.pop_front();
     if (line == "ok") {
-      if (item.line > 0) status_.acknowledged_line = item.line;
-    } else if (status_.state != RunState::Alarm) {  // after an alarm GRBL refuses what was buffered (error:9)
+      // After a refused line GRBL goes on with what it had buffered; those lines ran, but "acknowledged" means
+      // every line up to it was accepted, so it stays before the refused one.
+      if (error_line_) ran_after_error_ = std::max(ran_after_error_, item.line);
+      else if (item.line > 0) status_.acknowledged_line = item.line;
+    } else if (status_.state != RunState::Alarm && !error_line_) {  // after an alarm GRBL refuses all (error:9)
       status_.state = RunState::Error;
-      status_.error = "GRBL " + line + (item.line ? " at program line " + std::to_string(item.line) : " in the resume preamble") +
-                      ": " + item.text;
+      error_line_ = item.line ? item.line : status_.acknowledged_line + 1;
+      error_text_ = "GRBL " + line + (item.line ? " at program line " + std::to_string(item.line) : " in the resume preamble") +
+                    ": " + item.text;
+      status_.error = error_text_;
     }
     return;
   }
@@ -116,10 +140,13 @@ void GrblController::handle_line(const std::string& line) {
     parse_status(line);
     return;
   }
-  if (line.rfind("Grbl ", 0) == 0 && status_.state == RunState::Running) {
-    // A greeting mid-stream means the controller reset: what it had buffered is gone.
-    status_.state = RunState::Error;
-    status_.error = "GRBL reset while running (after program line " + std::to_string(status_.acknowledged_line) + ")";
+  if (line.rfind("Grbl ", 0) == 0) {
+    // A greeting means the controller reset: what it had buffered is gone and will never be answered.
+    forget_buffer();
+    if (status_.state == RunState::Running || status_.state == RunState::Paused) {
+      status_.state = RunState::Error;
+      status_.error = "GRBL reset while running (after program line " + std::to_string(status_.acknowledged_line) + ")";
+    }
   }
 }
 
@@ -167,13 +194,15 @@ ControllerStatus GrblController::poll(double timeout_s) {
   } catch (const Error& e) {
     transport_.reset();
     reader_.reset();
-    buffered_ = 0;
-    in_flight_.clear();
+    forget_buffer();
     status_.state = RunState::Disconnected;
     status_.error = std::string(e.what()) + " (after program line " + std::to_string(status_.acknowledged_line) +
                     " was acknowledged)";
     return status_;
   }
+  if (error_line_ && ran_after_error_ > error_line_)
+    status_.error = error_text_ + "; lines " + std::to_string(error_line_ + 1) + ".." + std::to_string(ran_after_error_) +
+                    " were already in GRBL's buffer and ran";
   const bool all_answered = next_ == queue_.size() && in_flight_.empty();
   if ((status_.state == RunState::Running || status_.state == RunState::Paused) && all_answered &&
       machine_state_ == "Idle") {
@@ -200,8 +229,7 @@ void GrblController::resume() {
 
 void GrblController::abort() {
   // Soft reset (0x18): GRBL stops at once and empties its buffers; nothing of ours is in flight any more.
-  in_flight_.clear();
-  buffered_ = 0;
+  forget_buffer();
   next_ = queue_.size();
   status_.state = RunState::Idle;
   if (!transport_) return;
@@ -218,8 +246,20 @@ void GrblController::abort() {
 
 void GrblController::unlock() {
   if (!transport_) throw Error(describe_, "not connected");
+  if (!in_flight_.empty()) throw Error(describe_, "cannot unlock while program lines are unanswered: abort first");
+  // Outside the stream: wait for its answer here, so that it is not taken for the next program line's.
   transport_->write("$X\n");
-  if (status_.state == RunState::Alarm) status_.state = RunState::Idle;
+  std::string line;
+  const auto start = Clock::now();
+  while (seconds_since(start) < opt_.reply_timeout_s && reader_->next(line, opt_.reply_timeout_s - seconds_since(start))) {
+    if (line == "ok") {
+      if (status_.state == RunState::Alarm) status_.state = RunState::Idle;
+      return;
+    }
+    if (line.rfind("error:", 0) == 0) throw Error(describe_, "GRBL refused the unlock ($X): " + line);
+    handle_line(line);
+  }
+  throw Error(describe_, "no answer to the unlock ($X) within " + std::to_string(opt_.reply_timeout_s) + " s");
 }
 
 void GrblController::disconnect() {

@@ -4,11 +4,11 @@
 #include <unistd.h>
 
 #include <cctype>
-#include <fstream>
 #include <sstream>
 #include <thread>
 
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/post.hpp"
 
 namespace rosmill::control {
 namespace {
@@ -21,6 +21,13 @@ std::string upper(std::string s) {
 }
 
 std::string first_word(const std::string& s) { return s.substr(0, s.find(' ')); }
+
+// "part.ngc" -> "part"; empty -> "rosmill".
+std::string file_stem(const std::string& name) {
+  if (name.empty()) return "rosmill";
+  const size_t dot = name.rfind('.');
+  return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
 
 }  // namespace
 
@@ -60,9 +67,15 @@ void LinuxcncController::connect() {
   transport_->write("set echo off\r\n");
   set("verbose on");  // from here every set is answered ACK or NAK
   set("enable EMCTOO");
-  set("set_wait done");
+  // "received", not "done": with "done" linuxcncrsh answers "set run" only when the program has ended (no status
+  // meanwhile), and "set pause" on an idle interpreter never. The few commands that must have taken effect
+  // before the next one are followed by an explicit "wait done", bounded by the timeout.
+  set("set_wait received");
+  set("timeout " + std::to_string(std::max(1.0, opt_.reply_timeout_s - 1.0)));  // "set_timeout" in older releases
   set("estop off");
+  set("wait done");
   set("machine on");
+  set("wait done");
   if (!opt_.home_if_needed) return;
   auto homed = [&] {
     std::istringstream in(get("joint_homed"));
@@ -85,25 +98,24 @@ void LinuxcncController::connect() {
 void LinuxcncController::start(const std::vector<std::string>& program, const SendOptions& o) {
   if (opt_.program_dir.empty() || opt_.program_dir.front() != '/')
     throw Error(describe(), "needs an absolute program folder the controller reads (--program-dir)");
-  const std::vector<std::string> pre = resume_preamble(program, o, opt_.dialect.empty() ? "linuxcnc" : opt_.dialect);
-  const std::string path = opt_.program_dir + "/rosmill-" + std::to_string(::getpid()) + "-" +
-                           std::to_string(++file_counter_) + ".ngc";
-  {
-    std::ofstream out(path);
-    if (!out) throw Error(path, "cannot write the program for the controller");
-    for (const auto& l : pre) out << l << '\n';
-    out << resume_first_line(program, o.from_line) << '\n';
-    for (size_t i = o.from_line + 1; i <= program.size(); ++i) out << program[i - 1] << '\n';
-    if (!out) throw Error(path, "write failed");
-  }
+  const std::vector<std::string> sent = resumed_program(program, o, opt_.dialect.empty() ? "linuxcnc" : opt_.dialect);
+  // A new file per start: LinuxCNC may still hold the previous one open.
+  const std::string path = opt_.program_dir + "/" + file_stem(opt_.program_name) + "-" + std::to_string(::getpid()) +
+                           "-" + std::to_string(++file_counter_) + ".ngc";
+  gcode::write_program_lines(path, sent);
   ::chmod(path.c_str(), 0644);  // the controller may run as another user
-  preamble_lines_ = pre.size();
+  preamble_lines_ = sent.size() - (program.size() - o.from_line + 1);
   from_line_ = o.from_line;
   status_ = ControllerStatus{};
   status_.total_lines = program.size();
   status_.acknowledged_line = o.from_line - 1;
+  // "get error" hands out the last error once: read what an earlier program left, so that it is not taken for
+  // this program's.
+  get("error");
   set("mode auto");
+  set("wait done");
   set("open " + path);
+  set("wait done");
   const std::string err = get("error");
   if (upper(err) != "OK") throw Error(describe(), "cannot open " + path + ": " + err);
   set("run");

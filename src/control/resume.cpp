@@ -56,33 +56,53 @@ std::vector<std::string> resume_preamble(const std::vector<std::string>& program
     const double z_up = std::max(safe, s.position.z());
     pre.push_back("G0 Z" + num(z_up * unit));
     pre.push_back("G0 X" + num(s.position.x() * unit) + " Y" + num(s.position.y() * unit));
+    // Down into the cut at the feed (the material there may not be cut yet); not when already at the height.
     const double feed = s.feed > 0 ? s.feed : o.resume_feed;
-    pre.push_back("G1 Z" + num(s.position.z() * unit) + " F" + num(feed * unit));
-    if (feed != s.feed && s.feed > 0) pre.push_back("F" + num(s.feed * unit));
-  } else if (s.feed > 0) {
-    pre.push_back("F" + num(s.feed * unit));
+    if (num(s.position.z()) != num(z_up)) pre.push_back("G1 Z" + num(s.position.z() * unit) + " F" + num(feed * unit));
+    else if (s.feed > 0) pre.push_back("F" + num(s.feed * unit));
+  } else {
+    // Only Z known (the program's first retract, before any XY): that height again, as the program went there.
+    if (s.known[2]) pre.push_back("G0 Z" + num(s.position.z() * unit));
+    if (s.feed > 0) pre.push_back("F" + num(s.feed * unit));
   }
   if (!s.absolute) pre.push_back("G91");
   return pre;
 }
 
-std::string resume_first_line(const std::vector<std::string>& program, size_t from_line) {
-  const std::string& line = program.at(from_line - 1);
-  if (from_line == 1) return line;
-  const gcode::ModalState s = gcode::state_before(program, from_line - 1);
-  const gcode::Block b = gcode::parse_block(line, "line " + std::to_string(from_line));
-  bool motion_word = false;
-  for (int g : b.g_codes()) motion_word |= g == 0 || g == 10 || g == 20 || g == 30;
-  const bool axes = b.has('X') || b.has('Y') || b.has('Z');
-  if (!axes || motion_word || s.motion < 0) return line;
-  // After the preamble the controller's motion mode is G1: the line needs its own motion word again.
-  std::string out = "G" + std::to_string(s.motion) + " ";
-  if (b.has('N')) {
-    // Keep the line number first.
-    const size_t space = line.find(' ');
-    return line.substr(0, space + 1) + out + line.substr(space + 1);
+std::vector<std::string> resumed_rest(const std::vector<std::string>& program, size_t from_line) {
+  if (from_line < 1 || from_line > program.size())
+    throw Error("--from-line", "line " + std::to_string(from_line) + " is outside the program (1.." +
+                                   std::to_string(program.size()) + ")");
+  std::vector<std::string> rest(program.begin() + static_cast<std::ptrdiff_t>(from_line - 1), program.end());
+  if (from_line == 1) return rest;
+  // The preamble's own moves leave the controller in G0 or G1: the first line that moves needs the program's
+  // motion word again if it relies on the modal one (later lines then find the program's mode in force).
+  gcode::ModalState s = gcode::state_before(program, from_line - 1);
+  const int motion = s.motion;
+  for (size_t i = 0; i < rest.size(); ++i) {
+    const std::string where = "line " + std::to_string(from_line + i);
+    const gcode::Block b = gcode::parse_block(rest[i], where);
+    if (!gcode::apply_block(s, b, where).moved) continue;
+    bool motion_word = false;
+    for (int g : b.g_codes()) motion_word |= g == 0 || g == 10 || g == 20 || g == 30;
+    if (motion_word || motion < 0) break;
+    const std::string word = "G" + std::to_string(motion) + " ";
+    std::string& line = rest[i];
+    const size_t first = line.find_first_not_of(' ');
+    const bool numbered = first != std::string::npos && (line[first] == 'N' || line[first] == 'n');
+    const size_t at = numbered ? line.find(' ', first) : first;  // after the line number, if any
+    line.insert(at == std::string::npos ? line.size() : (numbered ? at + 1 : at), word);
+    break;
   }
-  return out + line;
+  return rest;
+}
+
+std::vector<std::string> resumed_program(const std::vector<std::string>& program, const SendOptions& o,
+                                         const std::string& dialect) {
+  std::vector<std::string> out = resume_preamble(program, o, dialect);
+  const std::vector<std::string> rest = resumed_rest(program, o.from_line);
+  out.insert(out.end(), rest.begin(), rest.end());
+  return out;
 }
 
 }  // namespace rosmill::control

@@ -1,5 +1,6 @@
 #include "rosmill/gcode/post.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 
@@ -234,6 +235,12 @@ size_t Program::motion_blocks() const {
   return n;
 }
 
+PostOptions post_options_for(const std::string& dialect) {
+  PostOptions o;
+  o.dialect = dialect;
+  return o;
+}
+
 Program post(const Job& job, const PostOptions& o) {
   const Dialect& d = find_dialect(o.dialect);
   decimal_scale(o.decimals);  // validates
@@ -263,12 +270,25 @@ Program post(const Job& job, const PostOptions& o) {
   return prog;
 }
 
-void write_program(const std::string& path, const Program& program) {
+void write_program(const std::string& path, const Program& program) { write_program_lines(path, program.lines); }
+
+void write_program_lines(const std::string& path, const std::vector<std::string>& lines) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw Error(path, "cannot open for writing");
-  const std::string text = program.text();
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  for (const std::string& l : lines) {
+    out.write(l.data(), static_cast<std::streamsize>(l.size()));
+    out.put('\n');
+  }
+  out.flush();
   if (!out) throw Error(path, "write failed");
+}
+
+bool is_program_path(const std::string& path) {
+  const size_t dot = path.rfind('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return false;
+  std::string ext = path.substr(dot + 1);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == "ngc" || ext == "nc" || ext == "gcode";
 }
 
 std::vector<std::string> read_program_lines(const std::string& path) {

@@ -63,6 +63,43 @@ std::vector<double> arguments(const std::string& line, size_t open) {
   return v;
 }
 
+// The line without comments (what the interpreter reads).
+std::string code_of(const std::string& line) {
+  std::string code;
+  int depth = 0;
+  for (char ch : line) {
+    if (ch == ';' && depth == 0) break;
+    if (ch == '(') ++depth;
+    else if (ch == ')') --depth;
+    else if (depth == 0) code.push_back(ch);
+  }
+  return code;
+}
+
+bool moves_axes(const std::string& line) { return code_of(line).find_first_of("XYZxyz") != std::string::npos; }
+
+std::string trimmed(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+// rs274 ends its complaint with the block it refused. The program line holding that block: the first such line
+// after the motion lines it carried out (the same block may occur earlier), else the first anywhere.
+size_t offending_line(const std::vector<std::string>& lines, const std::string& message, size_t moves_done) {
+  const size_t nl = message.find_last_of('\n');
+  const std::string block = trimmed(nl == std::string::npos ? message : message.substr(nl + 1));
+  if (block.empty()) return 0;
+  size_t motion = 0, first = 0;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (trimmed(lines[i]) == block) {
+      if (motion >= moves_done) return i + 1;
+      if (!first) first = i + 1;
+    }
+    motion += moves_axes(lines[i]);
+  }
+  return first;
+}
+
 class TempDir {
  public:
   TempDir() {
@@ -176,7 +213,10 @@ Rs274Result run_rs274(const std::vector<std::string>& lines, const std::string& 
   while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
   while (!message.empty() && std::isspace(static_cast<unsigned char>(message.front()))) message.erase(0, 1);
   r.ok = r.exit_status == 0 && message.empty();
-  if (!r.ok) r.error = message.empty() ? "rs274 exited with status " + std::to_string(r.exit_status) : message;
+  if (!r.ok) {
+    r.error = message.empty() ? "rs274 exited with status " + std::to_string(r.exit_status) : message;
+    r.error_line = offending_line(lines, message, r.moves.size());
+  }
   return r;
 }
 
@@ -226,15 +266,7 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
   for (size_t i = 0; i < program.lines.size(); ++i) {
     const std::string& l = program.lines[i];
     const LineOrigin& o = program.origin[i];
-    std::string code;  // the line without comments
-    int depth = 0;
-    for (char ch : l) {
-      if (ch == '(') ++depth;
-      else if (ch == ')') --depth;
-      else if (depth == 0) code.push_back(ch);
-    }
-    const bool motion = code.find_first_of("XYZ") != std::string::npos;
-    if (!motion) continue;
+    if (!moves_axes(l)) continue;
     if (c >= rs.moves.size()) return fail(i, "rs274 produced no move for this line");
     const CanonMove& m = rs.moves[c++];
     if (o.first_move >= 0) {

@@ -3,7 +3,9 @@
 //  - 128-byte receive buffer; a byte arriving when it is full is lost and the overflow is recorded (what a
 //    sender that miscounts causes on a real GRBL).
 //  - "ok" per line executed, "error:N" for a bad line (1 no letter, 2 bad number, 20 unsupported command, 9 locked
-//    by an alarm), "ALARM:2" for a move beyond its soft limits, then error:9 until "$X".
+//    by an alarm) after which it goes on with the lines it has buffered, as GRBL does; "ALARM:2" for a move beyond
+//    its soft limits: a critical alarm, nothing more is executed or answered until a soft reset (which empties the
+//    buffer), and after it every line gets error:9 until "$X".
 //  - real-time bytes outside the line stream: '?' status report "<Idle|MPos:x,y,z|FS:f,0|Ln:n>", '!' feed hold,
 //    '~' cycle start, 0x18 soft reset (buffer emptied, greeting sent again).
 //  - lines execute at a fixed pace, so the buffer fills; a dropped connection can be scheduled after a number
@@ -30,6 +32,9 @@ struct GrblSimulationConfig {
   double line_period_s = 50e-6;  // time to execute one line
   double soft_limit = 500.0;     // |axis| beyond this is ALARM:2
   long drop_after_oks = -1;      // close the connection after this many "ok"s (counted over the whole run)
+  // false: the answers sent before the drop arrive, then the end of the stream (a bridge that closes cleanly).
+  // true: the connection is reset at once (RST), so answers still in transit are lost (a cable pulled).
+  bool abrupt_drop = false;
 };
 
 class GrblSimulation {
@@ -68,7 +73,10 @@ class GrblSimulation {
   int connections() const { return connections_; }
   int status_queries() const { return status_queries_; }
   bool held() const { return hold_; }
-  void schedule_drop_after(long oks) { cfg_.drop_after_oks = oks; }
+  void schedule_drop_after(long oks, bool abrupt = false) {
+    cfg_.drop_after_oks = oks;
+    cfg_.abrupt_drop = abrupt;
+  }
 
  private:
   void serve() {
@@ -109,6 +117,7 @@ class GrblSimulation {
           } else if (c == '\x18') {
             rx.clear();
             hold_ = false;
+            critical_ = false;
             send(fd, "\r\nGrbl 1.1h ['$' for help]\r\n");
           } else if (rx.size() >= 128) {
             overflowed_ = true;  // a real GRBL loses this byte
@@ -120,7 +129,7 @@ class GrblSimulation {
       }
       const auto now = std::chrono::steady_clock::now();
       const size_t nl = rx.find('\n');
-      if (nl == std::string::npos || hold_ || now < next_exec) continue;
+      if (nl == std::string::npos || hold_ || critical_ || now < next_exec) continue;
       next_exec = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(cfg_.line_period_s));
       std::string line = rx.substr(0, nl);
@@ -129,8 +138,26 @@ class GrblSimulation {
       send(fd, execute(line) + "\r\n");
       if (cfg_.drop_after_oks >= 0 && oks_ >= cfg_.drop_after_oks) {
         cfg_.drop_after_oks = -1;
-        return;  // dropped: the receive buffer is lost with the connection
+        drop(fd);  // the receive buffer is lost with the connection
+        return;
       }
+    }
+  }
+
+  void drop(int fd) {
+    if (cfg_.abrupt_drop) {
+      const linger reset{1, 0};  // close() then sends RST: what the peer has not read yet is gone
+      ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
+      return;
+    }
+    // End of stream after the answers already sent; read what the sender still sends until it closes, so that
+    // close() finds nothing unread (which would reset the connection and lose those answers).
+    ::shutdown(fd, SHUT_WR);
+    char buf[512];
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+    while (std::chrono::steady_clock::now() < until) {
+      pollfd p{fd, POLLIN, 0};
+      if (::poll(&p, 1, 20) > 0 && ::recv(fd, buf, sizeof buf, 0) <= 0) break;
     }
   }
 
@@ -146,7 +173,10 @@ class GrblSimulation {
   std::string execute(const std::string& line) {
     if (line.empty()) return "ok";
     if (line[0] == '$') {
-      if (line == "$X") alarm_ = false;
+      if (line == "$X") {
+        alarm_ = false;
+        return "[MSG:Caution: Unlocked]\r\nok";
+      }
       return "ok";
     }
     if (alarm_) return "error:9";
@@ -177,8 +207,8 @@ class GrblSimulation {
     }
     for (double t : target)
       if (std::abs(t) > cfg_.soft_limit) {
-        alarm_ = true;
-        return "ALARM:2";
+        alarm_ = critical_ = true;
+        return "ALARM:2\r\n[MSG:Reset to continue]";
       }
     for (int a = 0; a < 3; ++a) pos_[a] = target[a];
     {
@@ -200,6 +230,7 @@ class GrblSimulation {
   std::vector<std::string> executed_;
   long oks_ = 0, last_n_ = 0;
   bool alarm_ = false;
+  std::atomic<bool> critical_{false};  // after ALARM:2, until a soft reset
   double pos_[3] = {0, 0, 0}, feed_ = 0;
 };
 

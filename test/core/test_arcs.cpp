@@ -145,3 +145,89 @@ TEST(ArcPost, FineContoursTakeFewerBlocks) {
   for (const auto& l : b.lines) g2g3 += l.rfind("G2", 0) == 0 || l.rfind("G3", 0) == 0 || l.find(" I") != std::string::npos;
   EXPECT_GT(g2g3, 0u);
 }
+
+namespace {
+
+// The number of arcs, after checking coverage and the two-sided deviation.
+size_t checked_arcs(const std::vector<Vec3>& pts, double tolerance, const std::string& what) {
+  ArcFitOptions o;
+  o.tolerance = tolerance;
+  const auto pieces = fit_arcs(pts, o);
+  expect_cover(pieces, static_cast<int>(pts.size()));
+  EXPECT_LE(max_deviation(pts, pieces), tolerance + 1e-9) << what << " at " << tolerance;
+  size_t arcs = 0;
+  for (const auto& p : pieces) arcs += p.arc;
+  return arcs;
+}
+
+}  // namespace
+
+TEST(ArcFit, CurvesThatAreNoCirclesStayWithinTheTolerance) {
+  for (double tol : {0.005, 0.05}) {
+    // Ellipse 30 x 18, 2000 points: pieced together from arcs, each within the tolerance.
+    std::vector<Vec3> ellipse;
+    for (int i = 0; i <= 2000; ++i) {
+      const double a = 2 * M_PI * i / 2000 * 0.99;
+      ellipse.emplace_back(30 * std::cos(a), 18 * std::sin(a), -2);
+    }
+    const size_t arcs = checked_arcs(ellipse, tol, "ellipse");
+    EXPECT_GT(arcs, 4u);
+    EXPECT_LT(arcs, 400u);
+    // Archimedean spiral r = 5 + 2 theta over three turns.
+    std::vector<Vec3> spiral;
+    for (int i = 0; i <= 3000; ++i) {
+      const double t = 6 * M_PI * i / 3000;
+      spiral.emplace_back((5 + 2 * t) * std::cos(t), (5 + 2 * t) * std::sin(t), 0);
+    }
+    EXPECT_GT(checked_arcs(spiral, tol, "spiral"), 3u);
+    // A sine wave: turns both ways; every arc stays on one side of an inflection.
+    std::vector<Vec3> sine;
+    for (int i = 0; i <= 1000; ++i) sine.emplace_back(0.1 * i, 8 * std::sin(0.1 * i / 7), 1);
+    checked_arcs(sine, tol, "sine");
+    // A random walk: whatever the fitter does, it stays within the tolerance.
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> step(-1, 1);
+    std::vector<Vec3> walk{Vec3::Zero()};
+    for (int i = 0; i < 500; ++i) walk.push_back(walk.back() + Vec3(step(rng), step(rng), 0));
+    checked_arcs(walk, tol, "random walk");
+    // A zig-zag (no two consecutive turns the same way) has no arc.
+    std::vector<Vec3> zigzag;
+    for (int i = 0; i <= 100; ++i) zigzag.emplace_back(i, i % 2 ? 0.5 : 0.0, 0);
+    EXPECT_EQ(checked_arcs(zigzag, tol, "zigzag"), 0u);
+  }
+}
+
+TEST(ArcFit, RoundedCornersBecomeArcsAroundTheirCentres) {
+  // A 40 x 20 rectangle with corners of radius 5 (24 chords each, sagitta 0.0027 mm), as an offset contour of a
+  // flat end mill.
+  std::vector<Vec3> pts;
+  const Vec2 centres[4] = {Vec2(35, 5), Vec2(35, 15), Vec2(5, 15), Vec2(5, 5)};
+  for (int c = 0; c < 4; ++c) {
+    const double a0 = -M_PI / 2 + c * M_PI / 2;
+    for (int i = 0; i <= 24; ++i) {
+      const double a = a0 + (M_PI / 2) * i / 24;
+      pts.emplace_back(centres[c].x() + 5 * std::cos(a), centres[c].y() + 5 * std::sin(a), -1);
+    }
+  }
+  pts.push_back(pts.front());
+  ArcFitOptions o;
+  o.tolerance = 0.005;
+  const auto pieces = fit_arcs(pts, o);
+  expect_cover(pieces, static_cast<int>(pts.size()));
+  EXPECT_LE(max_deviation(pts, pieces), 0.005 + 1e-9);
+  size_t arcs = 0;
+  for (const auto& p : pieces) {
+    if (!p.arc) continue;
+    ++arcs;
+    EXPECT_NEAR(p.radius, 5, 1e-6);
+    EXPECT_FALSE(p.clockwise);
+    double nearest = INFINITY;
+    for (const Vec2& c : centres) nearest = std::min(nearest, (p.centre - c).norm());
+    EXPECT_LT(nearest, 1e-6);
+  }
+  EXPECT_EQ(arcs, 4u);
+  EXPECT_EQ(pieces.size(), 8u);  // four arcs and the four straight sides
+  // Tighter than the chords' sagitta: the corners keep their chords.
+  o.tolerance = 0.002;
+  for (const auto& p : fit_arcs(pts, o)) EXPECT_FALSE(p.arc);
+}

@@ -112,6 +112,45 @@ TEST(GrblSimulationStream, DisconnectAtARandomLineThenResumeLosesAndRepeatsNothi
   }
 }
 
+TEST(GrblSimulationStream, AResetConnectionLosesNothingAndRepeatsOnlyUnansweredLines) {
+  // Pulled cable: the connection is reset and the "ok"s in transit are lost, so the driver cannot know that the
+  // last few lines ran. Resuming after its last acknowledged line loses nothing; the lines it re-sends are only
+  // those whose answer was lost (no more than GRBL's buffer held), and the resume preamble first brings the tool to
+  // where the first of them starts, so running one again retraces its own path.
+  std::mt19937 rng(7);
+  const long drop = std::uniform_int_distribution<long>(500, 9000)(rng);
+  GrblSimulation sim;
+  sim.schedule_drop_after(drop, true);
+  auto c = grbl(sim);
+  c->connect();
+  const auto program = numbered_program(10000);
+  SendOptions o;
+  try {
+    run_to_end(*c, program, SendOptions{});
+    FAIL() << "the reset connection was not reported";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    const size_t at = what.find("--from-line ");
+    ASSERT_NE(at, std::string::npos) << what;
+    o.from_line = std::stoul(what.substr(at + 12));
+  }
+  const std::vector<long> before = executed_numbers(sim);
+  c->connect();
+  EXPECT_EQ(run_to_end(*c, program, o).state, RunState::Finished);
+  const std::vector<long> all = executed_numbers(sim);
+  ASSERT_GE(before.size(), 1u);
+  // The two runs: 1..D, then F..10000 with F <= D + 1 (nothing lost) and D - F + 1 repeats.
+  const long d = before.back(), f = all[before.size()];
+  EXPECT_LE(f, d + 1) << "lines " << d + 1 << ".." << f - 1 << " were lost";
+  EXPECT_EQ(static_cast<long>(all.size()), 10000 + (d - f + 1));
+  for (size_t i = 0; i < all.size(); ++i) {
+    const long expected = i < before.size() ? static_cast<long>(i) + 1 : f + static_cast<long>(i - before.size());
+    ASSERT_EQ(all[i], expected) << "position " << i;
+  }
+  // Repeats are bounded by what fits in the 128-byte buffer (these lines are at least 8 bytes long).
+  EXPECT_LE(d - f + 1, 128 / 8);
+}
+
 TEST(GrblSimulationStream, ErrorAndAlarmAreReportedWithTheLine) {
   GrblSimulation sim;
   auto c = grbl(sim);
@@ -130,11 +169,47 @@ TEST(GrblSimulationStream, ErrorAndAlarmAreReportedWithTheLine) {
     EXPECT_NE(std::string(e.what()).find("ALARM:2"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("--from-line 3"), std::string::npos) << e.what();
   }
+  // A critical alarm leaves the lines after it unanswered: no new program until a soft reset.
+  try {
+    c->start({"G0 X2", "M30"}, SendOptions{});
+    FAIL() << "started over unanswered lines";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("abort (soft reset) first"), std::string::npos) << e.what();
+  }
+  c->abort();
   // The alarm stays until unlocked on request: a new program is refused, then runs after $X.
   EXPECT_THROW(run_to_end(*c, {"G0 X2", "M30"}, SendOptions{}), Error);
   c->unlock();
   const ControllerStatus s = run_to_end(*c, {"G0 X2", "M30"}, SendOptions{});
   EXPECT_EQ(s.state, RunState::Finished);
+  EXPECT_EQ(sim.executed().back(), "M30");
+}
+
+TEST(GrblSimulationStream, ARefusedLineIsNeverCountedAsAcknowledged) {
+  GrblSimulation sim;
+  auto c = grbl(sim);
+  c->connect();
+  // GRBL refuses line 6 and goes on with the lines it had buffered behind it.
+  std::vector<std::string> program = numbered_program(200);
+  program.insert(program.begin() + 5, "G64 P0.02");
+  try {
+    run_to_end(*c, program, SendOptions{});
+    FAIL() << "error:20 not reported";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("error:20 at program line 6"), std::string::npos) << what;
+    EXPECT_NE(what.find("--from-line 6"), std::string::npos) << what;
+  }
+  const ControllerStatus s = c->poll(0.2);
+  EXPECT_EQ(s.state, RunState::Error);
+  EXPECT_EQ(s.acknowledged_line, 5u);
+  // What ran behind the refused line is said, with its range.
+  const size_t ran = executed_numbers(sim).size();  // the N lines, from program line 7 on
+  if (ran > 0) {
+    EXPECT_NE(s.error.find("lines 7.." + std::to_string(6 + ran) + " were already in GRBL's buffer and ran"),
+              std::string::npos) << s.error << " (" << ran << " ran)";
+  }
+  c->abort();
 }
 
 TEST(GrblSimulationStream, FeedHoldStopsAndResumeFinishes) {

@@ -3,7 +3,9 @@
 // over every planning strategy in strategies() on every seed primitive (the test grows as strategies land).
 #include <gtest/gtest.h>
 
+#include "rosmill/control/controller.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/block.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 #include "test_post_jobs.hpp"
@@ -111,4 +113,67 @@ TEST(Rs274Verify, EveryStrategyOnEverySeedPrimitive) {
   }
   if (strategies().empty()) GTEST_SKIP() << "no strategy in strategies() yet; the synthetic jobs above stand in";
   EXPECT_EQ(verified, 2 * strategies().size() * primitive_names().size());
+}
+
+namespace {
+
+// rs274's moves of a program that come from its lines [first_line, end), 1-based: the moves of earlier lines
+// (one per line with axis words) are skipped.
+std::vector<CanonMove> moves_from(const std::vector<std::string>& lines, const Rs274Result& r, size_t first_line) {
+  size_t skip = 0;
+  for (size_t i = 0; i + 1 < first_line; ++i) {
+    const Block b = parse_block(lines[i], "line");
+    skip += b.has('X') || b.has('Y') || b.has('Z');
+  }
+  return std::vector<CanonMove>(r.moves.begin() + static_cast<std::ptrdiff_t>(std::min(skip, r.moves.size())), r.moves.end());
+}
+
+}  // namespace
+
+TEST(Rs274Verify, AResumedProgramMovesAsTheOriginalFromItsLine) {
+  // Two tools, arcs: a resume at any line must restore tool, length offset, spindle, feed, motion mode and place.
+  const Job job{test::raster_toolpath(30, 10, 2.5), test::revolution_contours("c", [](double) { return 12.0; }, 10, 5, 360)};
+  for (const char* dialect : {"linuxcnc", "grbl"}) {
+    PostOptions o;
+    o.dialect = dialect;
+    o.arcs = true;
+    const Program p = post(job, o);
+    const Rs274Result whole = run_rs274(p.lines);
+    ASSERT_TRUE(whole.ok) << whole.error;
+    size_t resumes = 0;
+    for (size_t line = 2; line <= p.lines.size(); line += 5) {
+      control::SendOptions so;
+      so.from_line = line;
+      const std::vector<std::string> resumed = control::resumed_program(p.lines, so, dialect);
+      const size_t preamble = resumed.size() - (p.lines.size() - line + 1);
+      const Rs274Result r = run_rs274(resumed);
+      ASSERT_TRUE(r.ok) << dialect << " from line " << line << ": " << r.error;
+      const std::vector<CanonMove> expected = moves_from(p.lines, whole, line), got = moves_from(resumed, r, preamble + 1);
+      ASSERT_EQ(got.size(), expected.size()) << dialect << " from line " << line;
+      for (size_t k = 0; k < got.size(); ++k) {
+        const std::string at = std::string(dialect) + " from line " + std::to_string(line) + ", move " + std::to_string(k);
+        ASSERT_EQ(got[k].kind, expected[k].kind) << at;
+        EXPECT_LT((got[k].end - expected[k].end).cwiseAbs().maxCoeff(), 1e-4) << at;
+        EXPECT_NEAR(got[k].feed, expected[k].feed, 1e-6) << at;
+        if (got[k].kind == CanonMove::Arc) {
+          EXPECT_LT((got[k].centre - expected[k].centre).cwiseAbs().maxCoeff(), 1e-4) << at;
+          EXPECT_EQ(got[k].rotation, expected[k].rotation) << at;
+        }
+      }
+      // The preamble ends where the original was before the line, with the same modal state.
+      const ModalState before = state_before(p.lines, line - 1), restored = state_before(resumed, preamble);
+      if (before.known[0] && before.known[1] && before.known[2]) {
+        EXPECT_LT((restored.position - before.position).cwiseAbs().maxCoeff(), 1e-4) << dialect << " line " << line;
+      }
+      EXPECT_EQ(restored.tool, before.tool) << line;
+      EXPECT_EQ(restored.length_offset, before.length_offset) << line;
+      EXPECT_EQ(restored.spindle, before.spindle) << line;
+      if (before.spindle != 5) EXPECT_DOUBLE_EQ(restored.spindle_rpm, before.spindle_rpm) << line;
+      EXPECT_EQ(restored.flood, before.flood) << line;
+      // Before the program's first feed the way down uses SendOptions::resume_feed; after it, the program's feed.
+      if (before.feed > 0) EXPECT_DOUBLE_EQ(restored.feed, before.feed) << line;
+      ++resumes;
+    }
+    EXPECT_GE(resumes, 8u);
+  }
 }

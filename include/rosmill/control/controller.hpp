@@ -42,6 +42,7 @@ struct ControllerOptions {
   std::string dialect;              // for resume preambles; empty: the driver's own
   size_t rx_buffer = 128;           // GRBL receive buffer (bytes)
   bool home_if_needed = true;       // LinuxCNC: home all joints when not homed
+  std::string program_name;         // file name where programs are written (file://, LinuxCNC); default rosmill.ngc
 };
 
 class Controller {
@@ -69,8 +70,12 @@ std::unique_ptr<Controller> open_controller(const std::string& url, const Contro
 // before it, then the way to where the line starts. `dialect` is "linuxcnc" or "grbl" (tool change words).
 std::vector<std::string> resume_preamble(const std::vector<std::string>& program, const SendOptions& options,
                                          const std::string& dialect);
-// Program line `from_line` as it must be sent first: with the modal motion word when the line relies on it.
-std::string resume_first_line(const std::vector<std::string>& program, size_t from_line);
+// Program lines from `from_line` on as they must be sent after the preamble: the first line that moves gets the
+// program's modal motion word (G0..G3) back when it relies on it.
+std::vector<std::string> resumed_rest(const std::vector<std::string>& program, size_t from_line);
+// What a controller receives to run `program` from options.from_line: the preamble, the first line, the rest.
+std::vector<std::string> resumed_program(const std::vector<std::string>& program, const SendOptions& options,
+                                         const std::string& dialect);
 
 // Runs the program to its end, calling `progress` after each poll. Throws Error with the controller's message
 // and the last acknowledged line on error, alarm, lost connection or when nothing progresses for stall_s.

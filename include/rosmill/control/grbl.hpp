@@ -12,7 +12,9 @@ namespace rosmill::control {
 class GrblController : public Controller {
  public:
   // `open` makes a new connection (serial port or TCP); called by connect(), again after a lost connection.
-  GrblController(std::function<std::unique_ptr<Transport>()> open, std::string describe, const ControllerOptions& o);
+  // connect() waits up to `greeting_wait_s` for GRBL's greeting (a serial board resets when its port opens).
+  GrblController(std::function<std::unique_ptr<Transport>()> open, std::string describe, const ControllerOptions& o,
+                 double greeting_wait_s = 0.5);
 
   std::string describe() const override;
   void connect() override;
@@ -32,6 +34,7 @@ class GrblController : public Controller {
     size_t line;       // program line (1-based); 0 for resume preamble lines
   };
   void pump();
+  void forget_buffer();  // GRBL's receive buffer is empty (reset, new connection)
   void handle_line(const std::string& line);
   void parse_status(const std::string& report);
 
@@ -45,6 +48,10 @@ class GrblController : public Controller {
   size_t next_ = 0;
   size_t buffered_ = 0;           // bytes sent and not yet answered
   std::string machine_state_;
+  size_t error_line_ = 0;       // program line GRBL refused (error:N); 0: none
+  size_t ran_after_error_ = 0;  // last line answered "ok" after the refused one
+  std::string error_text_;
+  double greeting_wait_s_;
   ControllerStatus status_;
   std::chrono::steady_clock::time_point last_heard_{}, last_status_{};
 };

@@ -45,9 +45,16 @@ struct Program {
   size_t motion_blocks() const;     // lines that move the machine (G0/G1/G2/G3 blocks)
 };
 
+// The default options with another dialect.
+PostOptions post_options_for(const std::string& dialect);
+
 Program post(const Job& job, const PostOptions& options = {});
 
 void write_program(const std::string& path, const Program& program);
+// Writes lines, each ended by '\n'; throws Error naming the file.
+void write_program_lines(const std::string& path, const std::vector<std::string>& lines);
+// True when the file name ends in .ngc, .nc or .gcode (any case): what `rosmill plan -o` writes as G-code.
+bool is_program_path(const std::string& path);
 // Reads a program file into lines (no line ends); throws Error naming the file.
 std::vector<std::string> read_program_lines(const std::string& path);
 

@@ -24,6 +24,7 @@ struct Rs274Result {
   bool ok = false;
   int exit_status = -1;
   std::string error;             // rs274's message and the offending block when it refused the program
+  size_t error_line = 0;         // 1-based program line of the offending block (0: not found)
   std::vector<CanonMove> moves;
   std::string plane_error;       // set when a move is not in the XY plane (only XY arcs are written)
 };
