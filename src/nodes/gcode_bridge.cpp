@@ -195,11 +195,12 @@ class GcodeBridge {
     while (!stop_.load()) {
       control::ControllerStatus s;
       {
+        // aborted_ is set under this lock once the abort went out: no poll after it, and abort_run() has the
+        // controller until it has published the final status.
         std::lock_guard<std::mutex> lock(controller_mutex_);
-        if (!ctl_) break;
+        if (!ctl_ || aborted_.load()) break;
         s = ctl_->poll(0.02);
       }
-      if (aborted_.load()) break;  // abort() published the final status
       const bool moved = s.acknowledged_line != previous.acknowledged_line || s.current_line != previous.current_line ||
                          (s.position - previous.position).norm() > 1e-6 || s.state != previous.state;
       if (moved || s.state == control::RunState::Paused) last_change = Clock::now();
@@ -332,6 +333,9 @@ class GcodeBridge {
   // Runs a controller command on the running program; returns the reason when it cannot.
   std::string command(const char* what, void (control::Controller::*fn)()) {
     std::lock_guard<std::mutex> lock(controller_mutex_);
+    return command_locked(what, fn);
+  }
+  std::string command_locked(const char* what, void (control::Controller::*fn)()) {
     if (!ctl_ || !running()) return std::string("no program is running: nothing to ") + what;
     try {
       (ctl_.get()->*fn)();
@@ -341,15 +345,15 @@ class GcodeBridge {
     return "";
   }
 
+  // The abort and the final status under the controller lock: the worker cannot poll (and release the controller)
+  // between the request and the abort, nor publish a status after it.
   std::string abort_run() {
-    aborted_.store(true);
-    const std::string why = command("abort", &control::Controller::abort);
-    if (!why.empty()) {
-      aborted_.store(false);
-      return why;
-    }
     {
-      std::lock_guard<std::mutex> lock(status_mutex_);
+      std::lock_guard<std::mutex> lock(controller_mutex_);
+      const std::string why = command_locked("abort", &control::Controller::abort);
+      if (!why.empty()) return why;
+      aborted_.store(true);
+      std::lock_guard<std::mutex> status_lock(status_mutex_);
       status_.state = ProgramStatusMsg::ABORTED;
       status_.state_name = status_state_name(status_.state);
     }
