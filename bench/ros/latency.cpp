@@ -9,6 +9,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <sensor_msgs/point_cloud2_iterator.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -35,11 +36,17 @@ namespace {
 // A child process started here and stopped (SIGINT, then SIGKILL) by its PID when this goes away.
 class Child {
  public:
-  explicit Child(std::vector<std::string> argv) {
+  // Its output goes to `log` (the figures stay readable).
+  Child(std::vector<std::string> argv, const std::string& log) {
     std::vector<char*> args;
     for (std::string& a : argv) args.push_back(a.data());
     args.push_back(nullptr);
-    if (posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_t files;
+    posix_spawn_file_actions_init(&files);
+    posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    posix_spawn_file_actions_adddup2(&files, 1, 2);
+    if (posix_spawn(&pid_, args[0], &files, nullptr, args.data(), environ) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&files);
     if (pid_ < 0) std::fprintf(stderr, "bench: cannot start %s\n", argv[0].c_str());
   }
   Child(const Child&) = delete;
@@ -71,10 +78,12 @@ template <typename M>
 struct Arrivals {
   std::atomic<size_t> count{0};
   std::atomic<double> last{0};
+  boost::shared_ptr<const M> message;  // the last one (read after wait_after)
   ros::Subscriber sub;
   Arrivals(ros::NodeHandle& nh, const std::string& topic) {
     sub = nh.subscribe<M>(topic, 1, boost::function<void(const boost::shared_ptr<const M>&)>(
-                                        [this](const boost::shared_ptr<const M>&) {
+                                        [this](const boost::shared_ptr<const M>& m) {
+                                          message = m;
                                           last = ros::WallTime::now().toSec();
                                           ++count;
                                         }));
@@ -129,10 +138,10 @@ void report(const char* what, std::vector<double> s) {
   std::sort(s.begin(), s.end());
   const bool ok = !s.empty() && !std::isnan(s.front()) && !std::isnan(s.back());
   if (!ok) {
-    std::printf("%-58s FAILED (no message within the timeout)\n", what);
+    std::printf("%-64s FAILED (no message within the timeout)\n", what);
     return;
   }
-  std::printf("%-58s median %7.3f s  (min %.3f, max %.3f, %zu runs)  target <= 1 s: %s\n", what, s[s.size() / 2],
+  std::printf("%-64s median %7.3f s  (min %.3f, max %.3f, %zu runs)  target <= 1 s: %s\n", what, s[s.size() / 2],
               s.front(), s.back(), s.size(), s[s.size() / 2] <= 1.0 ? "met" : "NOT met");
 }
 
@@ -150,7 +159,8 @@ int main(int argc, char** argv) {
   ::setenv("ROS_HOSTNAME", "localhost", 1);
   ::setenv("ROS_HOME", home.c_str(), 1);
   ::setenv("ROS_LOG_DIR", (home + "/log").c_str(), 1);
-  Child master({"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)});
+  const std::string log = home + "/nodes.log";
+  Child master({"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)}, log);
   ros::init(argc, argv, "bench_ros_latency", ros::init_options::NoSigintHandler);
   for (int i = 0; i < 100 && !ros::master::check(); ++i) ros::WallDuration(0.1).sleep();
   if (!ros::master::check()) {
@@ -166,7 +176,8 @@ int main(int argc, char** argv) {
   {  // cloud -> toolpath
     Child planner({node("toolpath_planner"), "__name:=toolpath_planner", quiet,
                    "_tool_table:=" ROSMILL_SOURCE_DIR "/config/tools.yaml", "_cloud_strategy:=cloud-rough",
-                   "_tool_id:=1", "_frame_id:=workpiece"});
+                   "_tool_id:=1", "_frame_id:=workpiece"},
+                  log);
     Arrivals<rosmill::ToolpathJobMsg> jobs(nh, "toolpath");
     ros::Publisher pub = nh.advertise<sensor_msgs::PointCloud2>("cloud", 1);
     for (int i = 0; i < 200 && pub.getNumSubscribers() == 0; ++i) ros::WallDuration(0.05).sleep();
@@ -179,8 +190,12 @@ int main(int argc, char** argv) {
       pub.publish(cloud);
       seconds.push_back(jobs.wait_after(before, t0, 60.0));
     }
+    size_t moves = 0;
+    if (jobs.message)
+      for (const auto& tp : jobs.message->toolpaths)
+        for (const auto& pass : tp.passes) moves += pass.moves.size();
     char what[128];
-    std::snprintf(what, sizeof what, "cloud %u points -> toolpath (cloud-rough, T1)", cloud.width);
+    std::snprintf(what, sizeof what, "cloud %u points -> toolpath (cloud-rough, T1, %zu moves)", cloud.width, moves);
     report(what, seconds);
     failures += seconds.empty() || std::isnan(seconds.back());
   }
@@ -189,8 +204,8 @@ int main(int argc, char** argv) {
     const std::string stl = home + "/wavy_100k.stl";
     const std::vector<rosmill::Vec3> corners = rosmill::wavy_solid_corners(221, 100.0);
     write_binary_stl(stl, corners);
-    Child loader({node("stl_loader"), "__name:=stl_loader", quiet});
-    Child segmenter({node("segmenter"), "__name:=segmenter", quiet});
+    Child loader({node("stl_loader"), "__name:=stl_loader", quiet}, log);
+    Child segmenter({node("segmenter"), "__name:=segmenter", quiet}, log);
     Arrivals<visualization_msgs::Marker> mesh_markers(nh, "mesh_marker");
     Arrivals<visualization_msgs::MarkerArray> patch_markers(nh, "segmentation_markers");
     if (!ros::service::waitForService("load_mesh", ros::Duration(20.0))) {
