@@ -1,7 +1,12 @@
 // rosmill plan FILE --strategy NAME [--tool ID|ball:D|flat:D|bull:D:r] [--tools FILE] [--stepover ..]
 //   [--stepdown ..] [--allowance ..] [--tolerance ..] [--angle ..] [--units ..] [--json]
 //   [-o toolpath.json | -o prog.ngc|.nc|.gcode [--dialect linuxcnc|grbl]]
-// Plans a toolpath through rosmill::plan() on a mesh (STL) or a cloud (PCD/PLY). Lengths in mm.
+//   cloud files: [--orient none|ransac|lowest] [--origin corner|keep] [--voxel MM] [--outliers K]
+//   [--holes bridge|skip]
+// Plans a toolpath through rosmill::plan() on a mesh (STL) or a cloud (PCD/PLY). Lengths in mm. A cloud is
+// prepared first (cloud/cloud_prep.hpp: orientation, origin at the stock corner, filters, a density and holes
+// report); the seed 004 strategies (cloud-rough, cloud-semi, cloud-finish, cloud-all) take the seed's tools and
+// tolerance unless --tool / --tolerance are given.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "rosmill/cloud/cloud_plan.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/post.hpp"
@@ -26,7 +32,42 @@ struct Options {
   std::string file, strategy, tool = "ball:6", tools, units, out, dialect = "linuxcnc";
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = 0.001, angle = 0.0;
   bool json = false;
+  // Cloud input (seed 004).
+  std::string orient = "none", origin = "corner", holes = "bridge";
+  double voxel = 0.0;
+  int outliers = 0;
+  bool tool_given = false, tolerance_given = false;
 };
+
+bool is_seed_cloud_strategy(const std::string& name) {
+  return name == "cloud-rough" || name == "cloud-semi" || name == "cloud-finish" || name == "cloud-all";
+}
+
+// The cloud in the workpiece frame: read in its units, oriented, origin at the stock corner, filtered.
+PointCloud prepared_cloud(const Options& o, std::string& report) {
+  CloudReadOptions ro;
+  if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
+  CloudPrepOptions prep;
+  prep.units = Units::Millimetre;  // read_cloud has scaled it
+  if (o.orient == "ransac") prep.orientation = Orientation::Ransac;
+  else if (o.orient == "lowest") prep.orientation = Orientation::LowestFit;
+  else if (o.orient != "none") throw Error("--orient", "'" + o.orient + "' is not none, ransac or lowest");
+  if (o.origin != "corner" && o.origin != "keep") throw Error("--origin", "'" + o.origin + "' is not corner or keep");
+  prep.origin_at_corner = o.origin == "corner";
+  prep.voxel = o.voxel;
+  prep.outlier_neighbours = o.outliers;
+  CloudPrepReport r;
+  PointCloud cloud = prepare_cloud(read_cloud(o.file, ro), prep, &r);
+  report = format_prep_report(r);
+  return cloud;
+}
+
+// The tools of a job, in machining order.
+std::string job_tools(const Job& job) {
+  std::string names;
+  for (const Toolpath& tp : job) names += (names.empty() ? "" : " + ") + tp.tool.name;
+  return names;
+}
 
 Tool pick_tool(const Options& o) {
   const bool numeric = !o.tool.empty() && o.tool.find(':') == std::string::npos;
@@ -48,10 +89,17 @@ void run(const Options& o) {
   Mesh mesh;
   PointCloud cloud;
   PlanInput input;
+  std::string prep_report;
+  const HolePolicy holes = parse_hole_policy(o.holes, "--holes");
+  const bool seed_cloud = is_seed_cloud_strategy(o.strategy);
+  if (seed_cloud) {
+    if (o.strategy == "cloud-all" && o.tool_given)
+      throw Error("--tool", "cloud-all runs the seed's three tools; give --tool to cloud-rough, cloud-semi or cloud-finish");
+    if (!o.tool_given) params.tool = Tool{};  // the seed's tool for the stage
+    if (!o.tolerance_given) params.tolerance = NAN;  // the seed's tolerance
+  }
   if (is_cloud_path(o.file)) {
-    CloudReadOptions ro;
-    if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
-    cloud = read_cloud(o.file, ro);
+    cloud = prepared_cloud(o, prep_report);
     input.cloud = &cloud;
   } else {
     StlReadOptions ro;
@@ -61,7 +109,9 @@ void run(const Options& o) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const Job job = plan(o.strategy, input, params);
+  const Job job = seed_cloud && input.cloud ? plan_cloud_strategy(o.strategy, cloud, params, holes)
+                                            : plan(o.strategy, input, params);
+  const std::string tool_name = seed_cloud ? job_tools(job) : params.tool.name;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.out.empty() && gcode::is_program_path(o.out)) {
     gcode::write_program(o.out, gcode::post(job, gcode::post_options_for(o.dialect)));
@@ -80,7 +130,7 @@ void run(const Options& o) {
   if (o.json) {
     nlohmann::json j = {{"strategy", o.strategy},
                         {"toolpaths", job.size()},
-                        {"tool", params.tool.name},
+                        {"tool", tool_name},
                         {"moves", total.moves},
                         {"cutting_length", total.cutting_length},
                         {"rapid_length", total.rapid_length},
@@ -89,9 +139,10 @@ void run(const Options& o) {
     if (!o.out.empty()) j["output"] = o.out;
     std::printf("%s\n", j.dump().c_str());
   } else {
+    std::printf("%s", prep_report.c_str());
     std::printf("%s with %s: %zu moves, cutting %.1f mm, rapid %.1f mm, about %.0f s at the tool's feeds "
                 "(planned in %.3f s)\n",
-                o.strategy.c_str(), params.tool.name.c_str(), total.moves, total.cutting_length, total.rapid_length,
+                o.strategy.c_str(), tool_name.c_str(), total.moves, total.cutting_length, total.rapid_length,
                 total.estimated_seconds, seconds);
   }
 }
@@ -101,18 +152,27 @@ CommandRegistration reg([](CLI::App& app) {
   auto o = std::make_shared<Options>();
   cmd->add_option("FILE", o->file, "STL, PCD or PLY file")->required();
   cmd->add_option("--strategy", o->strategy, "strategy name")->required();
-  cmd->add_option("--tool", o->tool, "tool id in the tool table, or ball:D, flat:D, bull:D:r (mm)");
+  auto* tool = cmd->add_option("--tool", o->tool, "tool id in the tool table, or ball:D, flat:D, bull:D:r (mm)");
   cmd->add_option("--tools", o->tools, "tool table (default config/tools.yaml)");
   cmd->add_option("--stepover", o->stepover, "mm (default: the tool's)");
   cmd->add_option("--stepdown", o->stepdown, "mm (default: the tool's)");
   cmd->add_option("--allowance", o->allowance, "stock to leave, mm");
-  cmd->add_option("--tolerance", o->tolerance, "chord and gouge tolerance, mm");
+  auto* tolerance = cmd->add_option("--tolerance", o->tolerance, "chord and gouge tolerance, mm");
   cmd->add_option("--angle", o->angle, "raster direction, degrees");
   cmd->add_option("--units", o->units, "units of the file: mm, inch, m (STL default mm, clouds m)");
   cmd->add_flag("--json", o->json, "print one JSON object");
   cmd->add_option("-o,--out", o->out, "write toolpath.json, or a G-code program when it ends in .ngc, .nc or .gcode");
   cmd->add_option("--dialect", o->dialect, "G-code dialect for -o prog.ngc: linuxcnc or grbl")->capture_default_str();
-  cmd->callback([o] { run(*o); });
+  cmd->add_option("--orient", o->orient, "cloud: none, ransac (fit the base plane) or lowest (fit the lowest points)");
+  cmd->add_option("--origin", o->origin, "cloud: corner (program origin at the stock corner) or keep");
+  cmd->add_option("--voxel", o->voxel, "cloud: voxel downsampling leaf, mm (0: off)");
+  cmd->add_option("--outliers", o->outliers, "cloud: statistical outlier removal over K neighbours (0: off)");
+  cmd->add_option("--holes", o->holes, "cloud: bridge holes at the highest neighbour, or skip them");
+  cmd->callback([o, tool, tolerance] {
+    o->tool_given = tool->count() > 0;
+    o->tolerance_given = tolerance->count() > 0;
+    run(*o);
+  });
 });
 
 }  // namespace

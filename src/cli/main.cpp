@@ -4,6 +4,7 @@
 
 #include "command.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/heap_reuse.hpp"
 
 namespace rosmill::cli {
 std::vector<CommandSetup>& command_setups() {
@@ -13,6 +14,7 @@ std::vector<CommandSetup>& command_setups() {
 }  // namespace rosmill::cli
 
 int main(int argc, char** argv) {
+  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   CLI::App app{"rosmill: from an STL part or a 3D scan to a milling program"};
   app.require_subcommand(1);
   for (auto& setup : rosmill::cli::command_setups()) setup(app);

@@ -57,6 +57,13 @@ CloudGrid::CloudGrid(const std::vector<Vec3>& points, double cell, size_t max_ce
   }
 }
 
+CloudGrid CloudGrid::regridded(double cell) const {
+  std::vector<Vec3> pts;
+  pts.reserve(points_.size());
+  for (const GridPoint& p : points_) pts.emplace_back(p.x, p.y, p.z);
+  return CloudGrid(pts, cell);
+}
+
 int CloudGrid::col(double x) const {
   const double c = std::floor((x - x0_) / cell_);
   return int(std::clamp(c, 0.0, double(nx_ - 1)));
@@ -75,10 +82,10 @@ double auto_grid_cell(size_t n, double xy_area) {
 
 namespace {
 
-// Nearest-neighbour distance of point i: scan rings of cells outward until the ring's inner distance
-// exceeds the best distance found.
-double nearest_distance(const CloudGrid& g, const GridPoint& q) {
-  const int c0 = g.col(q.x), r0 = g.row(q.y);
+// Squared distance from (x, y, z) to the nearest point other than itself (3-D), or in plan view when `plan`:
+// scan rings of cells outward until the ring's inner distance exceeds the best distance found.
+double nearest_distance2(const CloudGrid& g, double x, double y, double z, bool plan) {
+  const int c0 = g.col(x), r0 = g.row(y);
   double best2 = std::numeric_limits<double>::infinity();
   const int max_ring = std::max(g.nx(), g.ny());
   for (int ring = 0; ring <= max_ring; ++ring) {
@@ -91,7 +98,7 @@ double nearest_distance(const CloudGrid& g, const GridPoint& q) {
         if (c >= 0 && c < g.nx()) {
           const size_t cell = g.index(c, r);
           for (const GridPoint* p = g.begin(cell); p != g.end(cell); ++p) {
-            const double dx = p->x - q.x, dy = p->y - q.y, dz = p->z - q.z;
+            const double dx = p->x - x, dy = p->y - y, dz = plan ? 0.0 : p->z - z;
             const double d2 = dx * dx + dy * dy + dz * dz;
             if (d2 > 0 && d2 < best2) best2 = d2;
           }
@@ -100,7 +107,22 @@ double nearest_distance(const CloudGrid& g, const GridPoint& q) {
       }
     }
   }
-  return std::isfinite(best2) ? std::sqrt(best2) : 0.0;
+  return best2;
+}
+
+double nearest_distance(const CloudGrid& g, const GridPoint& q) {
+  const double d2 = nearest_distance2(g, q.x, q.y, q.z, false);
+  return std::isfinite(d2) ? std::sqrt(d2) : 0.0;
+}
+
+// Radical inverse in base b (a Halton sequence coordinate): evenly spread probe positions, no random state.
+double radical_inverse(size_t i, size_t b) {
+  double f = 1.0, r = 0.0;
+  for (; i > 0; i /= b) {
+    f /= double(b);
+    r += f * double(i % b);
+  }
+  return r;
 }
 
 }  // namespace
@@ -129,6 +151,31 @@ double spacing_quantile(const CloudGrid& grid, double q, size_t samples) {
   std::vector<double> d(m);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t k = range.begin(); k != range.end(); ++k) d[k] = nearest_distance(grid, grid.points()[size_t(double(k) * stride)]);
+  });
+  const size_t at = std::min(m - 1, size_t(std::clamp(q, 0.0, 1.0) * double(m - 1)));
+  std::nth_element(d.begin(), d.begin() + at, d.end());
+  return d[at];
+}
+
+double sampling_radius(const CloudGrid& grid, const CloudGrid& coarse, double q, size_t samples) {
+  std::vector<size_t> inside;
+  for (int r = 1; r + 1 < coarse.ny(); ++r)
+    for (int c = 1; c + 1 < coarse.nx(); ++c) {
+      bool full = true;
+      for (int dr = -1; dr <= 1 && full; ++dr)
+        for (int dc = -1; dc <= 1 && full; ++dc) full = coarse.count(coarse.index(c + dc, r + dr)) > 0;
+      if (full) inside.push_back(coarse.index(c, r));
+    }
+  if (inside.empty() || grid.size() < 2) return 0.0;
+  const size_t m = std::max<size_t>(samples, 1);
+  std::vector<double> d(m);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 256), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t k = range.begin(); k != range.end(); ++k) {
+      const size_t cell = inside[k % inside.size()];
+      const double x = coarse.x0() + (double(cell % size_t(coarse.nx())) + radical_inverse(k + 1, 2)) * coarse.cell();
+      const double y = coarse.y0() + (double(cell / size_t(coarse.nx())) + radical_inverse(k + 1, 3)) * coarse.cell();
+      d[k] = std::sqrt(nearest_distance2(grid, x, y, 0.0, true));
+    }
   });
   const size_t at = std::min(m - 1, size_t(std::clamp(q, 0.0, 1.0) * double(m - 1)));
   std::nth_element(d.begin(), d.begin() + at, d.end());

@@ -8,7 +8,15 @@
 
 namespace rosmill {
 
-double auto_hole_cell(const CloudGrid& grid) { return std::max(3.5 * spacing_quantile(grid, 0.95), 1e-3); }
+double auto_hole_cell(const CloudGrid& grid) {
+  const Vec3 size = grid.bounds().size();
+  const double area = std::max(size.x() * size.y(), 1e-6);
+  // Probe cells of about 64 points (on average over the plan box).
+  const double r50 = sampling_radius(grid, grid.regridded(4 * auto_grid_cell(grid.size(), area)), 0.5);
+  if (r50 > 0) return std::max(kHoleCellRadii * r50, 1e-3);
+  // A thin cloud (no probe cell inside the data): from the nearest-neighbour spacing instead.
+  return std::max(3.5 * spacing_quantile(grid, 0.95), 1e-3);
+}
 
 const char* hole_policy_name(HolePolicy p) { return p == HolePolicy::Skip ? "skip" : "bridge"; }
 
@@ -104,16 +112,9 @@ HoleMap::HoleMap(const std::vector<Vec3>& points, double cell) : grid_(points, c
 bool HoleMap::disc_touches_hole(double x, double y, double r) const {
   if (holes_.empty()) return false;
   const int c0 = grid_.col(x - r), c1 = grid_.col(x + r), r0 = grid_.row(y - r), r1 = grid_.row(y + r);
-  const double cs = grid_.cell();
   for (int row = r0; row <= r1; ++row)
-    for (int col = c0; col <= c1; ++col) {
-      if (std::isnan(lid_[grid_.index(col, row)])) continue;
-      // Distance from (x, y) to the cell's rectangle.
-      const double lx = grid_.x0() + col * cs, ly = grid_.y0() + row * cs;
-      const double dx = std::max({lx - x, 0.0, x - (lx + cs)});
-      const double dy = std::max({ly - y, 0.0, y - (ly + cs)});
-      if (dx * dx + dy * dy <= r * r) return true;
-    }
+    for (int col = c0; col <= c1; ++col)
+      if (!std::isnan(lid_[grid_.index(col, row)]) && grid_.distance2(col, row, x, y) <= r * r) return true;
   return false;
 }
 

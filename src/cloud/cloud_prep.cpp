@@ -45,21 +45,30 @@ struct Plane {
   double distance(const Vec3& p) const { return normal.dot(p - point); }
 };
 
+constexpr size_t kRansacPoints = 20000;
+
 Plane ransac_plane(const std::vector<Vec3>& pts, double threshold, size_t* inliers) {
   if (pts.size() < 3) throw Error("cloud preparation", "a plane fit needs at least 3 points");
   const Vec3 origin = centroid(pts);
-  Cloud::Ptr cloud = to_pcl(pts, origin);
-  pcl::SampleConsensusModelPlane<pcl::PointXYZ>::Ptr model(new pcl::SampleConsensusModelPlane<pcl::PointXYZ>(cloud));
+  // The plane is searched on an even subsample (RANSAC's cost is iterations x points), then refined by least
+  // squares over its inliers among all the points.
+  const size_t stride = std::max<size_t>(1, pts.size() / kRansacPoints);
+  std::vector<Vec3> sample;
+  for (size_t i = 0; i < pts.size(); i += stride) sample.push_back(pts[i]);
+  using Model = pcl::SampleConsensusModelPlane<pcl::PointXYZ>;
+  Model::Ptr model(new Model(to_pcl(sample, origin)));
   pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model);
   ransac.setDistanceThreshold(threshold);
   ransac.setMaxIterations(1000);
   if (!ransac.computeModel()) throw Error("cloud preparation", "RANSAC found no base plane");
-  std::vector<int> in;
-  ransac.getInliers(in);
   Eigen::VectorXf coeff;
   ransac.getModelCoefficients(coeff);
+  Model::Ptr all(new Model(to_pcl(pts, origin)));
+  pcl::Indices in;
+  all->selectWithinDistance(coeff, threshold, in);
+  if (in.size() < 3) throw Error("cloud preparation", "RANSAC found no base plane");
   Eigen::VectorXf refined;
-  model->optimizeModelCoefficients(in, coeff, refined);  // least squares over the inliers
+  all->optimizeModelCoefficients(in, coeff, refined);  // least squares over the inliers
   Plane pl;
   pl.normal = Vec3(refined[0], refined[1], refined[2]);
   const double len = pl.normal.norm();
@@ -147,6 +156,27 @@ std::vector<Vec3> remove_outliers(const std::vector<Vec3>& pts, int k, double st
   return res;
 }
 
+void check_options(const CloudPrepOptions& o) {
+  const std::string w = "cloud preparation";
+  if (!o.transform.allFinite()) throw Error(w, "the transform holds a NaN or infinite number");
+  if (o.orientation == Orientation::Transform) {
+    const Eigen::Matrix3d rot = o.transform.topLeftCorner<3, 3>();
+    const bool last_row = o.transform.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-9);
+    if (!last_row || !(rot.transpose() * rot).isIdentity(1e-6) || rot.determinant() < 0)
+      throw Error(w, "the transform must be rigid (a rotation and a translation, no scale, shear or mirror)");
+  }
+  if (!(o.plane_threshold > 0) || !std::isfinite(o.plane_threshold))
+    throw Error(w, "the plane threshold must be a positive number of mm");
+  if (!(o.lowest_fraction > 0 && o.lowest_fraction <= 1)) throw Error(w, "the lowest fraction must be in (0, 1]");
+  if (o.remove_base && (o.orientation == Orientation::AsIs || o.orientation == Orientation::Transform))
+    throw Error(w, "removing the base plane needs a fitted plane (RANSAC or lowest points)");
+  if (!(o.voxel >= 0) || !std::isfinite(o.voxel)) throw Error(w, "the voxel leaf must be >= 0 mm");
+  if (o.outlier_neighbours < 0) throw Error(w, "the outlier filter's neighbour count must be >= 0");
+  if (!(o.outlier_stddev > 0) || !std::isfinite(o.outlier_stddev))
+    throw Error(w, "the outlier filter's deviation multiplier must be a positive number");
+  if (!(o.hole_cell >= 0) || !std::isfinite(o.hole_cell)) throw Error(w, "the hole cell must be >= 0 mm");
+}
+
 void report_density(const std::vector<Vec3>& pts, double hole_cell, CloudPrepReport& r) {
   Box3 box;
   for (const Vec3& p : pts) box.add(p);
@@ -157,6 +187,7 @@ void report_density(const std::vector<Vec3>& pts, double hole_cell, CloudPrepRep
   r.hole_cell = hole_cell > 0 ? hole_cell : auto_hole_cell(grid);
   const HoleMap holes(pts, r.hole_cell);
   r.hole_cell = holes.grid().cell();
+  r.sampling_radius = sampling_radius(grid, holes.grid());
   r.grid_cells = holes.cells();
   r.empty_cells = holes.empty_cells();
   r.outside_cells = holes.outside_cells();
@@ -166,6 +197,7 @@ void report_density(const std::vector<Vec3>& pts, double hole_cell, CloudPrepRep
 }  // namespace
 
 PointCloud prepare_cloud(const std::vector<Vec3>& input, const CloudPrepOptions& o, CloudPrepReport* report) {
+  check_options(o);
   CloudPrepReport r;
   r.points_in = input.size();
   const double scale = mm_per_unit(o.units);
@@ -209,6 +241,7 @@ PointCloud prepare_cloud(const std::vector<Vec3>& input, const CloudPrepOptions&
     pts = remove_outliers(pts, o.outlier_neighbours, o.outlier_stddev);
     r.removed_outliers = before - pts.size();
   }
+  if (pts.empty()) throw Error("cloud preparation", "no point left after the filters");
   if (o.origin_at_corner) {
     Box3 box;
     for (const Vec3& p : pts) box.add(p);
@@ -235,7 +268,7 @@ std::string format_prep_report(const CloudPrepReport& r) {
   if (r.plane_inliers) s << " (" << r.plane_inliers << " plane points)";
   s << "\nbase points removed: " << r.removed_base << "\nafter voxel filter: " << r.after_voxel
     << "\noutliers removed: " << r.removed_outliers << "\npoints out: " << r.points_out
-    << "\nmean spacing: " << r.mean_spacing << " mm\nhole grid: " << r.grid_cells << " cells of " << r.hole_cell
+    << "\nmean spacing: " << r.mean_spacing << " mm\nsampling radius: " << r.sampling_radius << " mm\nhole grid: " << r.grid_cells << " cells of " << r.hole_cell
     << " mm, " << r.empty_cells << " empty (" << r.outside_cells << " outside the part)\nholes: " << r.holes.size()
     << '\n';
   for (const Hole& h : r.holes)

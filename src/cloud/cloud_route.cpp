@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rosmill/cloud/cloud_sweep.hpp"
 #include "rosmill/error.hpp"
 
 namespace rosmill::cloud_detail {
@@ -13,16 +14,66 @@ void ProgressRange::operator()(double f) const {
 
 namespace {
 
-void add_segment(Route& r, const Vec2& a, const Vec2& b, double step, bool include_start) {
-  const double len = (b - a).norm();
-  const size_t n = std::max<size_t>(1, size_t(std::ceil(len / step)));
+size_t segment_steps(const Vec2& a, const Vec2& b, double step) {
+  return std::max<size_t>(1, size_t(std::ceil((b - a).norm() / step)));
+}
+
+void add_segment(const Vec2& a, const Vec2& b, double step, bool include_start, std::vector<Vec2>& xy,
+                 std::vector<uint8_t>& corner) {
+  const size_t n = segment_steps(a, b, step);
   for (size_t i = include_start ? 0 : 1; i <= n; ++i) {
-    r.xy.push_back(a + (b - a) * (double(i) / double(n)));
-    r.corner.push_back(i == 0 || i == n);
+    xy.push_back(a + (b - a) * (double(i) / double(n)));
+    corner.push_back(i == 0 || i == n);
   }
 }
 
 }  // namespace
+
+Zigzag::Zigzag(double angle_deg, double u0, double u1, std::vector<double> v, double step)
+    : u0_(u0), u1_(u1), step_(step), v_(std::move(v)) {
+  if (!(step > 0) || !std::isfinite(step)) throw Error("plan", "sample step must be a positive number");
+  const double a = angle_deg * M_PI / 180.0;
+  du_ = Vec2(std::cos(a), std::sin(a));
+  dv_ = Vec2(-std::sin(a), std::cos(a));
+}
+
+void Zigzag::samples(size_t j, std::vector<Vec2>& xy, std::vector<uint8_t>& corner) const {
+  xy.clear();
+  corner.clear();
+  const bool forward = j % 2 == 0;
+  const Vec2 start = at(forward ? u0_ : u1_, v_[j]), end = at(forward ? u1_ : u0_, v_[j]);
+  if (j > 0) {
+    const Vec2 prev_end = at(forward ? u0_ : u1_, v_[j - 1]);  // the previous line ran the other way
+    xy.push_back(prev_end);
+    corner.push_back(1);
+    add_segment(prev_end, start, step_, false, xy, corner);
+  }
+  add_segment(start, end, step_, j == 0, xy, corner);
+}
+
+size_t Zigzag::sample_count(size_t j) const {
+  const size_t line = segment_steps(at(u0_, 0), at(u1_, 0), step_);
+  if (j == 0) return line + 1;
+  return segment_steps(at(0, v_[j - 1]), at(0, v_[j]), step_) + line;
+}
+
+Route whole_route(const Zigzag& z) {
+  Route r;
+  size_t n = 0;
+  for (size_t j = 0; j < z.lines(); ++j) n += z.sample_count(j);
+  r.xy.reserve(n);
+  r.corner.reserve(n);
+  std::vector<Vec2> xy;
+  std::vector<uint8_t> corner;
+  for (size_t j = 0; j < z.lines(); ++j) {
+    z.samples(j, xy, corner);
+    const size_t from = j > 0 ? 1 : 0;
+    r.xy.insert(r.xy.end(), xy.begin() + long(from), xy.end());
+    r.corner.insert(r.corner.end(), corner.begin() + long(from), corner.end());
+  }
+  r.lines = z.lines();
+  return r;
+}
 
 void box_extent(const Box3& box, double angle_deg, double& u0, double& u1, double& v0, double& v1) {
   const double a = angle_deg * M_PI / 180.0;
@@ -37,22 +88,6 @@ void box_extent(const Box3& box, double angle_deg, double& u0, double& u1, doubl
       v0 = std::min(v0, p.dot(v));
       v1 = std::max(v1, p.dot(v));
     }
-}
-
-Route zigzag_route(double angle_deg, double u0, double u1, const std::vector<double>& v, double step) {
-  if (!(step > 0)) throw Error("plan", "sample step must be positive");
-  const double a = angle_deg * M_PI / 180.0;
-  const Vec2 du(std::cos(a), std::sin(a)), dv(-std::sin(a), std::cos(a));
-  Route r;
-  for (size_t j = 0; j < v.size(); ++j) {
-    const bool forward = j % 2 == 0;
-    const Vec2 start = du * (forward ? u0 : u1) + dv * v[j];
-    const Vec2 end = du * (forward ? u1 : u0) + dv * v[j];
-    r.line_start.push_back(uint32_t(r.xy.size()));
-    if (j > 0) add_segment(r, r.xy.back(), start, step, false);  // the step across, at the lines' ends
-    add_segment(r, start, end, step, j == 0);
-  }
-  return r;
 }
 
 std::vector<double> route_drops(const CloudSurface& s, const Cutter& cutter, const Route& route,
@@ -71,51 +106,24 @@ std::vector<double> route_drops(const CloudSurface& s, const Cutter& cutter, con
   return z;
 }
 
-namespace {
-
-// Splits [a, b] at the sample of largest |ε| while it exceeds eps (the seed's binary tree of buffer points).
-size_t refine(const std::vector<Vec3>& cl, size_t a, size_t b, double eps, std::vector<uint32_t>& out) {
-  if (b <= a + 1) return 0;
-  const Vec3& p1 = cl[a];
-  const Vec3& p2 = cl[b];
-  const Vec2 d = (p2 - p1).head<2>();
-  const double len2 = d.squaredNorm();
-  double worst = 0.0;
-  size_t at = a;
-  for (size_t i = a + 1; i < b; ++i) {
-    // Pd: the chord's height above Pi's plan position (seed: Pd.z = P1.z - (P1.x - Pi.x)(P1.z - P2.z)/(P1.x - P2.x),
-    // with the distance along the line in place of x so any raster direction works).
-    const double t = len2 > 0 ? std::clamp((cl[i] - p1).head<2>().dot(d) / len2, 0.0, 1.0) : 0.0;
-    const double eps_i = std::abs(cl[i].z() - (p1.z() + t * (p2.z() - p1.z())));
-    if (eps_i > worst) {
-      worst = eps_i;
-      at = i;
-    }
+size_t checked_move(const CloudSurface& s, const Cutter& cutter, double delta, double t, const Vec3& a,
+                    const Vec3& b, std::vector<Vec3>& out, int depth) {
+  const Vec3 lift(0, 0, delta);
+  const SweepHit hit = sweep_depth(s, cutter, a - lift, b - lift, t);
+  if (hit.depth <= t) {
+    out.push_back(b);
+    return 0;
   }
-  if (worst <= eps) return 0;
-  size_t n = 1 + refine(cl, a, at, eps, out);
-  out.push_back(uint32_t(at));
-  return n + refine(cl, at, b, eps, out);
-}
-
-}  // namespace
-
-size_t buffer_points(const std::vector<Vec3>& cl, const std::vector<uint8_t>& corner, size_t first, size_t last,
-                     double interval, double eps, std::vector<uint32_t>& kept) {
-  size_t buffers = 0;
-  kept.push_back(uint32_t(first));
-  size_t prev = first;
-  double run = 0.0;
-  for (size_t i = first + 1; i <= last; ++i) {
-    run += (cl[i] - cl[i - 1]).head<2>().norm();
-    if (i == last || corner[i] || run >= interval - 1e-9) {
-      buffers += refine(cl, prev, i, eps, kept);
-      kept.push_back(uint32_t(i));
-      prev = i;
-      run = 0.0;
-    }
+  const Vec2 m = a.head<2>() + (b - a).head<2>() * hit.at;
+  if (depth >= 40 || (b - a).head<2>().norm() < 1e-4) {
+    // The CL jumps here (a point met by the cutter's side): go up first or come down last.
+    out.push_back(b.z() > a.z() ? Vec3(a.x(), a.y(), b.z()) : Vec3(b.x(), b.y(), a.z()));
+    out.push_back(b);
+    return 1;
   }
-  return buffers;
+  const Vec3 mid(m.x(), m.y(), std::max(s.drop(cutter, m.x(), m.y()).z, s.bounds().min.z()) + delta);  // the floor
+  const size_t n = 1 + checked_move(s, cutter, delta, t, a, mid, out, depth + 1);
+  return n + checked_move(s, cutter, delta, t, mid, b, out, depth + 1);
 }
 
 void drop_collinear(std::vector<Vec3>& pts) {

@@ -3,33 +3,35 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/plan/plan_support.hpp"
 
 namespace rosmill {
 namespace {
 
-// The cutter's profile, prepared once per query.
-struct Profile {
-  double R, r, Rf, R2, Rf2;
-  explicit Profile(const Cutter& c) {
-    R = c.radius();
-    r = c.type == CutterType::FlatEnd ? 0.0 : c.type == CutterType::BallEnd ? R : std::clamp(c.corner_radius, 0.0, R);
-    Rf = R - r;
-    R2 = R * R;
-    Rf2 = Rf * Rf;
-  }
-  // Tip height at which the cutter touches something at height z, plan distance² d2 (d2 <= R2).
-  double tip(double z, double d2) const {
-    if (d2 <= Rf2) return z;
-    if (Rf == 0.0) return z - r + std::sqrt(std::max(0.0, r * r - d2));
-    const double u = std::sqrt(d2) - Rf;
-    return z - r + std::sqrt(std::max(0.0, r * r - u * u));
-  }
-};
+constexpr double kNothing = -std::numeric_limits<double>::infinity();
+
+double corner_radius(const Cutter& c) {
+  const double R = c.radius();
+  return c.type == CutterType::FlatEnd ? 0.0 : c.type == CutterType::BallEnd ? R : std::clamp(c.corner_radius, 0.0, R);
+}
+
+// The strategies of the engine (raster, waterline, rough) run on a cloud through this Surface; the sink
+// allowed between points is the plan's tolerance.
+const bool kFactoryRegistered = [] {
+  cloud_surface_factory() = [](const PointCloud& cloud, const PlanParams& params) -> std::unique_ptr<Surface> {
+    CloudSurfaceOptions o;
+    if (params.tolerance > 0) o.max_sink = params.tolerance;
+    return std::make_unique<CloudSurface>(cloud, o);
+  };
+  return true;
+}();
 
 }  // namespace
 
@@ -38,7 +40,12 @@ CloudSurface::CloudSurface(const PointCloud& cloud, const CloudSurfaceOptions& o
 CloudSurface::CloudSurface(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) { build(points, options); }
 
 void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) {
+  (void)kFactoryRegistered;
   if (points.empty()) throw Error("cloud surface", "the cloud has no points");
+  if (!(options.max_sink > 0) || !std::isfinite(options.max_sink))
+    throw Error("cloud surface", "the sink allowed between points must be a positive number of mm");
+  if (!std::isnan(options.sampling_radius) && !(options.sampling_radius >= 0 && std::isfinite(options.sampling_radius)))
+    throw Error("cloud surface", "the sampling radius must be >= 0 mm (or NaN: estimated)");
   for (const Vec3& p : points)
     if (!p.allFinite()) throw Error("cloud surface", "the cloud holds a NaN or infinite point (prepare it first)");
   Box3 box;
@@ -47,53 +54,87 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   const double cell = options.cell > 0 ? options.cell : auto_grid_cell(points.size(), std::max(size.x() * size.y(), 1e-6));
   grid_ = CloudGrid(points, cell);
   spacing_ = rosmill::mean_spacing(grid_);
-  if (options.detect_holes && spacing_ > 0) {
-    const double hole_cell = options.hole_cell > 0 ? options.hole_cell : auto_hole_cell(grid_);
-    holes_ = HoleMap(points, hole_cell);
+  max_sink_ = options.max_sink;
+  const double hole_cell = options.hole_cell > 0 ? options.hole_cell : auto_hole_cell(grid_);
+  if (options.detect_holes && spacing_ > 0) holes_ = HoleMap(points, hole_cell);
+  if (!std::isnan(options.sampling_radius)) {
+    sampling_radius_ = options.sampling_radius;
+  } else if (spacing_ > 0) {
+    sampling_radius_ = rosmill::sampling_radius(grid_, options.detect_holes ? holes_.grid() : CloudGrid(points, hole_cell));
   }
 }
 
+double CloudSurface::support_radius(const Cutter& cutter) const {
+  return std::max(0.0, sampling_radius_ - std::sqrt(2.0 * corner_radius(cutter) * max_sink_));
+}
+
+Cutter CloudSurface::supported(const Cutter& cutter) const {
+  const double c = support_radius(cutter);
+  if (c == 0.0) return cutter;
+  return Cutter::bull(cutter.diameter + 2 * c, corner_radius(cutter));
+}
+
 Drop CloudSurface::drop(const Cutter& cutter, double x, double y) const {
-  const Profile pf(cutter);
-  double best = -std::numeric_limits<double>::infinity();
-  const int c0 = grid_.col(x - pf.R), c1 = grid_.col(x + pf.R);
-  const int r0 = grid_.row(y - pf.R), r1 = grid_.row(y + pf.R);
+  const GridPoint* hint = nullptr;
+  return drop_hinted(CutterProfile(supported(cutter)), CutterProfile(cutter), x, y, hint);
+}
+
+Drop CloudSurface::drop_hinted(const CutterProfile& cp, const CutterProfile& lid_cp, double x, double y,
+                               const GridPoint*& hint) const {
+  double best = kNothing;
+  const GridPoint* winner = nullptr;
+  // A good first bound lets most cells be skipped: the point that held the cutter at the previous position
+  // along the route usually holds it nearly as high here.
+  if (hint) {
+    const double dx = hint->x - x, dy = hint->y - y, d2 = dx * dx + dy * dy;
+    if (d2 <= cp.R2) best = hint->z - cp.height_sq(d2), winner = hint;
+  }
+  auto scan = [&](int col, int row, double d2min) {
+    const size_t cell = grid_.index(col, row);
+    if (grid_.zmax(cell) - cp.height_sq(d2min) <= best) return;
+    for (const GridPoint *p = grid_.begin(cell), *e = grid_.end(cell); p != e; ++p) {
+      if (p->z <= best) continue;
+      const double dx = p->x - x, dy = p->y - y, d2 = dx * dx + dy * dy;
+      if (d2 > cp.R2) continue;
+      const double z = p->z - cp.height_sq(d2);
+      if (z > best) best = z, winner = p;
+    }
+  };
+  // Then the cell under the axis: its points usually hold the cutter highest.
+  const int cc = grid_.col(x), cr = grid_.row(y);
+  scan(cc, cr, 0.0);
+  const int c0 = grid_.col(x - cp.R), c1 = grid_.col(x + cp.R);
+  const int r0 = grid_.row(y - cp.R), r1 = grid_.row(y + cp.R);
   for (int row = r0; row <= r1; ++row)
     for (int col = c0; col <= c1; ++col) {
-      const size_t cell = grid_.index(col, row);
-      // Every candidate is at most its point's z: a cell whose highest point is not above the best so far
-      // cannot raise the cutter.
-      if (grid_.zmax(cell) <= best) continue;
-      for (const GridPoint* p = grid_.begin(cell), *e = grid_.end(cell); p != e; ++p) {
-        if (p->z <= best) continue;
-        const double dx = p->x - x, dy = p->y - y, d2 = dx * dx + dy * dy;
-        if (d2 > pf.R2) continue;
-        best = std::max(best, pf.tip(p->z, d2));
-      }
+      const double d2 = grid_.distance2(col, row, x, y);
+      if ((col == cc && row == cr) || d2 > cp.R2) continue;
+      scan(col, row, d2);
     }
+  hint = winner;
   if (holes_.any()) {
-    // A lid is a flat rectangle: the cutter touches it at the rectangle's nearest point.
+    // A lid is a flat rectangle (a surface, not a point: no support disc): the cutter touches it at the
+    // rectangle's nearest point.
     const CloudGrid& hg = holes_.grid();
-    const double cs = hg.cell();
-    const int h0 = hg.col(x - pf.R), h1 = hg.col(x + pf.R), v0 = hg.row(y - pf.R), v1 = hg.row(y + pf.R);
+    const int h0 = hg.col(x - lid_cp.R), h1 = hg.col(x + lid_cp.R);
+    const int v0 = hg.row(y - lid_cp.R), v1 = hg.row(y + lid_cp.R);
     for (int row = v0; row <= v1; ++row)
       for (int col = h0; col <= h1; ++col) {
         const double lid = holes_.lid(hg.index(col, row));
         if (!(lid > best)) continue;
-        const double lx = hg.x0() + col * cs, ly = hg.y0() + row * cs;
-        const double dx = std::max({lx - x, 0.0, x - (lx + cs)});
-        const double dy = std::max({ly - y, 0.0, y - (ly + cs)});
-        const double d2 = dx * dx + dy * dy;
-        if (d2 <= pf.R2) best = std::max(best, pf.tip(lid, d2));
+        const double d2 = hg.distance2(col, row, x, y);
+        if (d2 <= lid_cp.R2) best = std::max(best, lid - lid_cp.height_sq(d2));
       }
   }
-  if (best == -std::numeric_limits<double>::infinity()) return Drop{grid_.bounds().min.z(), false};
+  if (best == kNothing) return Drop{grid_.bounds().min.z(), false};
   return Drop{best, true};
 }
 
 void CloudSurface::drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const {
+  const CutterProfile cp(supported(cutter)), lid_cp(cutter);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 512), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i) out[i] = drop(cutter, xy[i].x(), xy[i].y());
+    const GridPoint* hint = nullptr;
+    for (size_t i = range.begin(); i != range.end(); ++i) out[i] = drop_hinted(cp, lid_cp, xy[i].x(), xy[i].y(), hint);
   });
 }
 

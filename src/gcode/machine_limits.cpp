@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -95,9 +96,25 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
   std::vector<Step> steps;
   ModalState s;
   double top = -INFINITY;
+  auto add = [&](size_t line, std::string limit, std::string detail) {
+    out.push_back({line + 1, std::move(limit), std::move(detail), lines[line]});
+  };
+  int offset_before = s.work_offset;
   for (size_t i = 0; i < lines.size(); ++i) {
     const std::string where = "line " + std::to_string(i + 1);
-    const BlockMotion bm = apply_block(s, parse_block(lines[i], where), where);
+    const Block block = parse_block(lines[i], where);
+    const BlockMotion bm = apply_block(s, block, where);
+    // What the checker cannot follow is refused rather than passed unchecked: moves to stored or machine
+    // positions, offset changes, and work offsets other than the one the machine file gives.
+    for (int g : block.g_codes()) {
+      if (g == 280 || g == 300 || g == 530)
+        add(i, "unchecked move", "G" + fmt(g / 10.0) + " goes to a stored or machine position the checker cannot follow");
+      if (g == 100 || g == 920 || g == 921 || g == 922 || g == 923)
+        add(i, "unchecked move", "G" + fmt(g / 10.0) + " changes an offset; later positions could not be checked");
+    }
+    if (s.work_offset != 54 && s.work_offset != offset_before)
+      add(i, "work offset", "G" + std::to_string(s.work_offset) + " selected; the machine file gives G54's origin only");
+    offset_before = s.work_offset;
     steps.push_back({i, bm, s.feed, s.spindle_rpm, s.spindle});
     // Cutting moves across the part (not plunges or feed retracts) run inside the stock.
     if (bm.moved && bm.motion != 0 && bm.to_known[2] && (bm.to.x() != bm.from.x() || bm.to.y() != bm.from.y()))
@@ -105,9 +122,6 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
   }
   const double stock_top = std::isnan(o.stock_top) ? top : o.stock_top;
   const double rapid_floor = stock_top + lim.clearance_over_stock;
-  auto add = [&](size_t line, std::string limit, std::string detail) {
-    if (out.size() < o.max_violations) out.push_back({line + 1, std::move(limit), std::move(detail), lines[line]});
-  };
   static const char* axis = "xyz";
   for (const Step& st : steps) {
     const BlockMotion& bm = st.motion;
@@ -171,6 +185,9 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
                                             fmt(lim.clearance_over_stock) + " mm clearance");
     }
   }
+  // By line, the checks in their order within a line; at most max_violations.
+  std::stable_sort(out.begin(), out.end(), [](const LimitViolation& a, const LimitViolation& b) { return a.line < b.line; });
+  if (out.size() > o.max_violations) out.resize(o.max_violations);
   return out;
 }
 

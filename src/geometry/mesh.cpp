@@ -185,13 +185,6 @@ Mesh finish_mesh(Mesh mesh) {
 
 }  // namespace
 
-uint32_t Mesh::neighbour(size_t f, int i) const {
-  const MeshEdge& e = edges[face_edges[f][i]];
-  if (e.face_count != 2) return kNone;
-  const uint32_t f0 = edge_faces[e.first_face], f1 = edge_faces[e.first_face + 1];
-  return f0 == f ? f1 : f0;
-}
-
 bool Mesh::closed() const {
   if (faces.empty()) return false;
   for (const MeshEdge& e : edges)

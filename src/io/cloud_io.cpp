@@ -3,6 +3,7 @@
 #include "rosmill/io/cloud_io.hpp"
 
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
@@ -90,6 +91,9 @@ size_t type_size(uint8_t type) {
 }
 
 void read_blob(const std::string& path, const std::string& format, pcl::PCLPointCloud2& blob) {
+  // PCL prints a warning for every element it does not read (a PLY mesh's faces); only the points are wanted,
+  // and real problems come back as a return code turned into an Error below.
+  pcl::console::setVerbosityLevel(pcl::console::L_ERROR);
   int rc = -1;
   try {
     if (format == "pcd") {

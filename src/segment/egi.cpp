@@ -16,6 +16,14 @@ Vec3 direction(double polar, double azimuth) {
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
 
+// A number in [0, 4) that grows with the angle of (x, y) from +X counter-clockwise, as atan2 does, but with one
+// division: the "diamond angle". A zero vector (either sign) gives 0.
+double pseudo_angle(double x, double y) {
+  if (x == 0.0 && y == 0.0) return 0.0;
+  if (y >= 0.0) return x >= 0.0 ? y / (x + y) : 1.0 - x / (y - x);
+  return x < 0.0 ? 2.0 - y / (-x - y) : 3.0 + x / (x - y);
+}
+
 }  // namespace
 
 EgiBins::EgiBins(int rings) : rings_(rings), ring_step_(M_PI / std::max(rings, 1)) {
@@ -44,17 +52,39 @@ EgiBins::EgiBins(int rings) : rings_(rings), ring_step_(M_PI / std::max(rings, 1
       radii_.push_back(radius + std::max(width, ring_step_) / samples);
     }
     ring_first_.push_back(uint32_t(centres_.size()));
+    // Sector s starts at azimuth -pi + s * width, i.e. at angle s * width of the reversed direction (-x, -y).
+    for (int s = 0; s < sectors; ++s)
+      sector_start_.push_back(s == 0 ? 0.0 : pseudo_angle(std::cos(s * width), std::sin(s * width)));
   }
+  for (int r = 1; r < rings; ++r) ring_border_cos_.push_back(std::cos(r * ring_step_));
+}
+
+uint32_t EgiBins::ring_of(double z) const {
+  // The ring's polar angle passes r * step where z drops below cos(r * step).
+  uint32_t lo = 0, hi = uint32_t(ring_border_cos_.size());
+  while (lo < hi) {
+    const uint32_t mid = (lo + hi) / 2;
+    if (z < ring_border_cos_[mid]) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo;
+}
+
+uint32_t EgiBins::sector_of(uint32_t ring, double x, double y) const {
+  const double a = pseudo_angle(-x, -y);
+  const double* first = sector_start_.data() + ring_first_[ring];
+  const double* last = sector_start_.data() + ring_first_[ring + 1];
+  return uint32_t(std::upper_bound(first + 1, last, a) - first) - 1;
 }
 
 uint32_t EgiBins::bin_of(const Vec3& n) const {
-  const double polar = std::acos(std::clamp(n.z(), -1.0, 1.0));
-  const int ring = std::min(rings_ - 1, int(polar / ring_step_));
-  const uint32_t first = ring_first_[ring], sectors = ring_first_[ring + 1] - first;
-  // + 0.0 folds -0 into +0: the normals of one flat face at a pole must not spread over the polar sectors.
-  const double azimuth = std::atan2(n.y() + 0.0, n.x() + 0.0);  // [-pi, pi]
-  const uint32_t s = std::min(sectors - 1, uint32_t((azimuth + M_PI) / (2.0 * M_PI) * sectors));
-  return first + s;
+  const uint32_t ring = ring_of(n.z());
+  return ring_first_[ring] + sector_of(ring, n.x(), n.y());
+}
+
+const EgiBins& default_egi_bins() {
+  static const EgiBins bins;
+  return bins;
 }
 
 double EgiBins::solid_angle(uint32_t bin) const {
@@ -67,7 +97,7 @@ EgiSet::EgiSet(const SurfacePatches& patches, const EgiBins& bins) : patches_(&p
   const Mesh& mesh = patches.mesh();
   const int64_t n = int64_t(mesh.face_count());
   std::vector<uint32_t> bin(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > 20000)
   for (int64_t f = 0; f < n; ++f) bin[f] = bins_.bin_of(mesh.normals[f]);
 
   // Each patch's facets are contiguous in facet_order: sum into a dense histogram, then keep the bins touched.

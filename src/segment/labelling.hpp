@@ -12,7 +12,8 @@ namespace rosmill::segment::detail {
 // Renumbers labels 0..count-1 in the order of their first facet; returns count.
 uint32_t compact_labels(std::vector<uint32_t>& labels, uint32_t label_bound);
 
-// Labels that share an edge, with the length they share. a < b; one entry per pair (lengths summed).
+// Labels that share an edge, with the length they share. a < b; one entry per pair (lengths summed), in the
+// order of the pairs' first edges.
 struct LabelPair {
   uint32_t a, b;
   double length;

@@ -23,15 +23,13 @@ Vec3 axis_of(char c, const std::string& text) {
 
 }  // namespace
 
-bool SetupFilter::reaches(const Vec3& n) const {
-  const double limit = max_angle_deg * M_PI / 180.0;
-  switch (kind) {
-    case Kind::ThreeAxis: return n.dot(axis) >= std::cos(limit) - kSlack;
-    case Kind::FourAxis: return std::abs(n.dot(axis)) <= std::sin(std::min(limit, M_PI / 2)) + kSlack;
-    case Kind::FiveAxis: return true;
-  }
-  return true;
+ReachTest::ReachTest(const SetupFilter& filter) : kind_(filter.kind), axis_(filter.axis), bound_(0.0) {
+  const double limit = filter.max_angle_deg * M_PI / 180.0;
+  if (kind_ == SetupFilter::Kind::ThreeAxis) bound_ = std::cos(limit) - kSlack;
+  if (kind_ == SetupFilter::Kind::FourAxis) bound_ = std::sin(std::min(limit, M_PI / 2)) + kSlack;
 }
+
+bool SetupFilter::reaches(const Vec3& n) const { return ReachTest(*this)(n); }
 
 double SetupFilter::angle_to_allowed(const Vec3& d) const {
   switch (kind) {

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "labelling.hpp"
-#include "union_find.hpp"
 
 namespace rosmill::segment {
 namespace {
@@ -55,6 +54,49 @@ void settle_degenerate(const SurfacePatches& patches, std::vector<uint8_t>& reac
   }
 }
 
+// Labels the connected parts of equal reachability, part by part (so without a union-find over every facet): a
+// patch that is all reachable or all not stays one part; a mixed one is flooded across its manifold edges, and
+// the edges between its parts join `edges`. Returns the number of parts.
+uint32_t split_by_reach(const SurfacePatches& patches, const std::vector<uint8_t>& reach,
+                        std::vector<uint32_t>& labels, std::vector<uint32_t>& edges) {
+  const Mesh& mesh = patches.mesh();
+  labels.assign(mesh.face_count(), kNone);
+  std::vector<uint32_t> stack;
+  uint32_t count = 0;
+  for (const Patch& p : patches.patches()) {
+    const uint32_t* begin = patches.facets_begin(p);
+    const uint32_t* end = patches.facets_end(p);
+    bool mixed = false;
+    for (const uint32_t* f = begin; f != end && !mixed; ++f) mixed = reach[*f] != reach[*begin];
+    if (!mixed) {
+      for (const uint32_t* f = begin; f != end; ++f) labels[*f] = count;
+      ++count;
+      continue;
+    }
+    for (const uint32_t* seed = begin; seed != end; ++seed) {
+      if (labels[*seed] != kNone) continue;
+      labels[*seed] = count;
+      stack.assign(1, *seed);
+      while (!stack.empty()) {
+        const uint32_t f = stack.back();
+        stack.pop_back();
+        for (int i = 0; i < 3; ++i) {
+          const uint32_t g = mesh.neighbour(f, i);
+          if (g == kNone || patches.label(g) != p.id) continue;
+          if (reach[g] != reach[f]) {
+            if (f < g) edges.push_back(mesh.face_edges[f][i]);
+          } else if (labels[g] == kNone) {
+            labels[g] = count;
+            stack.push_back(g);
+          }
+        }
+      }
+      ++count;
+    }
+  }
+  return count;
+}
+
 }  // namespace
 
 std::vector<uint8_t> reachable_facets(const EgiSet& egis, const SetupFilter& filter, size_t* whole) {
@@ -64,10 +106,11 @@ std::vector<uint8_t> reachable_facets(const EgiSet& egis, const SetupFilter& fil
   const int64_t n = int64_t(mesh.face_count());
   std::vector<uint8_t> reach(n);
   const uint32_t* label = patches.labels().data();
-#pragma omp parallel for schedule(static)
+  const ReachTest reaches(filter);
+#pragma omp parallel for schedule(static) if (n > 20000)
   for (int64_t f = 0; f < n; ++f) {
     const Verdict v = verdict[label[f]];
-    reach[f] = v == Verdict::Mixed ? uint8_t(filter.reaches(mesh.normals[f])) : uint8_t(v);
+    reach[f] = v == Verdict::Mixed ? uint8_t(reaches(mesh.normals[f])) : uint8_t(v);
   }
   return reach;
 }
@@ -87,32 +130,8 @@ SetupSegmentation segment_setup(const EgiSet& egis, const SetupFilter& filter, c
   settle_degenerate(patches, out.reachable_);
   std::vector<uint8_t>& reach = out.reachable_;
 
-  // Connected parts of equal reachability: a patch decided whole stays one part (its facets point at its first,
-  // smallest facet); a mixed patch is flooded across its manifold edges.
-  detail::UnionFind sets(mesh.face_count());
   std::vector<uint32_t> edges = patches.cut_edges();
-  for (const Patch& p : patches.patches()) {
-    const uint32_t* begin = patches.facets_begin(p);
-    const uint32_t* end = patches.facets_end(p);
-    bool mixed = false;
-    for (const uint32_t* f = begin; f != end && !mixed; ++f) mixed = reach[*f] != reach[*begin];
-    if (!mixed) {
-      for (const uint32_t* f = begin; f != end; ++f) sets.unite(*f, *begin);
-      continue;
-    }
-    for (const uint32_t* f = begin; f != end; ++f)
-      for (int i = 0; i < 3; ++i) {
-        const uint32_t g = mesh.neighbour(*f, i);
-        if (g == kNone || g < *f || patches.label(g) != p.id) continue;
-        if (reach[g] == reach[*f])
-          sets.unite(*f, g);
-        else
-          edges.push_back(mesh.face_edges[*f][i]);
-      }
-  }
-  out.labels_.resize(mesh.face_count());
-  for (uint32_t f = 0; f < mesh.face_count(); ++f) out.labels_[f] = sets.find(f);
-  uint32_t count = detail::compact_labels(out.labels_, uint32_t(mesh.face_count()));
+  uint32_t count = split_by_reach(patches, reach, out.labels_, edges);
 
   // Recombination, preferring a neighbour cut from the same patch.
   std::vector<uint32_t> group(count);

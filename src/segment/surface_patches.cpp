@@ -30,7 +30,7 @@ std::vector<uint8_t> soft_edges(const Mesh& mesh, double threshold, MeshNotes& n
   const int64_t n = int64_t(mesh.edges.size());
   std::vector<uint8_t> soft(mesh.edges.size());
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
-#pragma omp parallel for schedule(static) reduction(+ : open, nonmanifold, inconsistent)
+#pragma omp parallel for schedule(static) reduction(+ : open, nonmanifold, inconsistent) if (n > 20000)
   for (int64_t e = 0; e < n; ++e) {
     const MeshEdge& edge = mesh.edges[e];
     uint8_t pass = 0;

@@ -3,18 +3,20 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rosmill/verify/cutter_profile.hpp"
+#include "rosmill/cutter/contact.hpp"
 
 namespace rosmill::verify {
 namespace {
 
 constexpr double kFlatSlope = 0.2;  // about 11 degrees
 
-// The finishing tool's stepover and the squared axis distance that counts as between two of its passes.
-double finishing_window_d2(const CutterProfile& prof, double stepover, double cell) {
-  const double half = stepover > 0 ? 0.5 * stepover : 0.5 * prof.radius;
-  const double w = half + 0.5 * cell;
-  return w * w;
+// The profile of the finishing tool (the tool of the last move).
+CutterProfile finishing_profile(const MachineProgram& program) {
+  return CutterProfile(program.moves.empty() ? Cutter{} : program.tools[program.moves.back().tool].cutter);
+}
+
+double stepover_of(const MachineProgram& program, const CompareOptions& options) {
+  return options.stepover > 0 ? options.stepover : program.finishing_stepover;
 }
 
 // Cells where the design is nearly flat (slope under `max_slope`) everywhere within `radius`: there the cutter's
@@ -50,26 +52,38 @@ std::vector<uint8_t> flat_floor_cells(const std::vector<float>& z, const GridSpe
 
 }  // namespace
 
+double scallop_theory(const Cutter& cutter, double stepover) {
+  const CutterProfile cp(cutter);
+  return cp.height(std::min(cp.R, 0.5 * stepover));
+}
+
+double scallop_window(const MachineProgram& program, const CompareOptions& options, double cell) {
+  const double s = stepover_of(program, options);
+  return (s > 0 ? 0.5 * s : 0.5 * finishing_profile(program).R) + 0.5 * cell;
+}
+
 DeviationReport compare(const Stock& stock, const std::vector<float>& design, const MachineProgram& program,
                         const SimulationResult& sim, const CompareOptions& options, DeviationGrid* grid) {
   const GridSpec& g = stock.grid;
   DeviationReport r;
   r.cells = g.cells();
   const double tol = options.tolerance;
-  r.stepover_mm = options.stepover > 0 ? options.stepover : program.finishing_stepover;
-  CutterProfile finish;
-  if (!program.tools.empty()) finish = CutterProfile::of(program.tools[sim.finishing_tool].cutter);
-  if (r.stepover_mm > 0) r.scallop_theory_mm = finish.scallop(r.stepover_mm);
-  const double window_d2 = finishing_window_d2(finish, r.stepover_mm, g.cell);
+  r.from_gcode = program.from_gcode;
+  r.stepover_mm = stepover_of(program, options);
+  const CutterProfile finish = finishing_profile(program);
+  if (r.stepover_mm > 0) r.scallop_theory_mm = scallop_theory(program.tools[sim.finishing_tool].cutter, r.stepover_mm);
+  const double window = scallop_window(program, options, g.cell), window_d2 = window * window;
   const bool traced = sim.finish_axis_d2.size() == g.cells();
   if (grid) {
     grid->grid = g;
     grid->machined = stock.top;
     grid->design = design;
     grid->deviation.assign(g.cells(), std::numeric_limits<float>::quiet_NaN());
+    grid->cut.resize(g.cells());
+    for (size_t c = 0; c < g.cells(); ++c) grid->cut[c] = stock.cut_by[c] != Stock::kNoMove;
     grid->tolerance = tol;
   }
-  const std::vector<uint8_t> flat = flat_floor_cells(design, g, kFlatSlope, finish.radius);
+  const std::vector<uint8_t> flat = flat_floor_cells(design, g, kFlatSlope, finish.R);
   double rest_sum = 0.0;
   size_t gouge_cell = 0, unreached = 0;
   for (size_t c = 0; c < g.cells(); ++c) {

@@ -1,21 +1,41 @@
 #include "rosmill/verify/height_field.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "rosmill/error.hpp"
 
 namespace rosmill::verify {
 
-GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell) {
-  if (!(cell > 0)) throw Error("--resolution", "the cell size must be positive");
+GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells) {
+  if (!(cell > 0) || !std::isfinite(cell))
+    throw Error("--resolution", "the cell size must be a positive number of mm, got " + std::to_string(cell));
+  if (!min.allFinite() || !max.allFinite()) throw Error("--resolution", "the area to cover is not finite");
+  const Vec2 size = (max - min).cwiseMax(Vec2::Zero());
+  const double nx = std::max(1.0, std::ceil(size.x() / cell - 1e-9)), ny = std::max(1.0, std::ceil(size.y() / cell - 1e-9));
+  if (nx * ny > static_cast<double>(max_cells)) {
+    // The finest cell that fits, in two significant digits.
+    const double fit = std::sqrt(std::max(size.x() * size.y(), 1e-300) / static_cast<double>(max_cells));
+    const double unit = std::pow(10.0, std::floor(std::log10(fit)) - 1);
+    double coarse = std::ceil(fit / unit - 1e-9) * unit;
+    while (std::max(1.0, std::ceil(size.x() / coarse - 1e-9)) * std::max(1.0, std::ceil(size.y() / coarse - 1e-9)) >
+           static_cast<double>(max_cells))
+      coarse += unit;
+    char finest[32];
+    std::snprintf(finest, sizeof finest, "%g", coarse);
+    char what[200];
+    std::snprintf(what, sizeof what, "a %.0f x %.0f mm area at %g mm cells would be %.3g cells, more than the %zu the "
+                  "verifier allows: use a cell of %s mm or more", size.x(), size.y(), cell, nx * ny, max_cells, finest);
+    throw Error("--resolution", what);
+  }
   GridSpec g;
   g.cell = cell;
   g.x0 = min.x();
   g.y0 = min.y();
-  const double nx = std::ceil((max.x() - min.x()) / cell - 1e-9), ny = std::ceil((max.y() - min.y()) / cell - 1e-9);
-  if (nx * ny > 400e6) throw Error("--resolution", "the grid would have more than 400 million cells");
-  g.nx = std::max(1, static_cast<int>(nx));
-  g.ny = std::max(1, static_cast<int>(ny));
+  g.nx = static_cast<int>(nx);
+  g.ny = static_cast<int>(ny);
   return g;
 }
 

@@ -8,320 +8,295 @@
 #include <cmath>
 #include <limits>
 
-#include "rosmill/verify/arc.hpp"
-#include "rosmill/verify/cutter_profile.hpp"
+#include "sweep_kernels.hpp"
+
+// How a chain of moves is swept without visiting each move's whole footprint.
+//
+// Along a chain (moves of one tool, each starting where the last ended) the cutter's bottom over a cell is a
+// continuous function F of the position along the chain, convex along each line (z is linear along it and every
+// profile is a convex, rising function of the distance to the axis, itself convex along a line). Its lowest value
+// is therefore at a local minimum: inside a line where the line's own minimum lies (its lead, sweep_geometry.hpp,
+// between 0 and L), at a joint where the line before still falls (lead past its end) and the line after already
+// rises (lead before its start), or at an end of the chain. A line is swept only over the cells where it holds one
+// of those: a strip about as wide as the line is long, instead of a disc of the cutter's diameter. Arcs, bull
+// noses on ramps and rapids are swept whole (a rapid must be, to catch a crash into material the instant it
+// happens); a line after them skips only the cells whose bottom rises from its start (their lowest is the joint,
+// which the whole sweep before covered). The finishing trace (distance to the finishing path) is kept the same
+// way with the nearest point for lead. SimulationOptions::prune = false sweeps every move whole: the reference.
 
 namespace rosmill::verify {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr uint32_t kChordBit = 0x80000000u;
+using namespace sweep;
 
-// ---- cutter profiles as functions of the squared distance from the axis (inner loops avoid a sqrt when they can)
-
-struct FlatBottom {
-  double operator()(double) const { return 0.0; }
-};
-struct BallBottom {
-  double R, R2;
-  double operator()(double d2) const { return R - std::sqrt(std::max(0.0, R2 - d2)); }
-};
-struct BullBottom {
-  double flat, r;
-  double operator()(double d2) const {
-    const double e = std::sqrt(d2) - flat;
-    return e <= 0 ? 0.0 : r - std::sqrt(std::max(0.0, r * r - e * e));
-  }
-};
-
-// ---- one move prepared for sweeping
-
-struct Prepared {
+// A piece of a move swept as one: a line (or a chord of a helix), or a level XY arc.
+struct Piece {
+  const SimMove* move = nullptr;
   bool arc = false;
-  double ax, ay, az, ux, uy, uz;  // start and (end - start)
-  double len2, inv_len2;           // of (ux, uy)
-  double cx, cy, rho;              // arc centre and radius
-  double s0x, s0y, s1x, s1y, sweep;  // arc as counter-clockwise from s0 to s1 (vectors from the centre)
-  double R, R2;
-  double xmin, xmax;
+  LineFrame line;
+  bool pruned = false;  // swept only where it can hold its chain's lowest point
+  Lead lead;
 };
 
-Prepared prepare(const SimMove& m, double R) {
-  Prepared p{};
-  p.ax = m.from.x(); p.ay = m.from.y(); p.az = m.from.z();
-  p.ux = m.to.x() - p.ax; p.uy = m.to.y() - p.ay; p.uz = m.to.z() - p.az;
-  p.len2 = p.ux * p.ux + p.uy * p.uy;
-  p.inv_len2 = p.len2 > 0 ? 1.0 / p.len2 : 0.0;
-  p.R = R; p.R2 = R * R;
-  Vec2 lo, hi;
-  move_xy_bounds(m, lo, hi);
-  p.xmin = lo.x() - R; p.xmax = hi.x() + R;
-  if (m.shape != MoveShape::Line) {
-    p.arc = true;
-    p.cx = m.centre.x(); p.cy = m.centre.y();
-    const Vec2 a = m.from.head<2>() - m.centre, b = m.to.head<2>() - m.centre;
-    p.rho = a.norm();
-    const bool ccw = m.shape == MoveShape::ArcCCW;
-    const Vec2& s0 = ccw ? a : b;
-    const Vec2& s1 = ccw ? b : a;
-    p.s0x = s0.x(); p.s0y = s0.y(); p.s1x = s1.x(); p.s1y = s1.y();
-    p.sweep = std::abs(arc_sweep(m));
+bool lead_of(const LineFrame& f, const CutterProfile& cp, Lead& lead) {
+  switch (cp.type) {
+    case CutterType::FlatEnd: lead = {f.uz < 0 ? -1.0 : 1.0, cp.R}; return true;
+    case CutterType::BallEnd: lead = {f.kz, cp.R}; return true;
+    case CutterType::BullNose: lead = {1.0, cp.R1}; return f.uz == 0;
   }
+  return false;
+}
+
+Piece line_piece(const SimMove& m, const Vec3& from, const Vec3& to, const CutterProfile& cp, bool prune) {
+  Piece p;
+  p.move = &m;
+  p.line = line_frame(from, to);
+  p.pruned = prune && !m.rapid && lead_of(p.line, cp, p.lead);
   return p;
 }
 
-// x-interval where the row at height y meets the disc of radius R around (px, py).
-void disc_row(double px, double py, double R2, double y, double& lo, double& hi) {
-  const double dy = y - py, w2 = R2 - dy * dy;
-  if (w2 < 0) return;
-  const double w = std::sqrt(w2);
-  lo = std::min(lo, px - w);
-  hi = std::max(hi, px + w);
+// A bound on how far past a line's end (in its lead g) the joint with the next line can hold a lowest point:
+// where the next line's lead is <= 0, g - L = g' + (g - L - g'), and over the disc of radius R around the joint
+// |g - L - g'| <= R |u - u'| + |k - k'| rho + |k'| R sqrt(2 |u - u'|) (u, u' the XY directions; |sqrt x - sqrt y|
+// <= sqrt |x - y|). So the joint is swept as the strip of this line widened by that much: for a smooth path, by
+// almost nothing.
+double joint_margin(const Piece& p, const Piece& next, double R) {
+  const double du = std::hypot(p.line.ux - next.line.ux, p.line.uy - next.line.uy);
+  return R * du + std::abs(p.lead.kappa - next.lead.kappa) * p.lead.rho +
+         std::abs(next.lead.kappa) * R * std::sqrt(2 * du);
 }
 
-// Narrows [lo, hi] to the v with a·v in [L, H].
-void clip_linear(double a, double L, double H, double& lo, double& hi) {
-  if (a > 0) { lo = std::max(lo, L / a); hi = std::min(hi, H / a); }
-  else if (a < 0) { lo = std::max(lo, H / a); hi = std::min(hi, L / a); }
-  else if (L > 0 || H < 0) { lo = kInf; hi = -kInf; }
+// Chords of a helix (an arc whose z changes) within `tolerance` of it: made where they are swept, never stored,
+// and at most kMaxChords of them however large the arc (the error then stays below 1e-6 of its radius).
+constexpr int kMaxChords = 4096;
+
+int chord_count(const SimMove& m, double tolerance) {
+  const double rho = (m.from.head<2>() - m.centre).norm(), sweep = std::abs(arc_sweep(m));
+  const double step = rho > tolerance ? 2 * std::acos(1 - tolerance / rho) : M_PI / 2;
+  return std::clamp(static_cast<int>(std::ceil(sweep / step)), 1, kMaxChords);
 }
 
-// x-interval of the row at height y inside the footprint: the capsule of radius R around a line (the union of
-// the two end discs and the strip between them, a convex set), or the disc of radius rho + R around an arc.
-bool footprint_row(const Prepared& p, double y, double& lo, double& hi) {
-  lo = kInf; hi = -kInf;
-  if (p.arc) {
-    disc_row(p.cx, p.cy, (p.rho + p.R) * (p.rho + p.R), y, lo, hi);
-    lo = std::max(lo, p.xmin); hi = std::min(hi, p.xmax);
-    return lo <= hi;
-  }
-  disc_row(p.ax, p.ay, p.R2, y, lo, hi);
-  disc_row(p.ax + p.ux, p.ay + p.uy, p.R2, y, lo, hi);
-  if (p.len2 > 0) {
-    const double dy = y - p.ay, len = std::sqrt(p.len2);
-    double slo = -kInf, shi = kInf;
-    clip_linear(p.ux, -dy * p.uy, p.len2 - dy * p.uy, slo, shi);              // 0 <= t <= 1
-    clip_linear(-p.uy, -p.R * len - p.ux * dy, p.R * len - p.ux * dy, slo, shi);  // |perpendicular| <= R
-    if (slo <= shi) { lo = std::min(lo, p.ax + slo); hi = std::max(hi, p.ax + shi); }
-  }
-  return lo <= hi;
-}
+bool is_helix(const SimMove& m) { return m.shape != MoveShape::Line && m.from.z() != m.to.z(); }
 
-// Squared XY distance from (px, py) (relative to the line start) to the segment.
-inline double segment_d2(const Prepared& p, double px, double py) {
-  const double t = std::clamp((px * p.ux + py * p.uy) * p.inv_len2, 0.0, 1.0);
-  const double dx = px - t * p.ux, dy = py - t * p.uy;
-  return dx * dx + dy * dy;
-}
+Vec3 chord_end(const SimMove& m, int i, int n) { return i == n ? m.to : move_point(m, static_cast<double>(i) / n); }
 
-// ---- kernels: the lowest cutter bottom of the move over (x, y), and the squared axis distance d2
+// ---- one band of rows: its moves in program order
 
-template <class Bottom>
-struct LevelLine {  // z constant: the closest point of the segment is the lowest
-  const Prepared& p;
-  Bottom bottom;
-  double operator()(double x, double y, double& d2) const {
-    d2 = segment_d2(p, x - p.ax, y - p.ay);
-    return d2 > p.R2 ? kInf : p.az + bottom(d2);
-  }
-};
+class BandSweep {
+ public:
+  BandSweep(const MachineProgram& prog, const std::vector<CutterProfile>& profiles, const SimulationOptions& o,
+            Stock& stock, float* trace, double trace_radius, int r0, int r1)
+      : prog_(prog), profiles_(profiles), o_(o), g_(stock.grid), top_(stock.top.data()),
+        cut_by_(stock.cut_by.data()), trace_(trace), trace_radius_(trace_radius), r0_(r0), r1_(r1) {}
 
-struct BallRamp {  // the ball's centre sweeps a segment: its swept volume is a capsule, the lowest point exact
-  const Prepared& p;
-  double wx, wy, wz, L, a;  // unit 3-D direction, length, 1 - wz^2
-  explicit BallRamp(const Prepared& q) : p(q) {
-    L = std::sqrt(q.len2 + q.uz * q.uz);
-    wx = L > 0 ? q.ux / L : 0; wy = L > 0 ? q.uy / L : 0; wz = L > 0 ? q.uz / L : 1;
-    a = 1 - wz * wz;
-  }
-  double operator()(double x, double y, double& d2) const {
-    const double ex = x - p.ax, ey = y - p.ay;
-    d2 = segment_d2(p, ex, ey);
-    if (d2 > p.R2) return kInf;
-    double best = kInf;
-    const double dA2 = ex * ex + ey * ey, fx = ex - p.ux, fy = ey - p.uy, dB2 = fx * fx + fy * fy;
-    if (dA2 <= p.R2) best = p.az + p.R - std::sqrt(p.R2 - dA2);
-    if (dB2 <= p.R2) best = std::min(best, p.az + p.uz + p.R - std::sqrt(p.R2 - dB2));
-    if (a > 1e-12) {
-      // Lower crossing of the vertical line with the cylinder of radius R around the centre's path.
-      const double ew = ex * wx + ey * wy, bh = -ew * wz, c = dA2 - ew * ew - p.R2;
-      const double disc = bh * bh - a * c;
-      if (disc >= 0) {
-        const double zr = (-bh - std::sqrt(disc)) / a;  // relative to the start centre
-        const double t = (ew + zr * wz) / L;
-        if (t >= 0 && t <= 1) best = std::min(best, p.az + p.R + zr);
-      }
+  // Sweeps move k; `linked`: it starts where move k - 1 (same tool, same finishing state) ended; `next_linked`
+  // the same for move k + 1. Returns the cells it lowered.
+  size_t move(uint32_t k, bool linked, bool next_linked, bool finishing) {
+    const SimMove& m = prog_.moves[k];
+    const CutterProfile& cp = profiles_[m.tool];
+    const float trace_d2 = static_cast<float>(std::min(trace_radius_, cp.R) * std::min(trace_radius_, cp.R));
+    const Target t{top_, cut_by_, finishing ? trace_ : nullptr, k, cp.R2, trace_d2};
+    if (m.shape != MoveShape::Line && !is_helix(m)) {
+      Piece arc;
+      arc.move = &m;
+      arc.arc = true;
+      return sweep_arc(arc, cp, t);
     }
-    return best;
-  }
-};
-
-// The part [t0, t1] of a ramp during which the axis is within R of (ex, ey); false when never.
-inline bool covered_span(const Prepared& p, double ex, double ey, double& t0, double& t1) {
-  const double e2 = ex * ex + ey * ey;
-  if (p.len2 <= 0) { t0 = 0; t1 = 1; return e2 <= p.R2; }
-  const double eu = ex * p.ux + ey * p.uy, disc = eu * eu - p.len2 * (e2 - p.R2);
-  if (disc < 0) return false;
-  const double s = std::sqrt(disc);
-  t0 = std::max(0.0, (eu - s) * p.inv_len2);
-  t1 = std::min(1.0, (eu + s) * p.inv_len2);
-  return t0 <= t1;
-}
-
-struct FlatRamp {  // the flat bottom is lowest at the end of the covered span that is lower
-  const Prepared& p;
-  double operator()(double x, double y, double& d2) const {
-    const double ex = x - p.ax, ey = y - p.ay;
-    d2 = segment_d2(p, ex, ey);
-    double t0, t1;
-    if (d2 > p.R2 || !covered_span(p, ex, ey, t0, t1)) return kInf;
-    return p.az + p.uz * (p.uz > 0 ? t0 : t1);
-  }
-};
-
-struct BullRamp {  // tip height + profile is convex along the ramp: golden-section search over the covered span
-  const Prepared& p;
-  BullBottom bottom;
-  double operator()(double x, double y, double& d2) const {
-    const double ex = x - p.ax, ey = y - p.ay;
-    d2 = segment_d2(p, ex, ey);
-    double t0, t1;
-    if (d2 > p.R2 || !covered_span(p, ex, ey, t0, t1)) return kInf;
-    auto f = [&](double t) {
-      const double dx = ex - t * p.ux, dy = ey - t * p.uy;
-      return p.az + t * p.uz + bottom(std::min(p.R2, dx * dx + dy * dy));
-    };
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    const double span_mm = std::sqrt(p.len2 + p.uz * p.uz);
-    double lo = t0, hi = t1, m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo), f1 = f(m1), f2 = f(m2);
-    while ((hi - lo) * span_mm > 1e-5) {
-      if (f1 <= f2) { hi = m2; m2 = m1; f2 = f1; m1 = hi - g * (hi - lo); f1 = f(m1); }
-      else { lo = m1; m1 = m2; f1 = f2; m2 = lo + g * (hi - lo); f2 = f(m2); }
-    }
-    return std::min({f(t0), f(t1), f1, f2});
-  }
-};
-
-template <class Bottom>
-struct LevelArc {  // z constant: the distance to the arc is |rho - |e|| inside its sweep, else to an end
-  const Prepared& p;
-  Bottom bottom;
-  double operator()(double x, double y, double& d2) const {
-    const double ex = x - p.cx, ey = y - p.cy;
-    const double c0 = p.s0x * ey - p.s0y * ex, c1 = ex * p.s1y - ey * p.s1x;
-    bool inside;
-    if (p.sweep >= 2 * M_PI - 1e-12) inside = true;
-    else if (p.sweep <= M_PI) inside = c0 >= 0 && c1 >= 0;
-    else inside = !(c0 < 0 && c1 < 0);
-    if (inside) {
-      const double d = std::sqrt(ex * ex + ey * ey) - p.rho;
-      d2 = d * d;
-    } else {
-      const double ax = ex - p.s0x, ay = ey - p.s0y, bx = ex - p.s1x, by = ey - p.s1y;
-      d2 = std::min(ax * ax + ay * ay, bx * bx + by * by);
-    }
-    return d2 > p.R2 ? kInf : p.az + bottom(d2);
-  }
-};
-
-// ---- sweeping one move over the rows of one band
-
-struct Target {
-  const GridSpec& g;
-  float* top;
-  uint32_t* cut_by;
-  float* trace;  // finishing axis distance, or null when this move is not a finishing move
-  uint32_t id;
-  bool rapid;
-  size_t* rapid_cuts;
-  uint32_t* first_rapid;
-};
-
-template <class Kernel>
-void sweep_rows(const Prepared& p, const Kernel& kernel, int j0, int j1, const Target& t) {
-  const GridSpec& g = t.g;
-  for (int j = j0; j <= j1; ++j) {
-    const double y = g.cy(j);
-    double lo, hi;
-    if (!footprint_row(p, y, lo, hi)) continue;
-    const int i0 = g.first_x(lo), i1 = g.last_x(hi);
-    const size_t base = static_cast<size_t>(j) * g.nx;
-    for (int i = i0; i <= i1; ++i) {
-      double d2;
-      const float h = static_cast<float>(kernel(g.cx(i), y, d2));
-      const size_t c = base + i;
-      if (t.trace && d2 <= p.R2 && d2 < t.trace[c]) t.trace[c] = static_cast<float>(d2);
-      if (h < t.top[c]) {
-        t.top[c] = h;
-        t.cut_by[c] = t.id;
-        if (t.rapid) { ++*t.rapid_cuts; *t.first_rapid = std::min(*t.first_rapid, t.id); }
-      }
-    }
-  }
-}
-
-template <class Bottom>
-void sweep_level(const Prepared& p, const Bottom& b, int j0, int j1, const Target& t) {
-  if (p.arc) sweep_rows(p, LevelArc<Bottom>{p, b}, j0, j1, t);
-  else sweep_rows(p, LevelLine<Bottom>{p, b}, j0, j1, t);
-}
-
-void sweep_move(const SimMove& m, const Cutter& cutter, int j0, int j1, const Target& t) {
-  const CutterProfile prof = CutterProfile::of(cutter);
-  const Prepared p = prepare(m, prof.radius);
-  const bool level = p.uz == 0.0;  // helical arcs arrive here as chords
-  switch (cutter.type) {
-    case CutterType::FlatEnd:
-      if (level) sweep_level(p, FlatBottom{}, j0, j1, t);
-      else sweep_rows(p, FlatRamp{p}, j0, j1, t);
-      break;
-    case CutterType::BallEnd:
-      if (level) sweep_level(p, BallBottom{prof.radius, prof.radius * prof.radius}, j0, j1, t);
-      else sweep_rows(p, BallRamp(p), j0, j1, t);
-      break;
-    case CutterType::BullNose:
-      if (level) sweep_level(p, BullBottom{prof.flat_radius, prof.corner}, j0, j1, t);
-      else sweep_rows(p, BullRamp{p, BullBottom{prof.flat_radius, prof.corner}}, j0, j1, t);
-      break;
-  }
-}
-
-// ---- the work list: program moves in order, helical arcs replaced by their chords
-
-struct WorkList {
-  std::vector<uint32_t> items;    // program move index, or kChordBit | chord index
-  std::vector<SimMove> chords;
-  std::vector<uint32_t> chord_parent;
-  const SimMove& move(const MachineProgram& prog, uint32_t item) const {
-    return item & kChordBit ? chords[item & ~kChordBit] : prog.moves[item];
-  }
-  uint32_t parent(uint32_t item) const { return item & kChordBit ? chord_parent[item & ~kChordBit] : item; }
-};
-
-WorkList build_work(const MachineProgram& prog, double tolerance) {
-  WorkList w;
-  w.items.reserve(prog.moves.size());
-  for (uint32_t k = 0; k < prog.moves.size(); ++k) {
-    const SimMove& m = prog.moves[k];
-    if (m.shape == MoveShape::Line || m.from.z() == m.to.z()) { w.items.push_back(k); continue; }
-    // A helix: chords whose sagitta stays within the tolerance.
-    const double rho = (m.from.head<2>() - m.centre).norm(), sweep = std::abs(arc_sweep(m));
-    const double step = rho > tolerance ? 2 * std::acos(1 - tolerance / rho) : M_PI / 2;
-    const int n = std::max(1, static_cast<int>(std::ceil(sweep / step)));
-    Vec3 a = m.from;
+    // A line's piece was usually made already, as the next piece of the move before.
+    const Piece current = m.shape == MoveShape::Line && cached_ == k ? cached_piece_ : line_piece(m, m.from, m.to, cp, o_.prune);
+    Piece next;
+    const Piece* after = next_linked && first_piece(k + 1, next) ? &next : nullptr;
+    if (after) cached_ = k + 1, cached_piece_ = next;
+    if (m.shape == MoveShape::Line) return sweep_line(current, linked, after, cp, t);
+    const int n = chord_count(m, o_.arc_tolerance);
+    size_t lowered = 0;
+    Vec3 a = m.from, b = chord_end(m, 1, n);
     for (int i = 1; i <= n; ++i) {
-      SimMove c = m;
-      c.shape = MoveShape::Line;
-      c.from = a;
-      c.to = i == n ? m.to : move_point(m, static_cast<double>(i) / n);
-      a = c.to;
-      w.items.push_back(kChordBit | static_cast<uint32_t>(w.chords.size()));
-      w.chords.push_back(c);
-      w.chord_parent.push_back(k);
+      const Piece p = line_piece(m, a, b, cp, o_.prune);
+      Piece chord;
+      const Vec3 c = i < n ? chord_end(m, i + 1, n) : b;
+      if (i < n) chord = line_piece(m, b, c, cp, o_.prune);
+      lowered += sweep_line(p, linked || i > 1, i < n ? &chord : after, cp, t);
+      a = b;
+      b = c;
     }
+    return lowered;
   }
-  return w;
-}
+
+  size_t cells_visited() const { return visited_; }
+
+ private:
+  // The first piece of move k (false for a level arc, which is swept whole, or past the end).
+  bool first_piece(size_t k, Piece& p) const {
+    if (k >= prog_.moves.size()) return false;
+    const SimMove& m = prog_.moves[k];
+    const CutterProfile& cp = profiles_[m.tool];
+    if (m.shape == MoveShape::Line) { p = line_piece(m, m.from, m.to, cp, o_.prune); return true; }
+    if (!is_helix(m)) return false;
+    p = line_piece(m, m.from, chord_end(m, 1, chord_count(m, o_.arc_tolerance)), cp, o_.prune);
+    return true;
+  }
+
+  // Rows of the band that a disc of radius R around the XY segment from p to q can reach.
+  void rows(double y0, double y1, double R, int& j0, int& j1) const {
+    j0 = std::max(r0_, g_.first_y(std::min(y0, y1) - R));
+    j1 = std::min(r1_, g_.last_y(std::max(y0, y1) + R));
+  }
+
+  // The cells of a row to sweep, as index ranges (at most four spans, merged). Each span is grown by a hair so
+  // that a cell centre exactly on the boundary between two lines' strips, computed twice with rounding, is swept.
+  struct Spans {
+    int lo[4], hi[4], n = 0;
+    void add(const GridSpec& g, double x0, double x1) {
+      if (!(x0 <= x1)) return;
+      const int i0 = g.first_x(x0 - 1e-9), i1 = g.last_x(x1 + 1e-9);
+      if (i0 <= i1) { lo[n] = i0; hi[n] = i1; ++n; }
+    }
+    void merge() {
+      for (int a = 1; a < n; ++a)  // insertion sort by start: n <= 4
+        for (int b = a; b > 0 && lo[b] < lo[b - 1]; --b) std::swap(lo[b], lo[b - 1]), std::swap(hi[b], hi[b - 1]);
+      int m = 0;
+      for (int a = 0; a < n; ++a) {
+        if (m > 0 && lo[a] <= hi[m - 1] + 1) hi[m - 1] = std::max(hi[m - 1], hi[a]);
+        else lo[m] = lo[a], hi[m] = hi[a], ++m;
+      }
+      n = m;
+    }
+  };
+
+  size_t sweep_line(const Piece& p, bool linked, const Piece* next, const CutterProfile& cp, const Target& t) {
+    const LineFrame& f = p.line;
+    int j0, j1;
+    rows(f.ay, f.ay + f.L * f.uy, cp.R, j0, j1);
+    const double w = std::min(trace_radius_, cp.R);
+    const bool chain_start = !linked;
+    // The lead range to sweep: from the start (chain start) or 0, to the end (chain end) or L widened by the joint
+    // margin; a joint with a vertical move is swept on its own (its lead is infinite).
+    const bool joint_vertical = next && next->pruned && next->line.vertical;
+    const double gmin = chain_start ? -kInf : 0.0;
+    const double gmax = !(next && next->pruned) ? kInf : joint_vertical ? f.L : f.L + joint_margin(p, *next, cp.R);
+    const bool trace_next = next && next->pruned && !next->line.vertical;
+    const double tmax = trace_next ? f.L + w * std::hypot(f.ux - next->line.ux, f.uy - next->line.uy) : kInf;
+    // A whole sweep after a linked move leaves alone the cells whose bottom rises from the start (a <= skip).
+    double skip = -kInf;
+    if (!p.pruned && linked && o_.prune) {
+      if (f.vertical < 0) return 0;  // a retract from where the last move left the cutter
+      if (!f.vertical && f.uz >= 0) skip = 0;
+      else if (!f.vertical && cp.type == CutterType::BallEnd) skip = f.kz * cp.R;  // the ball's contact trails
+    }
+    size_t lowered = 0;
+    for (int j = j0; j <= j1; ++j) {
+      const double y = g_.cy(j);
+      Spans s;
+      double lo, hi;
+      if (!p.pruned || f.vertical) {
+        if (!capsule_row(f, cp.R, y, lo, hi)) continue;
+        if (!p.pruned) {
+          if (skip > -kInf) clip_along(f, y, skip, kInf, lo, hi);
+          s.add(g_, lo, hi);
+        } else {
+          double a = lo, b = hi;
+          clip_lead(f, p.lead, y, gmin, gmax, a, b);
+          s.add(g_, a, b);
+          if (f.vertical > 0 && next && next->pruned) {  // going down, then the next line rises from its foot
+            a = lo, b = hi;
+            clip_lead(next->line, next->lead, y, -kInf, 0, a, b);
+            s.add(g_, a, b);
+          }
+          if (t.trace && chain_start && capsule_row(f, w, y, lo, hi)) s.add(g_, lo, hi);
+        }
+      } else {
+        // Cells within R across the line (the kernels leave alone those beyond R of it), then the lead range.
+        lo = -kInf, hi = kInf;
+        clip_across(f, y, cp.R, lo, hi);
+        clip_along(f, y, -cp.R, f.L + cp.R, lo, hi);
+        double a = lo, b = hi;
+        clip_lead(f, p.lead, y, gmin, gmax, a, b, 2 * g_.cell);
+        s.add(g_, a, b);
+        if (joint_vertical) {
+          a = lo, b = hi;
+          clip_lead(f, p.lead, y, f.L, kInf, a, b);
+          clip_lead(next->line, next->lead, y, -kInf, 0, a, b);
+          s.add(g_, a, b);
+        }
+        if (t.trace) {
+          a = -kInf, b = kInf;
+          clip_across(f, y, w, a, b);
+          clip_along(f, y, std::max(gmin, -w), std::min(tmax, f.L + w), a, b);
+          s.add(g_, a, b);
+        }
+      }
+      s.merge();
+      const size_t base = g_.index(0, j);
+      for (int q = 0; q < s.n; ++q) {
+        visited_ += s.hi[q] - s.lo[q] + 1;
+        lowered += line_row(f, cp, y, s.lo[q], s.hi[q], base, t);
+      }
+    }
+    return lowered;
+  }
+
+  uint32_t line_row(const LineFrame& f, const CutterProfile& cp, double y, int i0, int i1, size_t base,
+                    const Target& t) const {
+    const RowFrame r(f, g_, y);
+    const bool level = f.uz == 0.0;
+    switch (cp.type) {
+      case CutterType::FlatEnd:
+        return level ? update(LevelLineRow<FlatProfile>{f, r, {}}, i0, i1, base, t)
+                     : update(FlatRampRow{f, r, cp.R2}, i0, i1, base, t);
+      case CutterType::BallEnd:
+        return level ? update(LevelLineRow<BallProfile>{f, r, {cp.R, cp.R2}}, i0, i1, base, t)
+                     : update(BallRampRow{f, r, cp.R, cp.R2}, i0, i1, base, t);
+      case CutterType::BullNose:
+        return level ? update(LevelLineRow<BullProfile>{f, r, {cp.R1, cp.r, cp.r * cp.r}}, i0, i1, base, t)
+                     : update(BullRampRow(f, g_, y, cp), i0, i1, base, t);
+    }
+    return 0;
+  }
+
+  size_t sweep_arc(const Piece& p, const CutterProfile& cp, const Target& t) {
+    const ArcFrame a = arc_frame(*p.move);
+    int j0, j1;
+    rows(a.cy - a.rho, a.cy + a.rho, cp.R, j0, j1);
+    size_t lowered = 0;
+    for (int j = j0; j <= j1; ++j) {
+      const double y = g_.cy(j);
+      double lo, hi;
+      if (!arc_row(a, cp.R, y, lo, hi)) continue;
+      const int i0 = g_.first_x(lo), i1 = g_.last_x(hi);
+      if (i0 > i1) continue;
+      visited_ += i1 - i0 + 1;
+      const size_t base = g_.index(0, j);
+      const double ex0 = g_.cx(0) - a.cx, ey = y - a.cy;
+      switch (cp.type) {
+        case CutterType::FlatEnd:
+          lowered += update(LevelArcRow<FlatProfile>{a, ex0, g_.cell, ey, cp.R2, {}}, i0, i1, base, t);
+          break;
+        case CutterType::BallEnd:
+          lowered += update(LevelArcRow<BallProfile>{a, ex0, g_.cell, ey, cp.R2, {cp.R, cp.R2}}, i0, i1, base, t);
+          break;
+        case CutterType::BullNose:
+          lowered += update(LevelArcRow<BullProfile>{a, ex0, g_.cell, ey, cp.R2, {cp.R1, cp.r, cp.r * cp.r}}, i0,
+                            i1, base, t);
+          break;
+      }
+    }
+    return lowered;
+  }
+
+  const MachineProgram& prog_;
+  const std::vector<CutterProfile>& profiles_;
+  const SimulationOptions& o_;
+  const GridSpec& g_;
+  float* top_;
+  uint32_t* cut_by_;
+  float* trace_;
+  double trace_radius_;
+  int r0_, r1_;
+  size_t visited_ = 0;
+  uint32_t cached_ = Stock::kNoMove;  // the move whose first piece cached_piece_ is
+  Piece cached_piece_;
+};
 
 }  // namespace
 
@@ -336,46 +311,56 @@ SimulationResult simulate(const MachineProgram& prog, Stock& stock, const Simula
   result.finishing_tool = prog.moves.back().tool;
   size_t finish_from = prog.moves.size();
   while (finish_from > 0 && prog.moves[finish_from - 1].tool == result.finishing_tool) --finish_from;
+  auto finishing = [&](size_t k) { return k >= finish_from && !prog.moves[k].rapid; };
 
-  const WorkList work = build_work(prog, options.arc_tolerance);
+  std::vector<CutterProfile> profiles;
+  for (const Tool& tool : prog.tools) profiles.emplace_back(tool.cutter);
+  const double trace_radius = options.trace_radius > 0 ? options.trace_radius : kInf;
   const int band_rows = std::max(1, options.band_rows);
   const int bands = (g.ny + band_rows - 1) / band_rows;
-  // Rows of each work item's footprint, then the items of each band in program order (CSR).
-  std::vector<int> row0(work.items.size()), row1(work.items.size());
+  // Rows of each move's footprint, then the moves of each band in program order (CSR).
+  const size_t n = prog.moves.size();
+  std::vector<int> row0(n), row1(n);
+  std::vector<uint8_t> linked(n + 1, 0);
   std::vector<uint32_t> band_start(bands + 1, 0);
-  for (size_t k = 0; k < work.items.size(); ++k) {
-    const SimMove& m = work.move(prog, work.items[k]);
+  for (size_t k = 0; k < n; ++k) {
+    const SimMove& m = prog.moves[k];
     Vec2 lo, hi;
     move_xy_bounds(m, lo, hi);
-    const double R = prog.tools[m.tool].cutter.radius();
+    const double R = profiles[m.tool].R;
     row0[k] = g.first_y(lo.y() - R);
     row1[k] = g.last_y(hi.y() + R);
+    if (k > 0) {
+      const SimMove& p = prog.moves[k - 1];
+      linked[k] = p.tool == m.tool && p.to == m.from && finishing(k) == finishing(k - 1);
+    }
     if (row0[k] > row1[k]) continue;
     for (int b = row0[k] / band_rows; b <= row1[k] / band_rows; ++b) ++band_start[b + 1];
   }
   for (int b = 0; b < bands; ++b) band_start[b + 1] += band_start[b];
-  std::vector<uint32_t> band_items(band_start[bands]);
+  std::vector<uint32_t> band_moves(band_start[bands]);
   {
     std::vector<uint32_t> fill(band_start.begin(), band_start.end() - 1);
-    for (size_t k = 0; k < work.items.size(); ++k) {
+    for (size_t k = 0; k < n; ++k) {
       if (row0[k] > row1[k]) continue;
-      for (int b = row0[k] / band_rows; b <= row1[k] / band_rows; ++b) band_items[fill[b]++] = static_cast<uint32_t>(k);
+      for (int b = row0[k] / band_rows; b <= row1[k] / band_rows; ++b) band_moves[fill[b]++] = static_cast<uint32_t>(k);
     }
   }
 
-  std::vector<size_t> rapid_cuts(bands, 0);
+  std::vector<size_t> rapid_cuts(bands, 0), visited(bands, 0);
   std::vector<uint32_t> first_rapid(bands, Stock::kNoMove);
   auto run_band = [&](int b) {
     const int r0 = b * band_rows, r1 = std::min(g.ny - 1, r0 + band_rows - 1);
+    BandSweep sweep(prog, profiles, options, stock, result.finish_axis_d2.data(), trace_radius, r0, r1);
     for (uint32_t q = band_start[b]; q < band_start[b + 1]; ++q) {
-      const uint32_t k = band_items[q];
-      const SimMove& m = work.move(prog, work.items[k]);
-      const uint32_t id = work.parent(work.items[k]);
-      const bool finishing = id >= finish_from && !m.rapid;
-      Target t{g, stock.top.data(), stock.cut_by.data(), finishing ? result.finish_axis_d2.data() : nullptr,
-               id, m.rapid, &rapid_cuts[b], &first_rapid[b]};
-      sweep_move(m, prog.tools[m.tool].cutter, std::max(r0, row0[k]), std::min(r1, row1[k]), t);
+      const uint32_t k = band_moves[q];
+      const size_t lowered = sweep.move(k, linked[k], linked[k + 1], finishing(k));
+      if (prog.moves[k].rapid && lowered) {
+        rapid_cuts[b] += lowered;
+        first_rapid[b] = std::min(first_rapid[b], k);
+      }
     }
+    visited[b] = sweep.cells_visited();
   };
   if (options.parallel) {
     tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& r) {
@@ -387,17 +372,19 @@ SimulationResult simulate(const MachineProgram& prog, Stock& stock, const Simula
   for (int b = 0; b < bands; ++b) {
     result.rapid_cut_cells += rapid_cuts[b];
     result.first_rapid_cut = std::min(result.first_rapid_cut, first_rapid[b]);
+    result.cells_visited += visited[b];
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
 
 double lowest_bottom_reference(const SimMove& move, const Cutter& cutter, double x, double y, int samples) {
-  const CutterProfile prof = CutterProfile::of(cutter);
+  const CutterProfile cp(cutter);
   double best = kInf;
   for (int i = 0; i <= samples; ++i) {
     const Vec3 p = move_point(move, static_cast<double>(i) / samples);
-    best = std::min(best, p.z() + prof.height(std::hypot(x - p.x(), y - p.y())));
+    const double d = std::hypot(x - p.x(), y - p.y());
+    if (d <= cp.R) best = std::min(best, p.z() + cp.height(d));
   }
   return best;
 }

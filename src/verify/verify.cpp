@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <type_traits>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
@@ -14,12 +15,22 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Stock make_stock(const StockSpec& spec, const Box3& design_bounds, double resolution) {
+Stock make_stock(const StockSpec& spec, const Box3& design_bounds, double resolution, size_t max_cells) {
   const Box3 b = spec.kind == StockSpec::Kind::Box    ? spec.box
                  : spec.kind == StockSpec::Kind::Mesh ? spec.mesh->bbox
                                                       : design_bounds;
-  if (b.empty()) throw Error("--stock", "the stock is empty");
-  const GridSpec grid = GridSpec::covering(b.min.head<2>(), b.max.head<2>(), resolution);
+  if (b.empty()) throw Error(spec.kind == StockSpec::Kind::DesignBounds ? "design" : "--stock", "nothing to cover: it is empty");
+  // The grid is the stock's: a design reaching beyond it in XY could not be compared there (nor be made).
+  const double slack = 1e-6 * (1 + b.size().head<2>().norm());
+  if ((design_bounds.min.head<2>().array() < b.min.head<2>().array() - slack).any() ||
+      (design_bounds.max.head<2>().array() > b.max.head<2>().array() + slack).any()) {
+    char what[240];
+    std::snprintf(what, sizeof what, "the stock (x %g..%g, y %g..%g mm) does not hold the design (x %g..%g, y %g..%g mm)",
+                  b.min.x(), b.max.x(), b.min.y(), b.max.y(), design_bounds.min.x(), design_bounds.max.x(),
+                  design_bounds.min.y(), design_bounds.max.y());
+    throw Error("--stock", what);
+  }
+  const GridSpec grid = GridSpec::covering(b.min.head<2>(), b.max.head<2>(), resolution, max_cells);
   Stock stock = Stock::box(grid, b.min.z(), b.max.z());
   if (spec.kind == StockSpec::Kind::Mesh) stock.top = design_heights(*spec.mesh, grid, b.min.z());
   return stock;
@@ -29,14 +40,17 @@ template <class Design>
 VerifyResult run(const Design& design, const Box3& bounds, const MachineProgram& program, const StockSpec& spec,
                  const VerifyOptions& options, double floor) {
   const auto start = Clock::now();
-  Stock stock = make_stock(spec, bounds, options.resolution);
+  Stock stock = make_stock(spec, bounds, options.resolution, options.max_cells);
   std::vector<float> heights;
   if constexpr (std::is_same_v<Design, rosmill::Mesh>) heights = design_heights(design, stock.grid, floor);
   else heights = design_heights(design, stock.grid);
-  const SimulationResult sim = simulate(program, stock, options.simulation);
+  SimulationOptions so = options.simulation;
+  if (!(so.trace_radius > 0)) so.trace_radius = scallop_window(program, options.compare, stock.grid.cell);
+  const SimulationResult sim = simulate(program, stock, so);
   VerifyResult result;
   result.report = compare(stock, heights, program, sim, options.compare, &result.grid);
   result.simulation_seconds = sim.seconds;
+  result.cells_visited = sim.cells_visited;
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }

@@ -1,5 +1,5 @@
-// Test helpers for the cloud suites: clouds sampled from meshes, noise, a brute-force reference drop-cutter
-// (ball against triangles: facet, edge and vertex contacts) and a brute-force gouge check against points.
+// Test helpers for the cloud suites: clouds sampled from meshes with a known covering radius, noise, the
+// sampling bound against the mesh drop-cutter, and brute-force checks of cutters against points.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -7,49 +7,44 @@
 #include <random>
 #include <vector>
 
+#include "rosmill/cloud/cloud_surface.hpp"
+#include "rosmill/cutter/contact.hpp"
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/mesh.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/plan/toolpath.hpp"
 
 namespace cloudtest {
 
+using rosmill::Cutter;
 using rosmill::Vec2;
 using rosmill::Vec3;
 
-// Even sampling: each triangle gets a square grid of pitch `spacing` in its own plane plus its edges sampled at
-// `spacing` and its corners, so every point of the mesh is within `spacing` of a sample and the density is the
-// same in every direction (as a scanner's, roughly).
-inline std::vector<Vec3> sample_mesh(const rosmill::Mesh& m, double spacing) {
+struct Sampling {
   std::vector<Vec3> pts;
+  double covering = 0;  // every point of the mesh is within this distance (3-D) of a sample
+};
+
+// Uniform sampling with a covering radius that is proven, not measured: every triangle is cut into n² copies of
+// itself scaled by 1/n (the barycentric lattice i/n, j/n; n = ceil(longest edge / s)) and the lattice nodes
+// are the samples. A point of the triangle lies in a lattice triangle whose edges are at most s, so it is
+// within s/sqrt(3) of one of its corners: an acute triangle's farthest point from its corners is the
+// circumcentre, at a/(2 sin A) <= a/sqrt(3) (a the longest side, its angle A between 60 and 90 degrees); a right
+// or obtuse triangle's farthest point lies on the longest side, at most a/2 from a corner.
+inline Sampling sample_mesh(const rosmill::Mesh& m, double s) {
+  Sampling out;
+  out.covering = s / std::sqrt(3.0);
   for (size_t f = 0; f < m.face_count(); ++f) {
-    const Vec3 c[3] = {m.corner(f, 0), m.corner(f, 1), m.corner(f, 2)};
-    for (int e = 0; e < 3; ++e) {
-      const Vec3 &a = c[e], &b = c[(e + 1) % 3];
-      const int n = std::max(1, int(std::ceil((b - a).norm() / spacing)));
-      for (int i = 0; i < n; ++i) pts.push_back(a + (b - a) * (double(i) / n));
-    }
-    const Vec3 e1 = (c[1] - c[0]).normalized();
-    Vec3 nrm = (c[1] - c[0]).cross(c[2] - c[0]);
-    if (nrm.norm() < 1e-12) continue;
-    const Vec3 e2 = nrm.normalized().cross(e1);
-    double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
-    Vec2 q[3];
-    for (int k = 0; k < 3; ++k) {
-      q[k] = Vec2((c[k] - c[0]).dot(e1), (c[k] - c[0]).dot(e2));
-      u0 = std::min(u0, q[k].x()); u1 = std::max(u1, q[k].x());
-      v0 = std::min(v0, q[k].y()); v1 = std::max(v1, q[k].y());
-    }
-    auto side = [](const Vec2& p, const Vec2& a, const Vec2& b) { return (b - a).x() * (p - a).y() - (b - a).y() * (p - a).x(); };
-    for (double u = u0 + 0.5 * spacing; u < u1; u += spacing)
-      for (double v = v0 + 0.5 * spacing; v < v1; v += spacing) {
-        const Vec2 p(u, v);
-        if (side(p, q[0], q[1]) > 0 && side(p, q[1], q[2]) > 0 && side(p, q[2], q[0]) > 0) pts.push_back(c[0] + e1 * u + e2 * v);
-      }
+    const Vec3 a = m.corner(f, 0), b = m.corner(f, 1), c = m.corner(f, 2);
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int n = std::max(1, int(std::ceil(longest / s)));
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) out.pts.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
   }
-  return pts;
+  return out;
 }
 
-// Adds N(0, sigma) to every coordinate; returns the largest displacement applied.
+// Adds N(0, sigma) to every coordinate; returns the largest displacement applied (3-D).
 inline double add_noise(std::vector<Vec3>& pts, double sigma, unsigned seed = 7) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> g(0.0, sigma);
@@ -62,88 +57,100 @@ inline double add_noise(std::vector<Vec3>& pts, double sigma, unsigned seed = 7)
   return worst;
 }
 
-// Exact tip height of a ball of radius R with its axis at (x, y) dropped onto the mesh (-inf: misses it).
-// Also returns cos of the angle between the contact normal and +Z (1 on flat ground).
-inline double mesh_ball_drop(const rosmill::Mesh& m, double R, double x, double y, double* cos_contact = nullptr) {
-  const Vec2 q(x, y);
-  double best = -std::numeric_limits<double>::infinity();
-  Vec3 contact(0, 0, 0);
-  auto consider = [&](double centre, const Vec3& at) {
-    if (centre > best) {
-      best = centre;
-      contact = at;
-    }
-  };
-  for (size_t f = 0; f < m.face_count(); ++f) {
-    const Vec3 &a = m.corner(f, 0), &b = m.corner(f, 1), &c = m.corner(f, 2);
-    const double lo_x = std::min({a.x(), b.x(), c.x()}) - R, hi_x = std::max({a.x(), b.x(), c.x()}) + R;
-    const double lo_y = std::min({a.y(), b.y(), c.y()}) - R, hi_y = std::max({a.y(), b.y(), c.y()}) + R;
-    if (x < lo_x || x > hi_x || y < lo_y || y > hi_y) continue;
-    for (const Vec3* v : {&a, &b, &c}) {
-      const double d2 = (v->head<2>() - q).squaredNorm();
-      if (d2 <= R * R) consider(v->z() + std::sqrt(R * R - d2), *v);
-    }
-    for (auto [p0, p1] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}}) {
-      const Vec2 d = (p1->head<2>() - p0->head<2>());
-      const double L = d.norm();
-      if (L < 1e-12) continue;
-      const Vec2 u = d / L;
-      const double s_q = (q - p0->head<2>()).dot(u);
-      const double l = std::abs((q - p0->head<2>()).dot(Vec2(-u.y(), u.x())));
-      if (l >= R) continue;
-      const double rho = std::sqrt(R * R - l * l), slope = (p1->z() - p0->z()) / L, k = std::sqrt(1 + slope * slope);
-      const double s_c = s_q + rho * slope / k;
-      if (s_c < 0 || s_c > L) continue;
-      consider(p0->z() + slope * s_q + rho * k, *p0 + (*p1 - *p0) * (s_c / L));
-    }
-    Vec3 n = (b - a).cross(c - a);
-    if (n.norm() < 1e-15) continue;
-    n.normalize();
-    if (n.z() < 0) n = -n;
-    if (n.z() < 1e-9) continue;
-    const Vec2 cp = q - R * n.head<2>();
-    // Inside the triangle's plan view?
-    auto side = [](const Vec2& p, const Vec3& s, const Vec3& e) {
-      return (e.x() - s.x()) * (p.y() - s.y()) - (e.y() - s.y()) * (p.x() - s.x());
-    };
-    const double s1 = side(cp, a, b), s2 = side(cp, b, c), s3 = side(cp, c, a);
-    if (!((s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0))) continue;
-    const double z = a.z() - (n.x() * (cp.x() - a.x()) + n.y() * (cp.y() - a.y())) / n.z();
-    consider(z + R * n.z(), Vec3(cp.x(), cp.y(), z));
-  }
-  if (cos_contact) *cos_contact = std::isfinite(best) ? std::clamp((best - contact.z()) / R, 0.0, 1.0) : 1.0;
-  return best - R;
+// The cutter eroded by r (every point at least r inside it), tip raised by r: a ball or flat end mill of radius
+// R - r. Used only for ball and flat cutters.
+inline Cutter eroded(const Cutter& c, double r) {
+  return c.type == rosmill::CutterType::BallEnd ? Cutter::ball(c.diameter - 2 * r) : Cutter::flat(c.diameter - 2 * r);
 }
 
-// How far a cutter with its tip at `tip` goes into the points (brute force over all of them): the largest
-// z_p + allowance - (height of the cutter's underside above p) over points under the footprint; <= 0: clear.
-inline double penetration(const std::vector<Vec3>& pts, const rosmill::Cutter& c, const Vec3& tip, double allowance) {
-  const double R = c.radius();
-  const double r = c.type == rosmill::CutterType::FlatEnd ? 0.0
-                   : c.type == rosmill::CutterType::BallEnd ? R : c.corner_radius;
-  const double Rf = R - r;
-  double worst = -std::numeric_limits<double>::infinity();
-  for (const Vec3& p : pts) {
-    const double d = (p.head<2>() - tip.head<2>()).norm();
-    if (d > R) continue;
-    const double under = d <= Rf ? tip.z() : tip.z() + r - std::sqrt(std::max(0.0, r * r - (d - Rf) * (d - Rf)));
-    worst = std::max(worst, p.z() + allowance - under);
-  }
-  return worst;
+// The sampling bound of a cloud's drop against the mesh it was sampled from. The points lie within `eta` of the
+// mesh and every mesh point lies within r = rho + eta of a point (rho: the sampling's covering radius, eta: the
+// largest noise displacement). Then, for the cloud's drop z of cutter C (the points see C grown by its support
+// disc: S = surface.supported(C)):
+//   z >= mesh drop of C eroded by r, less r: at height z and above, C holds no point, so the eroded cutter
+//        (r inside C) holds no mesh point, or some point would be within r of it, inside C;
+//   z <= mesh drop of S grown by eta (offset_cutter), plus eta: S touches a point p at z, so S grown by eta,
+//        eta lower, holds the mesh point within eta of p.
+struct Bound {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  bool misses = false;  // the grown cutter misses the mesh: the cloud's cutter touches nothing
+};
+inline Bound sampling_bound(const rosmill::MeshSurface& mesh, const rosmill::CloudSurface& cloud, const Cutter& c,
+                            double rho, double eta, double x, double y) {
+  Bound b;
+  const double r = rho + eta;
+  const rosmill::Drop lo = mesh.drop(eroded(c, r), x, y);
+  if (lo.touched) b.lo = lo.z - r;
+  const rosmill::Drop hi = mesh.drop(rosmill::offset_cutter(cloud.supported(c), eta), x, y);
+  if (hi.touched) b.hi = hi.z + eta;
+  b.misses = !hi.touched;
+  return b;
 }
 
-// Cutting positions of a toolpath sampled along its feed and plunge moves: every vertex and `per_move`
-// points inside each move, every `stride`-th move.
-inline std::vector<Vec3> feed_samples(const rosmill::Toolpath& tp, size_t stride, int per_move) {
+// On level ground the bound is much tighter: where C and a flat end mill of C's reach grown by eta land at the
+// same height z0 on the mesh, the mesh's highest point within that reach is under the axis at z0 (C can only
+// touch there at its tip) and, lying on a level facet, a level edge or a corner, it has a sample at z0 within
+// rho in plan view. With noise the cloud's drop is then within [z0 - eta - h_S(rho + eta), z0 + eta] (h_S: the
+// height of S's underside at that distance). Ball cutters only; returns false where the ground is not level.
+inline bool level_ground(const rosmill::MeshSurface& mesh, const rosmill::CloudSurface& cloud, const Cutter& c,
+                         double rho, double eta, double x, double y, Bound& b) {
+  const Cutter s = cloud.supported(c);
+  const rosmill::CutterProfile sp(s);
+  if (c.type != rosmill::CutterType::BallEnd || rho + eta > sp.R) return false;
+  const rosmill::Drop d = mesh.drop(c, x, y), f = mesh.drop(Cutter::flat(s.diameter + 2 * eta), x, y);
+  if (!d.touched || !f.touched || std::abs(d.z - f.z) > 1e-9) return false;
+  b.lo = d.z - eta - sp.height(std::min(rho + eta, sp.R));
+  b.hi = d.z + eta;
+  return true;
+}
+
+// Points sorted by x, for brute-force checks: every point within the cutter's x-range is looked at (no grid, no
+// pruning by height); points outside it cannot be under the cutter.
+class SortedPoints {
+ public:
+  explicit SortedPoints(std::vector<Vec3> pts) : pts_(std::move(pts)) {
+    std::sort(pts_.begin(), pts_.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+  }
+  const std::vector<Vec3>& points() const { return pts_; }
+
+  // How far the cutter with its tip at `tip` goes into the points: the largest z_p - (height of the cutter's
+  // underside above p) over the points under its footprint; <= 0: clear. -inf when none is under it.
+  double penetration(const Cutter& c, const Vec3& tip) const {
+    const rosmill::CutterProfile cp(c);
+    auto lo = std::lower_bound(pts_.begin(), pts_.end(), tip.x() - cp.R, [](const Vec3& p, double x) { return p.x() < x; });
+    double worst = -std::numeric_limits<double>::infinity();
+    for (auto p = lo; p != pts_.end() && p->x() <= tip.x() + cp.R; ++p) {
+      const double d2 = (p->head<2>() - tip.head<2>()).squaredNorm();
+      if (d2 <= cp.R2) worst = std::max(worst, p->z() - (tip.z() + cp.height_sq(d2)));
+    }
+    return worst;
+  }
+
+ private:
+  std::vector<Vec3> pts_;
+};
+
+// Cutting positions of a toolpath: every feed or plunge move's end (the cutter locations) or, with per_move > 1,
+// also per_move - 1 points inside each such move.
+inline std::vector<Vec3> cut_positions(const rosmill::Toolpath& tp, int per_move) {
   std::vector<Vec3> out;
   Vec3 at = tp.start;
-  size_t k = 0;
   for (const auto& pass : tp.passes)
     for (const auto& m : pass.moves) {
-      if (m.type != rosmill::MoveType::Rapid && (k++ % stride) == 0)
+      if (m.type != rosmill::MoveType::Rapid)
         for (int i = 1; i <= per_move; ++i) out.push_back(at + (m.to - at) * (double(i) / per_move));
       at = m.to;
     }
+  return out;
+}
+
+// The cutter locations of a toolpath's feed moves (the ends of its cutting moves, approaches and retracts
+// excluded).
+inline std::vector<Vec3> feed_locations(const rosmill::Toolpath& tp) {
+  std::vector<Vec3> out;
+  for (const auto& pass : tp.passes)
+    for (const auto& m : pass.moves)
+      if (m.type == rosmill::MoveType::Feed) out.push_back(m.to);
   return out;
 }
 

@@ -46,6 +46,23 @@ std::unique_ptr<Controller> grbl(const GrblSimulation& sim) {
   return open_controller("grbl+tcp://127.0.0.1:" + std::to_string(sim.port()));
 }
 
+// Streams `program` through a connection that the simulation drops: the driver must report it, and its message
+// must say where to resume (--from-line N). Returns N; 0 (and a test failure) when either is missing.
+size_t resume_line_after_drop(Controller& c, const std::vector<std::string>& program) {
+  try {
+    run_to_end(c, program, SendOptions{});
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("connection"), std::string::npos) << what;
+    const size_t at = what.find("--from-line ");
+    if (at != std::string::npos) return std::stoul(what.substr(at + 12));
+    ADD_FAILURE() << "no line to resume from in: " << what;
+    return 0;
+  }
+  ADD_FAILURE() << "the dropped connection was not reported";
+  return 0;
+}
+
 }  // namespace
 
 TEST(GrblSimulationStream, TenThousandLinesEachAcknowledgedOnceInOrder) {
@@ -75,22 +92,14 @@ TEST(GrblSimulationStream, DisconnectAtARandomLineThenResumeLosesAndRepeatsNothi
   std::mt19937 rng(20261122);
   for (int round = 0; round < 2; ++round) {
     const long drop = std::uniform_int_distribution<long>(200, 9500)(rng);
+    SCOPED_TRACE("connection dropped after " + std::to_string(drop) + " executed lines");
     GrblSimulation sim;
     sim.schedule_drop_after(drop);
     auto c = grbl(sim);
     c->connect();
     const auto program = numbered_program(10000);
-    size_t resume_from = 0;
-    try {
-      run_to_end(*c, program, SendOptions{});
-      FAIL() << "the dropped connection was not reported";
-    } catch (const Error& e) {
-      const std::string what = e.what();
-      EXPECT_NE(what.find("connection"), std::string::npos) << what;
-      const size_t at = what.find("--from-line ");
-      ASSERT_NE(at, std::string::npos) << what;
-      resume_from = std::stoul(what.substr(at + 12));
-    }
+    const size_t resume_from = resume_line_after_drop(*c, program);
+    ASSERT_GT(resume_from, 0u);
     // Every line acknowledged before the drop was executed; nothing after it.
     EXPECT_EQ(sim.executed().size(), static_cast<size_t>(drop));
     c->connect();
@@ -119,21 +128,15 @@ TEST(GrblSimulationStream, AResetConnectionLosesNothingAndRepeatsOnlyUnansweredL
   // where the first of them starts, so running one again retraces its own path.
   std::mt19937 rng(7);
   const long drop = std::uniform_int_distribution<long>(500, 9000)(rng);
+  SCOPED_TRACE("connection reset after " + std::to_string(drop) + " executed lines");
   GrblSimulation sim;
   sim.schedule_drop_after(drop, true);
   auto c = grbl(sim);
   c->connect();
   const auto program = numbered_program(10000);
   SendOptions o;
-  try {
-    run_to_end(*c, program, SendOptions{});
-    FAIL() << "the reset connection was not reported";
-  } catch (const Error& e) {
-    const std::string what = e.what();
-    const size_t at = what.find("--from-line ");
-    ASSERT_NE(at, std::string::npos) << what;
-    o.from_line = std::stoul(what.substr(at + 12));
-  }
+  o.from_line = resume_line_after_drop(*c, program);
+  ASSERT_GT(o.from_line, 0u);
   const std::vector<long> before = executed_numbers(sim);
   c->connect();
   EXPECT_EQ(run_to_end(*c, program, o).state, RunState::Finished);

@@ -89,6 +89,15 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
       {program({"G1 Z-1 F100", "X5", "G0 Z0", "G0 Z5"}), 7, "rapid clearance"},  // rapid down to 1 mm over the cut
       // An arc whose end points are inside but whose sweep leaves the envelope.
       {program({"G0 X245 Y0", "G1 Z-1 F100", "G3 X245 Y20 I0 J10"}), 7, "envelope x max"},
+      // What the checker cannot follow is refused, not passed: stored and machine positions, offset changes,
+      // other work offsets.
+      {program({"G1 Z-1 F100", "G28"}), 6, "unchecked move"},
+      {program({"G53 G0 Z-60"}), 5, "unchecked move"},
+      {program({"G92 X0 Y0", "G1 Z-1 F100"}), 5, "unchecked move"},
+      {program({"G10 L2 P1 Z-500", "G1 Z-1 F100"}), 5, "unchecked move"},
+      {program({"G55", "G1 Z-1 F100"}), 5, "work offset"},
+      // Violations come by line: the feed on line 5 before the envelope on line 7.
+      {program({"G1 Z-1 F5000", "X5", "G0 Z10 X400"}), 5, "max feed"},
   };
   for (const Case& c : cases) {
     const auto v = check_limits(c.lines, m);

@@ -56,7 +56,8 @@ class Simulator {
     }
   }
   ~Simulator() {
-    if (port_ > 0) {
+    // Whenever the script left a PID file (also when start failed half-way), the simulator is stopped by PID.
+    if (std::filesystem::exists(root_ + "/sim/sim.pid")) {
       const std::string cmd = ROSMILL_SOURCE_DIR "/scripts/linuxcnc-sim stop " + root_ + "/sim >/dev/null 2>&1";
       if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "linuxcnc-sim stop failed for %s\n", root_.c_str());
     }

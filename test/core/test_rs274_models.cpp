@@ -31,15 +31,9 @@ const Model kModels[] = {
 // stays quick and green while they stand, and says each time that it left them out:
 //  - raster's adaptive sampling explodes on these models (millions of moves, kilometres of up-and-down steps at
 //    walls, 10-50 s to plan and a minute for rs274): not planned here.
-//  - cloud-rough (and cloud-all, which starts with it) rapids down to 1 mm over the previous level's floor, below
-//    the machine's clearance over the stock top: the limit checker refuses those programs, rightly by the rule;
-//    only that violation is let through for them.
 bool raster_explodes(const std::string& strategy, const std::string& model) {
   return strategy == "raster" && (model == "pycam-textbox.stl" || model == "featuretype.STL" ||
                                   model == "ktoolcav.stl" || model == "wheel_in_box.stl");
-}
-bool rapids_into_cleared_levels(const std::string& strategy) {
-  return strategy == "cloud-rough" || strategy == "cloud-all";
 }
 
 class EveryStrategyOnModel : public ::testing::TestWithParam<Model> {};
@@ -97,11 +91,6 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
       EXPECT_TRUE(rep.ok) << what << " (" << dialect << "): " << rep.problem;
       EXPECT_GT(rep.canon_moves, 0u) << what;
       for (const LimitViolation& v : check_limits(p.lines, machine)) {
-        if (v.limit == "rapid clearance" && rapids_into_cleared_levels(s.name)) {
-          std::printf("NOTE: %s (%s) line %zu: %s: known planner defect, reported\n", what.c_str(), dialect, v.line,
-                      v.message().c_str());
-          break;
-        }
         ADD_FAILURE() << what << " (" << dialect << "): line " << v.line << ": " << v.message();
       }
       ++verified;

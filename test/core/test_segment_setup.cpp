@@ -62,6 +62,36 @@ TEST(SegmentEgi, BinsHaveNearlyEqualAreaAndCoverTheSphere) {
   }
 }
 
+// bin_of works without acos and atan2: it must pick the bin the plain definition gives (polar angle / ring
+// step, azimuth from -pi / sector width) for every direction not within rounding of a border, and keep the
+// normals of a flat face at a pole, whatever the signs of their zero components, in one bin.
+TEST(SegmentEgi, BinOfAgreesWithThePolarAndAzimuthDefinition) {
+  for (int rings : {1, 7, 18, 60}) {
+    const EgiBins bins(rings);
+    const double step = M_PI / rings;
+    std::vector<uint32_t> first(rings + 1, uint32_t(bins.size()));  // first bin of each ring, from the centres
+    for (uint32_t b = uint32_t(bins.size()); b-- > 0;) first[int(std::acos(bins.centre(b).z()) / step)] = b;
+    uint32_t checked = 0;
+    for (int k = 0; k < 200000; ++k) {
+      const double z = -1 + 2 * (k + 0.5) / 200000, a = 2.39996322972865332 * k;
+      const Vec3 n(std::sqrt(1 - z * z) * std::cos(a), std::sqrt(1 - z * z) * std::sin(a), z);
+      const double polar = std::acos(z) / step, azimuth = std::atan2(n.y(), n.x()) + M_PI;
+      const int ring = std::min(rings - 1, int(polar));
+      const uint32_t sectors = first[ring + 1] - first[ring];
+      const double sector = azimuth / (2 * M_PI) * sectors;
+      if (std::abs(polar - std::round(polar)) < 1e-9 || std::abs(sector - std::round(sector)) < 1e-9) continue;
+      ASSERT_EQ(bins.bin_of(n), first[ring] + std::min(sectors - 1, uint32_t(sector))) << n.transpose();
+      ++checked;
+    }
+    EXPECT_GT(checked, 199000u);
+    for (double sx : {0.0, -0.0})
+      for (double sy : {0.0, -0.0}) {
+        EXPECT_EQ(bins.bin_of(Vec3(sx, sy, 1.0)), bins.bin_of(Vec3(0, 0, 1)));
+        EXPECT_EQ(bins.bin_of(Vec3(sx, sy, -1.0)), bins.bin_of(Vec3(0, 0, -1)));
+      }
+  }
+}
+
 TEST(SegmentEgi, PatchHistogramsHoldThePatchArea) {
   Mesh m = make_primitive("dome");
   const SurfacePatches sp = segment_surface(m);

@@ -1,29 +1,23 @@
 // Verification of whole programs on the seed primitives, with results known in closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "rosmill/geometry/primitives.hpp"
-#include "rosmill/verify/cutter_profile.hpp"
 #include "rosmill/verify/design_height.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
+#include "test_verify_programs.hpp"
 
 using namespace rosmill;
 using namespace rosmill::verify;
+using namespace verify_test;
 
 namespace {
 
-std::map<int, Tool> tools(const std::string& spec) { return tools_from_specs({spec}); }
-
-StockSpec box(double x0, double y0, double z0, double x1, double y1, double z1) {
-  StockSpec s;
-  s.kind = StockSpec::Kind::Box;
-  s.box.add(Vec3(x0, y0, z0));
-  s.box.add(Vec3(x1, y1, z1));
-  return s;
-}
+ToolSetup tools(const std::string& spec) { return tool_setup({spec}); }
 
 // A zig-zag raster along x at height z: lines y = y0, y0 + step, ... up to y1 (inclusive), from x0 to x1.
 std::string raster(double x0, double x1, double y0, double y1, double step, double z) {
@@ -77,7 +71,7 @@ TEST(VerifyDesign, CubeFacedAndContouredLeavesOnlyTheSquareCorners) {
   program += "G0 Z80\nG0 X-5 Y-5\nG1 Z0\nG1 X65\nG1 Y65\nG1 X-5\nG1 Y-5\nG0 Z80\nM30\n";
   VerifyOptions o;
   o.resolution = 0.25;
-  const VerifyResult r = verify_program(make_primitive("cube"), parse_gcode(program, "cube.ngc", tools("flat:10")),
+  const VerifyResult r = verify_program(make_primitive("cube"), parse_gcode(program, "cube.ngc", tools("1=flat:10")),
                                         box(-10, -10, 0, 70, 70, 70), o);
   EXPECT_FALSE(r.report.gouged);
   EXPECT_EQ(r.report.max_gouge_mm, 0.0);
@@ -153,4 +147,56 @@ TEST(VerifyDesign, DomeFinishedWithABallNeverCutsTheTrueSphere) {
   // Measured on the nearly flat top only: scallop plus the facets' sagitta.
   EXPECT_GT(r.report.scallop_mm, 0.5 * flat_scallop);
   EXPECT_LT(r.report.scallop_mm, flat_scallop + sagitta);
+}
+
+TEST(VerifyDesign, CloudOfTheCubeTopIsComparedWhereItHasPoints) {
+  // The design as a scan: points every 0.5 mm over the cube's top (z 60). Faced exactly at 60 with a 10 mm flat
+  // end, then one plunge to 59.3 at (30, 30): the gouge is 0.7 mm under the plunge, nothing is left, and only
+  // the cells under the points (plus the few-cell gap filling at their border) are compared.
+  PointCloud top;
+  for (int j = 0; j <= 120; ++j)
+    for (int i = 0; i <= 120; ++i) top.points.emplace_back(0.5 * i, 0.5 * j, 60.0);
+  top.recompute_bbox();
+  std::string program = "G21 G90 G17\nT1 M6\n" + raster(-10, 70, -10, 70, 5, 60) + "G0 Z80\nG0 X30 Y30\n";
+  const uint32_t plunge = static_cast<uint32_t>(std::count(program.begin(), program.end(), '\n')) + 1;
+  program += "G1 Z59.3\nG0 Z80\nM30\n";
+  VerifyOptions o;
+  o.resolution = 0.5;
+  const VerifyResult r = verify_program(top, parse_gcode(program, "cloud.ngc", tools("1=flat:10")),
+                                        box(-10, -10, 0, 70, 70, 62), o);
+  ASSERT_TRUE(r.report.gouged);
+  EXPECT_NEAR(r.report.max_gouge_mm, 0.7, 1e-4);
+  EXPECT_LE(std::hypot(r.report.gouge_at.x() - 30, r.report.gouge_at.y() - 30), 5.0);
+  EXPECT_NEAR(r.report.gouge_at.z(), 59.3, 1e-4);
+  EXPECT_EQ(r.report.gouge_source, plunge);
+  EXPECT_LT(r.report.max_rest_mm, 1e-4);
+  EXPECT_EQ(r.report.cells, 160u * 160u);
+  EXPECT_GE(r.report.compared_cells, 120u * 120u);
+  EXPECT_LE(r.report.compared_cells, 128u * 128u);
+}
+
+TEST(VerifyDesign, MeshStockStartsAtItsTopSurface) {
+  // The dome as both design and stock: before any cut nothing is left (a box stock leaves the corners' 50 mm).
+  // A 6 mm ball along y = 0 at z 45 then gouges it by 5 mm at the pole, on that line.
+  const Mesh dome = make_primitive("dome");
+  StockSpec stock;
+  stock.kind = StockSpec::Kind::Mesh;
+  stock.mesh = &dome;
+  VerifyOptions o;
+  o.resolution = 0.5;
+  const ToolSetup ball = tools("1=ball:6");
+  const MachineProgram above = parse_gcode("T1 M6\nG0 X0 Y0 Z80\nM30\n", "above.ngc", ball);
+  const VerifyResult untouched = verify_program(dome, above, stock, o);
+  EXPECT_FALSE(untouched.report.gouged);
+  EXPECT_LT(untouched.report.max_rest_mm, 1e-4);
+  EXPECT_EQ(untouched.report.unreached_area_mm2, 0.0);
+  EXPECT_NEAR(verify_program(dome, above, box(-50, -50, 0, 50, 50, 50), o).report.max_rest_mm, 50.0, 0.5);
+
+  const MachineProgram cut = parse_gcode("T1 M6\nG0 X-60 Y0 Z80\nG1 Z45 F500\nG1 X60\nG0 Z80\nM30\n", "cut.ngc", ball);
+  const VerifyResult r = verify_program(dome, cut, stock, o);
+  ASSERT_TRUE(r.report.gouged);
+  EXPECT_NEAR(r.report.max_gouge_mm, 5.0, 0.05);
+  EXPECT_LE(std::hypot(r.report.gouge_at.x(), r.report.gouge_at.y()), 1.0);
+  EXPECT_EQ(r.report.gouge_source, 4u);
+  EXPECT_LT(r.report.max_rest_mm, 1e-4);
 }

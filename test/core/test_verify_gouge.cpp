@@ -7,66 +7,25 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
+#include "test_verify_programs.hpp"
 
 using namespace rosmill;
 using namespace rosmill::verify;
+using namespace verify_test;
 
 namespace {
-
-StockSpec box(double x0, double y0, double z0, double x1, double y1, double z1) {
-  StockSpec s;
-  s.kind = StockSpec::Kind::Box;
-  s.box.add(Vec3(x0, y0, z0));
-  s.box.add(Vec3(x1, y1, z1));
-  return s;
-}
-
-// Facing of the cube's top at z 60 with a 10 mm flat end, lines along x every 5 mm (one G-code line each).
-std::string facing() {
-  std::ostringstream g;
-  g << "G21 G90 G17 (facing)\nT1 M6\nG0 X-6 Y0 Z70\nG1 Z60 F500\n";
-  for (int k = 0; k <= 12; ++k) g << "G1 Y" << 5 * k << "\nG1 X" << (k % 2 ? -6 : 66) << "\n";
-  g << "G0 Z70\n";
-  return g.str();
-}
-
-int lines_of(const std::string& text) {
-  int n = 0;
-  for (char c : text) n += c == '\n';
-  return n;
-}
 
 VerifyResult run(const std::string& program, const std::vector<std::string>& tools, double resolution) {
   VerifyOptions o;
   o.resolution = resolution;
-  return verify_program(make_primitive("cube"), parse_gcode(program, "t.ngc", tools_from_specs(tools)),
+  return verify_program(make_primitive("cube"), parse_gcode(program, "t.ngc", tool_setup(tools)),
                         box(0, 0, 0, 60, 60, 65), o);
-}
-
-// Raster finishing of a flat floor (the top of a 20 mm cube at z 20) with a ball: lines along x every `s` mm.
-Toolpath flat_raster(double D, double s) {
-  Toolpath tp;
-  tp.strategy = "raster";
-  tp.tool.cutter = Cutter::ball(D);
-  tp.tool.stepover = s;
-  tp.start = Vec3(-5, 0, 30);
-  ToolpathPass pass;
-  pass.moves.push_back({Vec3(-5, 0, 20), MoveType::Plunge, 300});
-  const int n = static_cast<int>(std::round(20 / s));
-  for (int k = 0; k <= n; ++k) {
-    const double x_end = k % 2 ? -5 : 25;
-    pass.moves.push_back({Vec3(x_end, k * s, 20), MoveType::Feed, 1000});
-    if (k < n) pass.moves.push_back({Vec3(x_end, (k + 1) * s, 20), MoveType::Feed, 1000});
-  }
-  pass.moves.push_back({Vec3(25, 20, 30), MoveType::Rapid, 0});
-  tp.passes.push_back(pass);
-  return tp;
 }
 
 }  // namespace
 
 TEST(VerifyGouge, CleanFacingHasNoGouge) {
-  const VerifyResult r = run(facing(), {"flat:10"}, 0.25);
+  const VerifyResult r = run(facing(), {"1=flat:10"}, 0.25);
   EXPECT_FALSE(r.report.gouged);
   EXPECT_EQ(r.report.max_gouge_mm, 0.0);
   EXPECT_LT(r.report.max_rest_mm, 1e-4);
@@ -78,7 +37,7 @@ TEST(VerifyGouge, BallPlungeIsCaughtWithDepthPlaceAndLine) {
   const int plunge_line = lines_of(program) + 4;  // after T2 M6, G0 and G1 Z61
   program += "T2 M6\nG0 X30.1 Y20.1 Z62\nG1 Z61 F300\nG1 Z58.5 (the gouge)\nG0 Z70\nM30\n";
   const double res = 0.2;
-  const VerifyResult r = run(program, {"flat:10", "ball:6"}, res);
+  const VerifyResult r = run(program, {"1=flat:10", "2=ball:6"}, res);
   ASSERT_TRUE(r.report.gouged);
   EXPECT_NEAR(r.report.max_gouge_mm, 1.5, 0.01);  // the cell centre nearest the tip: within 0.1 mm, 2 um higher
   EXPECT_NEAR(r.report.gouge_at.x(), 30.1, res);
@@ -94,7 +53,7 @@ TEST(VerifyGouge, SlotGougeNamesTheFirstLineThatCutDeepest) {
   std::string program = facing();
   const int slot_line = lines_of(program) + 3;
   program += "G0 X10 Y40 Z62\nG1 Z59 F300\nG1 X50\nG1 Z59.5\nG1 X10\nG0 Z70\n";
-  const VerifyResult r = run(program, {"flat:10"}, 0.25);
+  const VerifyResult r = run(program, {"1=flat:10"}, 0.25);
   ASSERT_TRUE(r.report.gouged);
   EXPECT_NEAR(r.report.max_gouge_mm, 1.0, 1e-4);
   EXPECT_NEAR(r.report.gouge_at.y(), 40, 5 + 0.25);
@@ -107,7 +66,7 @@ TEST(VerifyGouge, SlotGougeNamesTheFirstLineThatCutDeepest) {
 
 TEST(VerifyGouge, RapidIntoMaterialIsCounted) {
   const std::string program = facing() + "G0 X30 Y30 Z55\nG0 Z70\n";
-  const VerifyResult r = run(program, {"flat:10"}, 0.5);
+  const VerifyResult r = run(program, {"1=flat:10"}, 0.5);
   EXPECT_GT(r.report.rapid_cut_cells, 0u);
   EXPECT_EQ(r.report.first_rapid_cut_source, static_cast<uint32_t>(lines_of(facing()) + 1));
   EXPECT_NEAR(r.report.max_gouge_mm, 5.0, 1e-4);

@@ -51,13 +51,15 @@ struct CloudPrepReport {
   std::string orientation;       // how the frame was found
   size_t plane_inliers = 0;
   double mean_spacing = 0.0;     // mm, nearest-neighbour mean
+  double sampling_radius = 0.0;  // mm, plan view (cloud_grid.hpp): the support discs' size before the cutter's share
   double hole_cell = 0.0;
   size_t grid_cells = 0, empty_cells = 0, outside_cells = 0;
   std::vector<Hole> holes;       // enclosed empty regions
   Box3 bbox;
 };
 
-// `points` may hold NaN or infinite coordinates (an organised cloud); they are dropped and counted.
+// `points` may hold NaN or infinite coordinates (an organised cloud); they are dropped and counted. Throws Error
+// on a bad option (a transform that is not rigid, a negative leaf, ...) or when no point is left.
 PointCloud prepare_cloud(const std::vector<Vec3>& points, const CloudPrepOptions& options,
                          CloudPrepReport* report = nullptr);
 inline PointCloud prepare_cloud(const PointCloud& cloud, const CloudPrepOptions& options,

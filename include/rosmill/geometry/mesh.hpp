@@ -49,7 +49,13 @@ class Mesh {
   const Vec3& corner(size_t f, int i) const { return vertices[faces[f][i]]; }
 
   // The face across edge i of face f, or kNone when the edge is open or non-manifold.
-  uint32_t neighbour(size_t f, int i) const;
+  // Inline: the floods of segmentation call it for every facet.
+  uint32_t neighbour(size_t f, int i) const {
+    const MeshEdge& e = edges[face_edges[f][i]];
+    if (e.face_count != 2) return kNone;
+    const uint32_t f0 = edge_faces[e.first_face], f1 = edge_faces[e.first_face + 1];
+    return f0 == f ? f1 : f0;
+  }
   // True when every edge has exactly two faces.
   bool closed() const;
 };

@@ -17,7 +17,7 @@ class EgiBins {
 
   size_t size() const { return centres_.size(); }
   int rings() const { return rings_; }
-  // Bin of a unit direction (a zero vector lands in bin 0).
+  // Bin of a unit direction (callers leave out facets without area: a zero vector has no meaningful bin).
   uint32_t bin_of(const Vec3& n) const;
   // Unit direction at the middle of a bin, and the largest angle (radians) from it to any direction in the bin.
   const Vec3& centre(uint32_t bin) const { return centres_[bin]; }
@@ -26,12 +26,22 @@ class EgiBins {
   double solid_angle(uint32_t bin) const;
 
  private:
+  uint32_t ring_of(double z) const;
+  uint32_t sector_of(uint32_t ring, double x, double y) const;
+
   int rings_;
   double ring_step_;
   std::vector<uint32_t> ring_first_;  // first bin of each ring, plus the total at the end
+  // bin_of without acos and atan2 (they were most of the EGI's cost): the cosines of the ring borders (rings-1,
+  // descending), and per ring the pseudo-angles of its sectors' starts (one per bin, the first 0).
+  std::vector<double> ring_border_cos_;
+  std::vector<double> sector_start_;
   std::vector<Vec3> centres_;
   std::vector<double> radii_;
 };
+
+// The default bins (18 rings), made once.
+const EgiBins& default_egi_bins();
 
 // One patch's EGI: the occupied bins (ascending) and the facet area in each.
 struct PatchEgi {
@@ -42,7 +52,7 @@ struct PatchEgi {
 // The EGIs of every patch of a phase 1 segmentation. Built once per mesh; every setup filter reads it.
 class EgiSet {
  public:
-  EgiSet(const SurfacePatches& patches, const EgiBins& bins = EgiBins());
+  EgiSet(const SurfacePatches& patches, const EgiBins& bins = default_egi_bins());
   const SurfacePatches& patches() const { return *patches_; }
   const EgiBins& bins() const { return bins_; }
   const PatchEgi& egi(size_t patch) const { return egis_[patch]; }

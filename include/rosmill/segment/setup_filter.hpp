@@ -6,6 +6,7 @@
 //   4-axis about an axis u: the tool axis turns in the plane perpendicular to u.
 //   5-axis: every direction.
 #pragma once
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,25 @@ struct SetupFilter {
   bool reaches(const Vec3& normal) const;
   // Angle (radians) from a unit direction to the nearest allowed tool axis.
   double angle_to_allowed(const Vec3& direction) const;
+};
+
+// SetupFilter::reaches with its bound worked out once (a cosine or a sine), for loops over every facet.
+class ReachTest {
+ public:
+  explicit ReachTest(const SetupFilter& filter);
+  bool operator()(const Vec3& normal) const {
+    switch (kind_) {
+      case SetupFilter::Kind::ThreeAxis: return normal.dot(axis_) >= bound_;
+      case SetupFilter::Kind::FourAxis: return std::abs(normal.dot(axis_)) <= bound_;
+      case SetupFilter::Kind::FiveAxis: return true;
+    }
+    return true;
+  }
+
+ private:
+  SetupFilter::Kind kind_;
+  Vec3 axis_;
+  double bound_;
 };
 
 // "+z", "-x", ... (3-axis), "4axis:x" (also y, z), "5axis". Throws Error naming the text otherwise.

@@ -22,6 +22,7 @@ struct DeviationGrid {
   std::vector<float> machined;
   std::vector<float> design;
   std::vector<float> deviation;  // machined - design: < 0 gouge, > 0 material left
+  std::vector<uint8_t> cut;      // 1 where some move lowered the cell
   double tolerance = 0.01;
 };
 
@@ -32,6 +33,7 @@ struct DeviationReport {
   Vec3 gouge_at = Vec3::Zero();     // cell centre at the machined height
   uint32_t gouge_move = Stock::kNoMove;  // index in the program's moves
   uint32_t gouge_source = 0;        // its G-code line or toolpath move number (0 when unknown)
+  bool from_gcode = false;          // gouge_source is a G-code line (else a toolpath move number)
   size_t gouge_cells = 0;
   // Material left (machined above design), over the compared cells.
   double max_rest_mm = 0.0;
@@ -49,6 +51,14 @@ struct DeviationReport {
   size_t rapid_cut_cells = 0;
   uint32_t first_rapid_cut_source = 0;
 };
+
+// Theoretical scallop of parallel passes at `stepover` on a flat floor: the profile's height half-way between two
+// passes (for a ball of radius R: R - sqrt(R^2 - (s/2)^2); capped at the full radius's when s > 2R).
+double scallop_theory(const Cutter& cutter, double stepover);
+
+// How far from the finishing path a cell counts as between two of its passes: half the stepover (half the
+// finishing cutter's radius when the stepover is unknown) plus half a cell. The simulation's trace radius.
+double scallop_window(const MachineProgram& program, const CompareOptions& options, double cell);
 
 DeviationReport compare(const Stock& stock, const std::vector<float>& design, const MachineProgram& program,
                         const SimulationResult& sim, const CompareOptions& options = {},

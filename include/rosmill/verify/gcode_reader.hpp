@@ -1,24 +1,41 @@
 // A small RS274 (LinuxCNC flavour) reader for what the simulator needs: G0/G1/G2/G3 in the XY plane (helical
-// z allowed), G17, G20/G21, G90/G91, G90.1/G91.1, F, S, T with M6, comments, line numbers. Words that do not move
-// the tool (spindle, coolant, G54, G40, G49, G43, G64, G61, G94, G4 dwell, program end) are accepted and ignored.
-// Anything else that would change the motion (G18/G19, cutter radius compensation, canned cycles, G28/G30/G53,
-// G92, subroutines, expressions, P turns on arcs) throws Error naming the file and line.
+// z allowed), G17, G20/G21, G90/G91, G90.1/G91.1, F, S, T with M6, comments, line numbers; M2 or M30 ends the
+// program (the controller reads no further). Words that do not move the tool (spindle, coolant, G54, G40, G49,
+// G43, G64, G61, G93-G97, G98/G99, G4 dwell, pauses, user M-codes) are accepted and ignored. Anything else that
+// would change the motion (G18/G19, cutter radius compensation, canned cycles, G28/G30/G53, G92, other work
+// offsets, subroutines, parameters and expressions, P turns on arcs, rotary axes A/B/C, M70-M73) or a word the
+// reader does not know throws Error naming the file and line.
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
-#include "rosmill/cutter/cutter.hpp"
+#include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/verify/program.hpp"
 
 namespace rosmill::verify {
 
-// `tools` maps T numbers to tools. A program without a T word runs with the lowest-numbered tool; a T number
-// that is not in the map throws Error naming the line. Positions before the first move are taken as 0, so the
-// first move does not sweep from an unknown place: it starts at its own target.
-MachineProgram parse_gcode(const std::string& text, const std::string& name, const std::map<int, Tool>& tools);
-MachineProgram read_gcode(const std::string& path, const std::map<int, Tool>& tools);
+// The tools a program may call by T number, and the one in the spindle when it starts (used until its first M6).
+// Without a loaded tool, a move before any M6 is an error, unless the setup holds exactly one tool.
+struct ToolSetup {
+  std::map<int, Tool> tools;
+  std::optional<Tool> loaded;
+};
 
-// Tools given on the command line: "ball:6" (T1, T2, ... in order) or "T3=ball:6" / "3=ball:6".
-std::map<int, Tool> tools_from_specs(const std::vector<std::string>& specs);
+// The tool table's tools (when given) and the command line's --tool specs on top of them:
+//   "N=CUTTER" or "TN=CUTTER"  defines tool N (CUTTER: ball:D, flat:D, bull:D:r; replaces the table's N)
+//   "CUTTER"                   the tool in the spindle at the start
+//   "N" or "TN"                tool N is in the spindle at the start
+// Throws Error naming the spec on a bad one, a tool defined twice, or two tools loaded at the start.
+ToolSetup tool_setup(const std::vector<std::string>& specs, const ToolTable* table = nullptr);
+
+// Programs larger than this many moves are refused (the moves are held in memory).
+constexpr size_t kMaxProgramMoves = 20'000'000;
+
+// Positions are unknown until an axis is first given; a move is swept once all three are known, the first one
+// from its own target (the controller's position before the program is not known).
+MachineProgram parse_gcode(const std::string& text, const std::string& name, const ToolSetup& tools);
+MachineProgram read_gcode(const std::string& path, const ToolSetup& tools);
 
 }  // namespace rosmill::verify

@@ -10,6 +10,10 @@
 
 namespace rosmill::verify {
 
+// The largest grid the verifier allocates (about 32 bytes a cell for the stock, the design, the deviation and the
+// trace): a larger one is refused with a message, never allocated from what an input asks for.
+constexpr size_t kMaxGridCells = 25'000'000;
+
 struct GridSpec {
   double x0 = 0.0, y0 = 0.0;  // lower-left corner of cell (0, 0) in mm
   double cell = 1.0;          // cell edge length in mm (the resolution)
@@ -19,20 +23,25 @@ struct GridSpec {
   size_t index(int i, int j) const { return static_cast<size_t>(j) * nx + i; }
   double cx(int i) const { return x0 + (i + 0.5) * cell; }
   double cy(int j) const { return y0 + (j + 0.5) * cell; }
-  // Index range [lo, hi] of the cells whose centres lie in [a, b] along x (or y); empty when lo > hi.
-  int first_x(double a) const { return clampi(static_cast<int>(std::ceil((a - x0) / cell - 0.5)), nx); }
-  int last_x(double b) const { return clampi(static_cast<int>(std::floor((b - x0) / cell - 0.5)), nx, -1); }
-  int first_y(double a) const { return clampi(static_cast<int>(std::ceil((a - y0) / cell - 0.5)), ny); }
-  int last_y(double b) const { return clampi(static_cast<int>(std::floor((b - y0) / cell - 0.5)), ny, -1); }
+  // Index range [lo, hi] of the cells whose centres lie in [a, b] along x (or y); empty when lo > hi (also for
+  // NaN or far-off bounds: the index is clamped before it becomes an int).
+  int first_x(double a) const { return first_index((a - x0) / cell, nx); }
+  int last_x(double b) const { return last_index((b - x0) / cell, nx); }
+  int first_y(double a) const { return first_index((a - y0) / cell, ny); }
+  int last_y(double b) const { return last_index((b - y0) / cell, ny); }
 
-  // A grid covering [min, max] in XY at `cell` mm (at least one cell each way).
-  static GridSpec covering(const Vec2& min, const Vec2& max, double cell);
+  // A grid covering [min, max] in XY at `cell` mm (at least one cell each way). Throws Error (naming
+  // --resolution) for a cell size that is not a positive number or a grid of more than `max_cells` cells.
+  static GridSpec covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells = kMaxGridCells);
 
  private:
-  // Clamps to [lo, n] for a first index, [-1, n - 1] for a last index; out-of-range values make empty ranges.
-  static int clampi(int v, int n, int lo = 0) {
-    if (lo == 0) return v < 0 ? 0 : (v > n ? n : v);
-    return v < -1 ? -1 : (v > n - 1 ? n - 1 : v);
+  static int first_index(double u, int n) {
+    const double v = std::ceil(u - 0.5);
+    return !(v > 0) ? 0 : v >= n ? n : static_cast<int>(v);
+  }
+  static int last_index(double u, int n) {
+    const double v = std::floor(u - 0.5);
+    return !(v >= 0) ? -1 : v >= n - 1 ? n - 1 : static_cast<int>(v);
   }
 };
 

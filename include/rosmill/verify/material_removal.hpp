@@ -1,12 +1,14 @@
 // Material removal simulation on a height field (dexel) stock: every line and XY arc of a program sweeps the
 // exact cutter profile (flat, ball, bull) and each cell keeps the lowest cutter bottom that passed over it.
 //
-// Per move only the cells of the footprint (a capsule around a line, an annular band around an arc) are visited
-// and the lowest bottom over the move is found analytically: horizontal moves from the XY distance to the path,
-// a ball on a ramp from the swept capsule of its centre, a flat end from the part of the ramp over the cell, a
-// bull nose by a golden-section search of its (convex) bottom along the ramp. Helical arcs are split into chords
-// within `arc_tolerance`. The grid is cut into bands of rows that the cores process independently, each band
-// running its moves in program order, so the result (heights and which move cut each cell) is deterministic.
+// Per move only the cells of its footprint are visited, row by row, and the lowest bottom over each is found in
+// closed form: the nearest point of a level line or arc, the clamped stationary point of a ball on a ramp, the
+// lower end of the covered part of a ramp for a flat end, the drop-cutter edge contact (mirrored) for a bull nose
+// on a ramp. Helical arcs are split into chords within `arc_tolerance`. Along a chain of lines a line is only
+// swept where it can hold the chain's lowest point (see material_removal.cpp), which makes a dense finishing
+// program cost about its swept area, not its moves times the cutter's disc. The grid is cut into bands of rows
+// that the cores process independently, each band running its moves in program order, so the result (heights
+// and which move cut each cell) is deterministic.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -18,8 +20,10 @@ namespace rosmill::verify {
 
 struct SimulationOptions {
   double arc_tolerance = 0.001;  // mm: largest distance between a helical arc and its chords
-  int band_rows = 8;             // rows per band of work (the unit of parallel work)
+  int band_rows = 32;            // rows per band of work (the unit of parallel work)
   bool parallel = true;
+  bool prune = true;             // false: sweep every move over its whole footprint (the slow reference)
+  double trace_radius = 0;       // mm: how far from the finishing path cells record their distance (0: R)
 };
 
 struct SimulationResult {
@@ -27,9 +31,10 @@ struct SimulationResult {
   size_t rapid_cut_cells = 0;     // cells lowered by a rapid (G0): each is a crash into material
   uint32_t first_rapid_cut = Stock::kNoMove;  // program move index of the first rapid that cut, if any
   // Squared XY distance from each cell centre to the nearest axis position of the finishing moves (the feed moves
-  // of the last tool); +infinity where they never came. The scallop check reads it.
+  // of the last tool), recorded up to the trace radius; +infinity elsewhere. The scallop check reads it.
   std::vector<float> finish_axis_d2;
   uint16_t finishing_tool = 0;
+  size_t cells_visited = 0;       // cell evaluations (the work done)
   double seconds = 0.0;
 };
 

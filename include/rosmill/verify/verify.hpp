@@ -24,6 +24,7 @@ struct StockSpec {
 
 struct VerifyOptions {
   double resolution = 0.5;  // cell size in mm
+  size_t max_cells = kMaxGridCells;
   CompareOptions compare;
   SimulationOptions simulation;
 };
@@ -32,6 +33,7 @@ struct VerifyResult {
   DeviationReport report;
   DeviationGrid grid;
   double simulation_seconds = 0.0;
+  size_t cells_visited = 0;  // cell evaluations of the simulation
   double seconds = 0.0;  // the whole verification (grid, design heights, simulation, comparison)
 };
 

@@ -1,0 +1,147 @@
+// rosmill verify DESIGN (PROGRAM.ngc|toolpath.json) [--stock box|x0,y0,z0,x1,y1,z1|STOCK.stl] [--resolution MM]
+//   [--tool SPEC]... [--tools FILE] [--units U] [--tolerance MM] [--stepover MM] [--json] [--image deviation.png]
+// Simulates the program on the stock and compares the result with the design (an STL or a cloud): the deepest
+// gouge and the line that made it, the material left, the scallop, the area never reached.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "command.hpp"
+#include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/error.hpp"
+#include "rosmill/io/cloud_io.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/verify/deviation_image.hpp"
+#include "rosmill/verify/gcode_reader.hpp"
+#include "rosmill/verify/verify.hpp"
+
+namespace rosmill::cli {
+namespace {
+
+using namespace rosmill::verify;
+
+struct VerifyArgs {
+  std::string design, program, stock = "box", tools, units, image;
+  std::vector<std::string> tool;
+  double resolution = 0.5, tolerance = 0.01, stepover = 0;
+  bool json = false;
+};
+
+MachineProgram read_program(const VerifyArgs& a) {
+  if (is_toolpath_path(a.program)) {
+    if (!a.tool.empty()) throw Error("--tool", "a toolpath file names its own tools; --tool is for G-code programs");
+    return program_from_job(read_toolpath_file(a.program));
+  }
+  // The tool table: --tools, else config/tools.yaml when there is one (G-code calls tools by number).
+  const std::string table_path = !a.tools.empty() ? a.tools
+                                 : std::filesystem::exists("config/tools.yaml") ? "config/tools.yaml"
+                                                                                : "";
+  std::unique_ptr<ToolTable> table;
+  if (!table_path.empty()) table = std::make_unique<ToolTable>(read_tool_table(table_path));
+  return read_gcode(a.program, tool_setup(a.tool, table.get()));
+}
+
+nlohmann::ordered_json to_json(const DeviationReport& r, double seconds) {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  j["max_gouge_mm"] = r.max_gouge_mm;
+  j["gouge_at"] = r.gouged ? ordered_json::array({r.gouge_at.x(), r.gouge_at.y(), r.gouge_at.z()}) : ordered_json();
+  j["gouge_line"] = r.gouged && r.gouge_source ? ordered_json(r.gouge_source) : ordered_json();
+  j["max_rest_mm"] = r.max_rest_mm;
+  j["mean_rest_mm"] = r.mean_rest_mm;
+  j["scallop_mm"] = r.scallop_mm;
+  j["unreached_area_mm2"] = r.unreached_area_mm2;
+  j["cells"] = r.cells;
+  j["seconds"] = seconds;
+  return j;
+}
+
+void print_text(const VerifyArgs& a, const MachineProgram& p, const VerifyResult& v, double seconds) {
+  const DeviationReport& r = v.report;
+  const GridSpec& g = v.grid.grid;
+  const char* where = p.from_gcode ? "line" : "move";
+  std::printf("verify %s with %s: %zu moves, %zu tools, %d x %d cells of %g mm\n", a.design.c_str(),
+              a.program.c_str(), p.moves.size(), p.tools.size(), g.nx, g.ny, g.cell);
+  if (r.gouged)
+    std::printf("gouge      %.4f mm deep at (%.3f, %.3f, %.3f), %s %u; %zu cells deeper than %g mm\n", r.max_gouge_mm,
+                r.gouge_at.x(), r.gouge_at.y(), r.gouge_at.z(), where, r.gouge_source, r.gouge_cells, a.tolerance);
+  else
+    std::printf("gouge      none deeper than %g mm\n", a.tolerance);
+  std::printf("rest       max %.4f mm, mean %.4f mm\n", r.max_rest_mm, r.mean_rest_mm);
+  if (r.scallop_theory_mm >= 0)
+    std::printf("scallop    %.4f mm (theory %.4f mm at stepover %g mm)\n", r.scallop_mm, r.scallop_theory_mm,
+                r.stepover_mm);
+  else
+    std::printf("scallop    %.4f mm (stepover unknown: --stepover gives the theory)\n", r.scallop_mm);
+  std::printf("unreached  %.3f mm2\n", r.unreached_area_mm2);
+  if (r.rapid_cut_cells)
+    std::printf("RAPID INTO MATERIAL: %zu cells, first at %s %u\n", r.rapid_cut_cells, where, r.first_rapid_cut_source);
+  std::printf("seconds    %.3f (simulation %.3f)\n", seconds, v.simulation_seconds);
+}
+
+void run(const VerifyArgs& a) {
+  const auto t0 = std::chrono::steady_clock::now();
+  VerifyOptions o;
+  o.resolution = a.resolution;
+  o.compare.tolerance = a.tolerance;
+  o.compare.stepover = a.stepover;
+  if (!(a.tolerance >= 0)) throw Error("--tolerance", "must be zero or more mm");
+  if (!(a.stepover >= 0)) throw Error("--stepover", "must be zero or more mm");
+  const MachineProgram program = read_program(a);
+
+  Mesh stock_mesh;
+  StockSpec stock;
+  if (a.stock == "box" || a.stock.find(',') != std::string::npos) {
+    stock = StockSpec::parse_box(a.stock);
+  } else {
+    StlReadOptions so;
+    if (!a.units.empty()) so.units = parse_units(a.units, "--units");
+    stock_mesh = read_stl(a.stock, so);
+    stock.kind = StockSpec::Kind::Mesh;
+    stock.mesh = &stock_mesh;
+  }
+
+  VerifyResult v;
+  if (is_cloud_file(a.design)) {
+    CloudReadOptions co;
+    if (!a.units.empty()) co.units = parse_units(a.units, "--units");
+    v = verify_program(read_cloud(a.design, co), program, stock, o);
+  } else {
+    StlReadOptions so;
+    if (!a.units.empty()) so.units = parse_units(a.units, "--units");
+    v = verify_program(read_stl(a.design, so), program, stock, o);
+  }
+  if (!a.image.empty()) write_deviation_png(a.image, v.grid, v.report);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (a.json) std::printf("%s\n", to_json(v.report, seconds).dump().c_str());
+  else print_text(a, program, v, seconds);
+}
+
+CommandRegistration reg([](CLI::App& app) {
+  auto a = std::make_shared<VerifyArgs>();
+  auto* cmd = app.add_subcommand("verify", "simulate a program on the stock and compare it with the design");
+  cmd->add_option("DESIGN", a->design, "the part: STL, or a cloud (PCD, PLY)")->required();
+  cmd->add_option("PROGRAM", a->program, "G-code (.ngc, ...) or toolpath.json (rosmill plan -o)")->required();
+  cmd->add_option("--stock", a->stock,
+                  "box (the design's bounds), x0,y0,z0,x1,y1,z1 (mm), or an STL of the stock")->capture_default_str();
+  cmd->add_option("--resolution", a->resolution, "cell size, mm")->capture_default_str();
+  cmd->add_option("--tool", a->tool,
+                  "G-code tools: N=CUTTER defines tool N (ball:D, flat:D, bull:D:r); CUTTER or N is the tool in the "
+                  "spindle at the start (repeatable)")
+      ->allow_extra_args(false);
+  cmd->add_option("--tools", a->tools, "tool table (default config/tools.yaml when present)");
+  cmd->add_option("--units", a->units, "units of the STL and cloud files: mm, inch, m (STL default mm, clouds m)");
+  cmd->add_option("--tolerance", a->tolerance, "deviation that still counts as on the design, mm")
+      ->capture_default_str();
+  cmd->add_option("--stepover", a->stepover, "stepover of the finishing passes for the scallop theory, mm "
+                                             "(toolpath files carry theirs)");
+  cmd->add_flag("--json", a->json, "print one JSON object");
+  cmd->add_option("--image", a->image, "write the deviation map as a PNG picture");
+  cmd->callback([a] { run(*a); });
+});
+
+}  // namespace
+}  // namespace rosmill::cli

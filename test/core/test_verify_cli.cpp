@@ -1,0 +1,191 @@
+// `rosmill verify` end to end: the JSON object the issue specifies, the deviation picture as a real PNG, and clear
+// errors for bad inputs.
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_run.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/verify/deviation_map.hpp"
+#include "test_verify_programs.hpp"
+
+using namespace verify_test;
+using nlohmann::ordered_json;
+
+namespace {
+
+std::string temp(const std::string& name) { return ::testing::TempDir() + "/verify_cli_" + name; }
+
+std::string write_text(const std::string& name, const std::string& text) {
+  const std::string path = temp(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string cube_stl() {
+  const std::string path = temp("cube.stl");
+  write_stl(path, make_primitive("cube"));
+  return path;
+}
+
+// The facing of the cube, then a 6 mm ball plunged 1.5 mm into the top at (30.1, 20.1): the gouge's line.
+std::string gouge_program(int& gouge_line) {
+  std::string program = facing();
+  gouge_line = lines_of(program) + 4;
+  program += "T2 M6\nG0 X30.1 Y20.1 Z62\nG1 Z61 F300\nG1 Z58.5 (the gouge)\nG0 Z70\nM30\n";
+  return write_text("gouge.ngc", program);
+}
+
+const std::string kTools = "--tool 1=flat:10 --tool 2=ball:6";
+
+uint32_t be32(const std::string& s, size_t at) {
+  return static_cast<uint32_t>(static_cast<unsigned char>(s[at])) << 24 |
+         static_cast<uint32_t>(static_cast<unsigned char>(s[at + 1])) << 16 |
+         static_cast<uint32_t>(static_cast<unsigned char>(s[at + 2])) << 8 | static_cast<unsigned char>(s[at + 3]);
+}
+
+struct Png {
+  uint32_t width = 0, height = 0;
+  std::vector<unsigned char> rgb;  // rows top to bottom
+};
+
+// Reads an 8-bit RGB PNG as the verifier writes it, checking every chunk's CRC.
+Png read_png(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Png png;
+  EXPECT_EQ(s.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  std::string idat;
+  for (size_t at = 8; at + 12 <= s.size();) {
+    const uint32_t n = be32(s, at);
+    const std::string type = s.substr(at + 4, 4);
+    const auto* bytes = reinterpret_cast<const Bytef*>(s.data() + at + 4);
+    EXPECT_EQ(be32(s, at + 8 + n), crc32(crc32(0, nullptr, 0), bytes, n + 4)) << type;
+    if (type == "IHDR") {
+      png.width = be32(s, at + 8);
+      png.height = be32(s, at + 12);
+      EXPECT_EQ(s[at + 16], 8);  // bits
+      EXPECT_EQ(s[at + 17], 2);  // RGB
+    }
+    if (type == "IDAT") idat += s.substr(at + 8, n);
+    at += 12 + n;
+  }
+  std::vector<unsigned char> raw((png.width * 3 + 1) * png.height);
+  uLongf size = raw.size();
+  EXPECT_EQ(uncompress(raw.data(), &size, reinterpret_cast<const Bytef*>(idat.data()), idat.size()), Z_OK);
+  EXPECT_EQ(size, raw.size());
+  for (uint32_t y = 0; y < png.height; ++y) {
+    EXPECT_EQ(raw[y * (png.width * 3 + 1)], 0);  // filter: none
+    png.rgb.insert(png.rgb.end(), raw.begin() + y * (png.width * 3 + 1) + 1, raw.begin() + (y + 1) * (png.width * 3 + 1));
+  }
+  return png;
+}
+
+size_t pixels_of(const Png& png, Rgb c) {
+  size_t n = 0;
+  for (size_t i = 0; i + 2 < png.rgb.size(); i += 3) n += png.rgb[i] == c.r && png.rgb[i + 1] == c.g && png.rgb[i + 2] == c.b;
+  return n;
+}
+
+}  // namespace
+
+TEST(VerifyCli, JsonOfAGougingProgramHasTheIssuesKeysDepthPlaceAndLine) {
+  int gouge_line = 0;
+  const std::string program = gouge_program(gouge_line);
+  const CliRun run = run_rosmill("verify " + cube_stl() + " " + program + " --stock 0,0,0,60,60,65 --resolution 0.2 " +
+                                 kTools + " --json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const ordered_json j = ordered_json::parse(run.out);
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"max_gouge_mm", "gouge_at", "gouge_line", "max_rest_mm", "mean_rest_mm",
+                                            "scallop_mm", "unreached_area_mm2", "cells", "seconds"}));
+  EXPECT_NEAR(j["max_gouge_mm"].get<double>(), 1.5, 0.01);
+  ASSERT_EQ(j["gouge_at"].size(), 3u);
+  EXPECT_NEAR(j["gouge_at"][0].get<double>(), 30.1, 0.2);
+  EXPECT_NEAR(j["gouge_at"][1].get<double>(), 20.1, 0.2);
+  EXPECT_NEAR(j["gouge_at"][2].get<double>(), 58.5, 0.01);
+  EXPECT_EQ(j["gouge_line"].get<int>(), gouge_line);
+  EXPECT_LT(j["max_rest_mm"].get<double>(), 1e-4);  // the facing leaves the top exactly
+  EXPECT_EQ(j["unreached_area_mm2"].get<double>(), 0.0);
+  EXPECT_EQ(j["cells"].get<int>(), 300 * 300);
+  EXPECT_GT(j["seconds"].get<double>(), 0.0);
+}
+
+TEST(VerifyCli, JsonOfAToolpathFileGivesTheScallopAndNoGouge) {
+  const std::string floor = temp("floor.stl"), toolpath = temp("raster.json");
+  write_stl(floor, build_mesh(cube_corners(20)));
+  write_toolpath_file(toolpath, {flat_raster(6, 1.0)});
+  const CliRun run = run_rosmill("verify " + floor + " " + toolpath + " --stock 0,0,0,20,20,25 --resolution 0.02 --json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const ordered_json j = ordered_json::parse(run.out);
+  const double theory = 3 - std::sqrt(9 - 0.25);
+  EXPECT_NEAR(j["scallop_mm"].get<double>(), theory, 0.02);
+  EXPECT_LE(j["scallop_mm"].get<double>(), theory + 1e-5);
+  EXPECT_EQ(j["max_gouge_mm"].get<double>(), 0.0);
+  EXPECT_TRUE(j["gouge_at"].is_null());
+  EXPECT_TRUE(j["gouge_line"].is_null());
+  EXPECT_EQ(j["cells"].get<int>(), 1000 * 1000);
+}
+
+TEST(VerifyCli, ImageIsAPngMapWithItsLegend) {
+  int gouge_line = 0;
+  const std::string program = gouge_program(gouge_line), image = temp("deviation.png");
+  std::remove(image.c_str());
+  const CliRun run = run_rosmill("verify " + cube_stl() + " " + program + " --stock 0,0,0,60,60,65 --resolution 0.2 " +
+                                 kTools + " --image " + image);
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_NE(run.out.find("line " + std::to_string(gouge_line)), std::string::npos) << run.out;
+  const Png png = read_png(image);
+  // 300 x 300 cells at 2 pixels a cell, a margin, the legend beside.
+  EXPECT_GT(png.width, 600u + 400u);
+  EXPECT_GT(png.height, 600u);
+  const std::vector<DeviationBand> bands = deviation_bands(0.01);
+  for (const DeviationBand& b : bands) EXPECT_GT(pixels_of(png, b.colour), 28u * 10) << b.label;  // every swatch
+  // The map: the top on the design, a crater of gouge colours about the ball's cap (radius 2.6 mm = 26 pixels).
+  EXPECT_GT(pixels_of(png, bands[4].colour), 600u * 600u * 9 / 10);
+  const size_t gouge = pixels_of(png, bands[1].colour) + pixels_of(png, bands[2].colour) + pixels_of(png, bands[3].colour);
+  EXPECT_GT(gouge, 1000u);
+  EXPECT_LT(gouge, 3000u);
+}
+
+TEST(VerifyCli, BadInputsGiveClearErrors) {
+  const std::string cube = cube_stl();
+  int line = 0;
+  const std::string good = gouge_program(line);
+  auto error = [&](const std::string& args) {
+    const CliRun run = run_rosmill("verify " + args);
+    EXPECT_EQ(run.status, 1) << args;
+    EXPECT_TRUE(run.out.empty()) << run.out;
+    return run.err;
+  };
+  EXPECT_NE(error(temp("missing.stl") + " " + good + " " + kTools).find("missing.stl"), std::string::npos);
+  EXPECT_NE(error(cube + " " + temp("missing.ngc") + " " + kTools).find("cannot open the G-code program"),
+            std::string::npos);
+  const std::string axis_a = write_text("axis_a.ngc", "G0 X0 Y0 Z70\nG1 X1 A2\n");
+  EXPECT_NE(error(cube + " " + axis_a + " --tool ball:6").find("axis_a.ngc:2: axis A is not supported"),
+            std::string::npos);
+  const std::string t9 = write_text("t9.ngc", "T1 M6\nG0 X0 Y0 Z70\nT9 M6\n");
+  EXPECT_NE(error(cube + " " + t9 + " " + kTools).find("t9.ngc:3: tool T9 is not in the tool table"), std::string::npos);
+  const std::string no_tool = write_text("no_tool.ngc", "G0 X0 Y0 Z70\n");
+  EXPECT_NE(error(cube + " " + no_tool + " " + kTools).find("no_tool.ngc:1: a move before any tool change"),
+            std::string::npos);
+  EXPECT_NE(error(cube + " " + good + " " + kTools + " --resolution 0").find("--resolution: the cell size must be"),
+            std::string::npos);
+  // A grid of 36e12 cells is refused at once, saying which cell size would do.
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::string huge = error(cube + " " + good + " " + kTools + " --resolution 0.00001");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+  EXPECT_NE(huge.find("--resolution: a 60 x 60 mm area"), std::string::npos) << huge;
+  EXPECT_NE(huge.find("use a cell of 0.012 mm or more"), std::string::npos) << huge;
+  EXPECT_NE(error(cube + " " + good + " " + kTools + " --stock 10,10,0,20,20,70").find("does not hold the design"),
+            std::string::npos);
+  const std::string toolpath = temp("raster_t.json");
+  write_toolpath_file(toolpath, {flat_raster(6, 1.0)});
+  EXPECT_NE(error(cube + " " + toolpath + " --tool ball:6").find("--tool"), std::string::npos);
+}
