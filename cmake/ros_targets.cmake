@@ -61,6 +61,11 @@ if(CATKIN_ENABLE_TESTING)
       set_tests_properties(${t} PROPERTIES TIMEOUT 180 ENVIRONMENT
         "ROS_HOME=${CMAKE_BINARY_DIR}/ros_home;ROS_HOSTNAME=localhost;ROSCONSOLE_STDOUT_LINE_BUFFERED=1;ROS_LOG_DIR=${CMAKE_BINARY_DIR}/ros_home/log")
     endif()
+    # Only one LinuxCNC runs per machine: tests that start the simulator take the lock "linuxcnc" (tests of other
+    # areas that use it should take the same lock) and may wait for another simulator to end.
+    if(t MATCHES "^_ctest_rosmill_rostest_.*bridge")
+      set_tests_properties(${t} PROPERTIES RESOURCE_LOCK linuxcnc TIMEOUT 300)
+    endif()
   endforeach()
 endif()
 
@@ -71,5 +76,8 @@ foreach(bench_source ${ROSMILL_ROS_BENCHES})
   add_executable(bench_ros_${bench_name} ${bench_source})
   set_target_properties(bench_ros_${bench_name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/bench)
   target_link_libraries(bench_ros_${bench_name} PRIVATE rosmill_ros)
-  target_compile_definitions(bench_ros_${bench_name} PRIVATE ${ROSMILL_TEST_DEFS})
+  # The benchmark starts the node executables itself (with its own master).
+  target_compile_definitions(bench_ros_${bench_name} PRIVATE ${ROSMILL_TEST_DEFS}
+    ROSMILL_NODE_DIR="${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}")
+  add_dependencies(bench_ros_${bench_name} ${ROSMILL_NODES})
 endforeach()

@@ -11,6 +11,7 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/markers.hpp"
+#include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 
 namespace rosmill::edge {
@@ -27,7 +28,13 @@ class StlLoader {
     marker_pub_ = nh.advertise<visualization_msgs::Marker>("mesh_marker", 1, true);
     service_ = nh.advertiseService("load_mesh", &StlLoader::on_load, this);
     const std::string path = string_param(pnh, "path", "");
-    if (!path.empty()) load(path, units_, frame_id_);  // a bad start-up file ends the node with the reason
+    if (path.empty()) return;
+    // A bad start-up file is reported; the node stays up so that load_mesh can load another one.
+    try {
+      load(path, units_, frame_id_);
+    } catch (const std::exception& e) {
+      ROS_ERROR("stl_loader: parameter %s: %s", pnh.resolveName("path").c_str(), e.what());
+    }
   }
 
  private:
@@ -36,14 +43,13 @@ class StlLoader {
     const ::ros::WallTime t0 = ::ros::WallTime::now();
     Mesh mesh;
     const std::string prefix = "primitive:";
-    if (path.rfind(prefix, 0) == 0) {
-      mesh = make_primitive(path.substr(prefix.size()));
-    } else {
-      StlReadOptions options;
-      options.units = parse_units(units, "units");
-      options.weld.tolerance = weld_tolerance_;
+    StlReadOptions options;
+    options.units = parse_units(units, "units");  // checked for primitives too: a wrong request is refused whole
+    options.weld.tolerance = weld_tolerance_;
+    if (path.rfind(prefix, 0) == 0)
+      mesh = make_primitive(path.substr(prefix.size()));  // the seed primitives are in millimetres
+    else
       mesh = read_stl(path, options);
-    }
     if (mesh.faces.empty()) throw Error(path, "holds no triangles");
     std_msgs::Header header;
     header.frame_id = frame;
@@ -61,6 +67,7 @@ class StlLoader {
                              req.frame_id.empty() ? frame_id_ : req.frame_id);
       res.success = true;
       res.triangles = mesh.faces.size();
+      res.closed = mesh.closed();
       res.bounds_min = to_point_msg(mesh.bbox.min);
       res.bounds_max = to_point_msg(mesh.bbox.max);
       res.message = "loaded " + std::to_string(res.triangles) + " triangles";
@@ -83,14 +90,5 @@ class StlLoader {
 }  // namespace rosmill::edge
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "stl_loader");
-  ros::NodeHandle nh, pnh("~");
-  try {
-    rosmill::edge::StlLoader node(nh, pnh);
-    ros::spin();
-  } catch (const std::exception& e) {
-    ROS_FATAL("stl_loader: %s", e.what());
-    return 1;
-  }
-  return 0;
+  return rosmill::edge::run_node<rosmill::edge::StlLoader>(argc, argv, "stl_loader");
 }

@@ -1,7 +1,9 @@
 // toolpath_planner: plans 3-axis toolpaths with rosmill::plan() from the mesh (`mesh` topic, from stl_loader) or
-// from a scan (`cloud` PointCloud2, brought into the workpiece frame with tf2). Publishes the job latched on
-// `toolpath` (ToolpathJobMsg) and its view on `toolpath_markers`; replans on the `plan` service and the
-// `plan_toolpath` action (progress feedback, cancel) for another setup, strategy or tool.
+// from a scan (`cloud_topic` PointCloud2, brought into the workpiece frame with tf2, waiting at most tf_timeout for
+// the transform). Publishes the job latched on `toolpath` (ToolpathJobMsg) and its view on `toolpath_markers`;
+// replans on the `plan` service and the `plan_toolpath` action (several items, per-item results, progress
+// feedback, cancel) for another setup, strategy or tool. An input it rejects (no points, no transform, a broken
+// mesh) is logged and its reason is what a later plan request for that source is answered with.
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -18,25 +20,25 @@
 #include "rosmill/PlanToolpathAction.h"
 #include "rosmill/error.hpp"
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/finish_goal.hpp"
 #include "rosmill/ros/markers.hpp"
+#include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 
 namespace rosmill::edge {
 namespace {
 
-// What a Plan request, a PlanToolpath goal and an automatic replan have in common.
-struct PlanRequest {
-  std::string setup;
-  Vec3 direction = Vec3::Zero();
-  std::string strategy;
-  int tool_id = 0;
-  std::string source;
-  PlanParametersMsg parameters;
-};
-
+// A Plan request and a PlanToolpath item have the same fields.
 template <typename Msg>
-PlanRequest request_of(const Msg& m) {
-  return {m.setup, from_direction_msg(m.direction), m.strategy, m.tool_id, m.source, m.parameters};
+PlanItemMsg item_of(const Msg& m) {
+  PlanItemMsg item;
+  item.setup = m.setup;
+  item.direction = m.direction;
+  item.strategy = m.strategy;
+  item.tool_id = m.tool_id;
+  item.source = m.source;
+  item.parameters = m.parameters;
+  return item;
 }
 
 struct PlanOutcome {
@@ -46,25 +48,32 @@ struct PlanOutcome {
   PlanStatisticsMsg statistics;
 };
 
+// The latest accepted input of one kind, or why the latest one was rejected.
+template <typename T>
+struct Input {
+  std::shared_ptr<const T> value;
+  std::string rejected;
+};
+
 class ToolpathPlanner {
  public:
   ToolpathPlanner(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
-      : nh_(nh),
-        frame_id_(string_param(pnh, "frame_id", "workpiece")),
+      : frame_id_(string_param(pnh, "frame_id", "workpiece")),
         strategy_(string_param(pnh, "strategy", "raster")),
         cloud_strategy_(string_param(pnh, "cloud_strategy", "cloud-rough")),
         setup_(string_param(pnh, "setup", "+Z")),
         tool_id_(int_param(pnh, "tool_id", 1, 1, 9999)),
-        tools_(tool_table_param(pnh, "tools")),
+        tools_(tool_table_param(pnh, "tool_table")),
         defaults_(plan_defaults_param(pnh)),
         tf_timeout_(double_param(pnh, "tf_timeout", 1.0, 0.0, 30.0)),
         rapid_feed_(double_param(pnh, "rapid_feed", 5000.0, 1.0, 1e6)),
         plan_on_input_(bool_param(pnh, "plan_on_input", true)),
         tf_listener_(tf_buffer_),
         action_(nh, "plan_toolpath", [this](const PlanToolpathGoalConstPtr& goal) { on_goal(goal); }, false) {
-    if (tools_.empty()) throw Error("parameter " + pnh.resolveName("tools"), "the tool table is empty");
-    find_tool(tools_, tool_id_);   // the default tool must exist
+    tools_.get(tool_id_);  // the default tool must exist
     named_setup(setup_, "parameter " + pnh.resolveName("setup"));
+    require_strategy(strategy_, "parameter " + pnh.resolveName("strategy"));
+    require_strategy(cloud_strategy_, "parameter " + pnh.resolveName("cloud_strategy"));
     job_pub_ = nh.advertise<ToolpathJobMsg>("toolpath", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("toolpath_markers", 1, true);
     mesh_sub_ = nh.subscribe("mesh", 1, &ToolpathPlanner::on_mesh, this);
@@ -74,87 +83,103 @@ class ToolpathPlanner {
   }
 
  private:
+  static void require_strategy(const std::string& name, const std::string& where) {
+    for (const StrategyEntry& s : strategies())
+      if (s.name == name) return;
+    throw Error(where, "unknown strategy '" + name + "' (rosmill plan --list names them)");
+  }
+
   void on_mesh(const shape_msgs::Mesh::ConstPtr& msg) {
     try {
-      auto mesh = std::make_shared<const Mesh>(from_mesh_msg(*msg));
-      {
-        std::lock_guard<std::mutex> lock(input_mutex_);
-        mesh_ = mesh;
-        latest_ = "mesh";
-      }
+      auto mesh = std::make_shared<const Mesh>(from_mesh_msg(*msg, "mesh"));
+      if (mesh->faces.empty()) throw Error("mesh", "has no triangles");
+      accept(mesh_, mesh, "mesh");
       ROS_INFO("toolpath_planner: mesh of %zu triangles", mesh->faces.size());
-      if (plan_on_input_) plan_and_publish(default_request("mesh"));
+      if (plan_on_input_) plan_and_publish("mesh");
     } catch (const std::exception& e) {
-      ROS_ERROR("toolpath_planner: mesh: %s", e.what());
+      reject(mesh_, e.what());
     }
   }
 
   void on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
     try {
-      auto cloud = std::make_shared<const PointCloud>(from_cloud_msg(*msg, to_workpiece(msg->header), "cloud"));
-      if (cloud->points.empty()) throw Error("cloud", "has no finite points");
-      {
-        std::lock_guard<std::mutex> lock(input_mutex_);
-        cloud_ = cloud;
-        latest_ = "cloud";
-      }
+      const std::string where = "cloud in frame '" + msg->header.frame_id + "'";
+      auto cloud = std::make_shared<const PointCloud>(from_cloud_msg(*msg, to_workpiece(msg->header), where));
+      if (cloud->points.empty()) throw Error(where, "has no finite points");
+      accept(cloud_, cloud, "cloud");
       ROS_INFO("toolpath_planner: cloud of %zu points in %s", cloud->points.size(), frame_id_.c_str());
-      if (plan_on_input_) plan_and_publish(default_request("cloud"));
+      if (plan_on_input_) plan_and_publish("cloud");
     } catch (const std::exception& e) {
-      ROS_ERROR("toolpath_planner: %s", e.what());
+      reject(cloud_, e.what());
     }
+  }
+
+  template <typename T>
+  void accept(Input<T>& input, std::shared_ptr<const T> value, const char* source) {
+    std::lock_guard<std::mutex> lock(input_mutex_);
+    input.value = std::move(value);
+    input.rejected.clear();
+    latest_ = source;
+  }
+
+  // A rejected input replaces the one before: planning on an older scan of a part that has moved would be wrong.
+  template <typename T>
+  void reject(Input<T>& input, const std::string& why) {
+    ROS_ERROR("toolpath_planner: %s", why.c_str());
+    std::lock_guard<std::mutex> lock(input_mutex_);
+    input.value.reset();
+    input.rejected = why;
   }
 
   // The cloud frame -> workpiece frame transform, waiting at most tf_timeout for it.
   Eigen::Isometry3d to_workpiece(const std_msgs::Header& header) {
     if (header.frame_id.empty() || header.frame_id == frame_id_) return Eigen::Isometry3d::Identity();
     std::string why;
-    if (!tf_buffer_.canTransform(frame_id_, header.frame_id, header.stamp, ::ros::Duration(tf_timeout_), &why)) {
-      // A cloud stamped a little after the latest transform is still usable with the latest one.
-      if (!tf_buffer_.canTransform(frame_id_, header.frame_id, ::ros::Time(0), &why))
-        throw Error("cloud in frame '" + header.frame_id + "'",
-                    "no transform to '" + frame_id_ + "' within " + std::to_string(tf_timeout_) + " s (" + why + ")");
+    if (tf_buffer_.canTransform(frame_id_, header.frame_id, header.stamp, ::ros::Duration(tf_timeout_), &why))
+      return tf2::transformToEigen(tf_buffer_.lookupTransform(frame_id_, header.frame_id, header.stamp));
+    // A cloud stamped a little after the latest transform of a fixed sensor is still usable with the latest one.
+    if (tf_buffer_.canTransform(frame_id_, header.frame_id, ::ros::Time(0), &why))
       return tf2::transformToEigen(tf_buffer_.lookupTransform(frame_id_, header.frame_id, ::ros::Time(0)));
-    }
-    return tf2::transformToEigen(tf_buffer_.lookupTransform(frame_id_, header.frame_id, header.stamp));
+    throw Error("cloud in frame '" + header.frame_id + "'", "no transform to '" + frame_id_ + "' came within " +
+                                                               std::to_string(tf_timeout_) + " s (" + why + ")");
   }
 
-  PlanRequest default_request(const std::string& source) const {
-    PlanRequest r;
-    r.setup = setup_;
-    r.source = source;
-    return r;
+  template <typename T>
+  static std::shared_ptr<const T> require(const Input<T>& input, const char* source) {
+    if (input.value) return input.value;
+    if (!input.rejected.empty())
+      throw Error("source " + std::string(source), "no usable " + std::string(source) + ": the last one was rejected: " +
+                                                       input.rejected);
+    throw Error("source " + std::string(source), "no " + std::string(source) + " has been received");
   }
 
-  // Plans a request (throws Error with the reason); `progress` may cancel.
-  PlanOutcome plan_request(const PlanRequest& req, const PlanProgress& progress) {
+  // Plans one item (throws Error with the reason); `progress` may cancel.
+  PlanOutcome plan_item(const PlanItemMsg& item, const PlanProgress& progress) {
     std::shared_ptr<const Mesh> mesh;
     std::shared_ptr<const PointCloud> cloud;
-    std::string source = req.source;
+    std::string source = item.source;
     {
       std::lock_guard<std::mutex> lock(input_mutex_);
       if (source.empty()) source = latest_;
-      mesh = mesh_;
-      cloud = cloud_;
+      if (source.empty()) throw Error("plan", "no input yet: publish a mesh or a cloud first");
+      if (source == "mesh")
+        mesh = require(mesh_, "mesh");
+      else if (source == "cloud")
+        cloud = require(cloud_, "cloud");
+      else
+        throw Error("source", "must be \"mesh\", \"cloud\" or empty, got \"" + source + "\"");
     }
-    if (source.empty()) throw Error("plan", "no input yet: publish a mesh or a cloud first");
-    if (source != "mesh" && source != "cloud")
-      throw Error("source", "must be \"mesh\", \"cloud\" or empty, got \"" + source + "\"");
-    if (source == "mesh" && !mesh) throw Error("source", "no mesh has been received");
-    if (source == "cloud" && !cloud) throw Error("source", "no cloud has been received");
-
     PlanOutcome out;
-    out.setup = resolve_setup(req.setup, req.direction);
-    const std::string strategy =
-        !req.strategy.empty() ? req.strategy : (source == "mesh" ? strategy_ : cloud_strategy_);
-    const Tool& tool = find_tool(tools_, req.tool_id == 0 ? tool_id_ : req.tool_id);
-    const PlanParams params = from_plan_parameters(req.parameters, tool, defaults_);
+    out.setup = resolve_setup(item.setup, from_direction_msg(item.direction));
+    const std::string strategy = !item.strategy.empty() ? item.strategy : (mesh ? strategy_ : cloud_strategy_);
+    const Tool& tool = tools_.get(item.tool_id == 0 ? tool_id_ : item.tool_id);
+    const PlanParams params = from_plan_parameters(item.parameters, tool, defaults_);
 
     const ::ros::WallTime t0 = ::ros::WallTime::now();
     PlanInput input;
     Mesh mesh_in_frame;
     PointCloud cloud_in_frame;
-    if (source == "mesh") {
+    if (mesh) {
       mesh_in_frame = mesh_in_setup(*mesh, out.setup);
       input.mesh = &mesh_in_frame;
     } else {
@@ -177,22 +202,29 @@ class ToolpathPlanner {
              out.statistics.moves, out.setup.name.c_str(), out.statistics.planning_time);
   }
 
-  void plan_and_publish(const PlanRequest& req) {
+  void plan_and_publish(const std::string& source) {
+    PlanItemMsg item;
+    item.setup = setup_;
+    item.source = source;
     try {
-      publish(plan_request(req, {}));
+      publish(plan_item(item, {}));
     } catch (const std::exception& e) {
       ROS_ERROR("toolpath_planner: %s", e.what());
     }
   }
 
+  static std::string summary(const PlanStatisticsMsg& s) {
+    return "planned " + std::to_string(s.toolpaths) + " toolpath(s), " + std::to_string(s.moves) + " moves";
+  }
+
   bool on_plan(Plan::Request& req, Plan::Response& res) {
     try {
-      PlanOutcome out = plan_request(request_of(req), {});
-      publish(out);
+      PlanOutcome out = plan_item(item_of(req), {});
+      if (!req.preview) publish(out);
       res.job = std::move(out.job_msg);
       res.statistics = out.statistics;
       res.success = true;
-      res.message = "planned " + std::to_string(res.statistics.moves) + " moves";
+      res.message = summary(res.statistics);
     } catch (const std::exception& e) {
       res.success = false;
       res.message = e.what();
@@ -201,56 +233,80 @@ class ToolpathPlanner {
     return true;
   }
 
-  void on_goal(const PlanToolpathGoalConstPtr& goal) {
-    PlanToolpathResult result;
-    ::ros::WallTime last_feedback;
-    const PlanProgress progress = [&](double fraction) {
-      // Feedback at most every 0.1 s: a strategy may report progress per raster line.
-      if ((::ros::WallTime::now() - last_feedback).toSec() > 0.1) {
-        PlanToolpathFeedback fb;
-        fb.progress = float(fraction);
-        fb.stage = "planning";
-        action_.publishFeedback(fb);
-        last_feedback = ::ros::WallTime::now();
-      }
-      return !action_.isPreemptRequested() && ::ros::ok();
-    };
-    try {
-      PlanOutcome out = plan_request(request_of(*goal), progress);
-      if (action_.isPreemptRequested()) throw Error("plan", "cancelled");
-      PlanToolpathFeedback fb;
-      fb.progress = 1.0f;
-      fb.stage = "publishing";
-      action_.publishFeedback(fb);
-      publish(out);
-      result.job = std::move(out.job_msg);
-      result.statistics = out.statistics;
-      result.success = true;
-      result.message = "planned " + std::to_string(result.statistics.moves) + " moves";
-      action_.setSucceeded(result);
-    } catch (const std::exception& e) {
-      result.success = false;
-      result.message = e.what();
-      if (action_.isPreemptRequested())
-        action_.setPreempted(result, result.message);
-      else
-        action_.setAborted(result, result.message);
-    }
+  // Feedback for item `index` of `count` at `fraction` of it, at most every 0.1 s unless `force`.
+  void feedback(size_t index, size_t count, double fraction, const char* stage, bool force) {
+    const ::ros::WallTime now = ::ros::WallTime::now();
+    if (!force && (now - last_feedback_).toSec() < 0.1) return;
+    PlanToolpathFeedback fb;
+    fb.item = index;
+    fb.items = count;
+    fb.stage = stage;
+    fb.item_progress = float(fraction);
+    fb.progress = float((index + fraction) / count);
+    action_.publishFeedback(fb);
+    last_feedback_ = now;
   }
 
-  ::ros::NodeHandle nh_;
+  void on_goal(const PlanToolpathGoalConstPtr& goal) {
+    PlanToolpathResult result;
+    const size_t n = goal->items.size();
+    result.results.resize(n);
+    if (n == 0) {
+      result.message = "the goal has no items";
+      action_.setAborted(result, result.message);
+      return;
+    }
+    size_t valid = 0;
+    std::string first_failure;
+    bool cancelled = false;
+    for (size_t i = 0; i < n; ++i) {
+      PlanItemResultMsg& r = result.results[i];
+      if (cancelled || (!first_failure.empty() && !goal->proceed_on_failure)) {
+        r.message = cancelled ? "not planned: the goal was cancelled" : "not planned: " + first_failure;
+        continue;
+      }
+      feedback(i, n, 0.0, "planning", true);
+      const PlanProgress progress = [&, i](double fraction) {
+        feedback(i, n, fraction, "planning", false);
+        return !action_.isPreemptRequested() && ::ros::ok();
+      };
+      try {
+        if (action_.isPreemptRequested()) throw Error("plan", "cancelled");
+        PlanOutcome out = plan_item(goal->items[i], progress);
+        if (action_.isPreemptRequested()) throw Error("plan", "cancelled");
+        feedback(i, n, 1.0, "publishing", true);
+        if (!goal->preview) publish(out);
+        r.job = std::move(out.job_msg);
+        r.statistics = out.statistics;
+        r.valid = true;
+        r.message = summary(r.statistics);
+        ++valid;
+      } catch (const std::exception& e) {
+        r.message = e.what();
+        cancelled = action_.isPreemptRequested();
+        if (!cancelled && first_failure.empty()) first_failure = "item " + std::to_string(i) + " failed: " + e.what();
+      }
+    }
+    feedback(n - 1, n, 1.0, "done", true);
+    result.success = valid == n;
+    result.message = std::to_string(valid) + " of " + std::to_string(n) + " item(s) planned" +
+                     (cancelled ? "; cancelled" : first_failure.empty() ? "" : "; " + first_failure);
+    finish_goal(action_, result, cancelled, result.success);
+  }
+
   std::string frame_id_, strategy_, cloud_strategy_, setup_;
   int tool_id_;
-  std::vector<Tool> tools_;
+  ToolTable tools_;
   PlanParams defaults_;
   double tf_timeout_, rapid_feed_;
   bool plan_on_input_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   actionlib::SimpleActionServer<PlanToolpathAction> action_;
+  ::ros::WallTime last_feedback_;
   std::mutex input_mutex_;
-  std::shared_ptr<const Mesh> mesh_;
-  std::shared_ptr<const PointCloud> cloud_;
+  Input<Mesh> mesh_;
+  Input<PointCloud> cloud_;
   std::string latest_;
   ::ros::Publisher job_pub_, marker_pub_;
   ::ros::Subscriber mesh_sub_, cloud_sub_;
@@ -261,17 +317,6 @@ class ToolpathPlanner {
 }  // namespace rosmill::edge
 
 int main(int argc, char** argv) {
-  ros::init(argc, argv, "toolpath_planner");
-  ros::NodeHandle nh, pnh("~");
-  try {
-    rosmill::edge::ToolpathPlanner node(nh, pnh);
-    // Two threads: a cloud waiting for its transform must not block the services.
-    ros::AsyncSpinner spinner(2);
-    spinner.start();
-    ros::waitForShutdown();
-  } catch (const std::exception& e) {
-    ROS_FATAL("toolpath_planner: %s", e.what());
-    return 1;
-  }
-  return 0;
+  // Two threads: a cloud waiting for its transform must not block the services.
+  return rosmill::edge::run_node<rosmill::edge::ToolpathPlanner>(argc, argv, "toolpath_planner", 2);
 }

@@ -41,8 +41,6 @@ std_msgs::ColorRGBA label_colour(uint32_t label) {
   return rgba(r + m, g + m, b + m);
 }
 
-namespace {
-
 visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std::string& ns, int id, int type) {
   visualization_msgs::Marker m;
   m.header = header;
@@ -55,17 +53,24 @@ visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std
   return m;
 }
 
-}  // namespace
+void add_facet(visualization_msgs::Marker& triangles, const Mesh& mesh, size_t f) {
+  if (mesh.areas[f] <= 0) return;
+  for (int i = 0; i < 3; ++i) triangles.points.push_back(to_point_msg(mesh.corner(f, i)));
+}
+
+visualization_msgs::Marker delete_all_marker(const std_msgs::Header& header) {
+  visualization_msgs::Marker clear;
+  clear.header = header;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  return clear;
+}
 
 visualization_msgs::Marker mesh_marker(const Mesh& mesh, const std_msgs::Header& header, const std::string& ns,
                                        const std_msgs::ColorRGBA& colour) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::TRIANGLE_LIST);
   m.color = colour;
   m.points.reserve(mesh.faces.size() * 3);
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (mesh.areas[f] <= 0) continue;  // degenerate: nothing to draw
-    for (int i = 0; i < 3; ++i) m.points.push_back(to_point_msg(mesh.corner(f, i)));
-  }
+  for (size_t f = 0; f < mesh.faces.size(); ++f) add_facet(m, mesh, f);
   return m;
 }
 
@@ -119,10 +124,7 @@ visualization_msgs::Marker tool_marker(const Toolpath& tp, const SetupFrame& set
 visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
                                                  const std_msgs::Header& header) {
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker clear;
-  clear.header = header;
-  clear.action = visualization_msgs::Marker::DELETEALL;
-  array.markers.push_back(clear);
+  array.markers.push_back(delete_all_marker(header));
   for (size_t t = 0; t < job.size(); ++t) {
     const Toolpath& tp = job[t];
     const std::string prefix = "toolpath" + std::to_string(t) + "/";

@@ -43,6 +43,29 @@ SetupFrame resolve_setup(const std::string& name, const Vec3& direction) {
   return name.empty() ? direction_setup(direction) : named_setup(name);
 }
 
+segment::SetupFilter setup_filter_of(const std::string& name, const Vec3& direction, double max_angle_deg,
+                                     const std::string& where) {
+  if (!std::isfinite(max_angle_deg) || max_angle_deg <= 0 || max_angle_deg > 180)
+    throw Error(where, "max angle must lie in (0, 180] degrees, got " + std::to_string(max_angle_deg));
+  segment::SetupFilter filter;
+  if (name.empty()) {
+    filter.axis = direction_setup(direction, where).tool_axis;
+    filter.name = "custom";
+  } else {
+    std::string text = name;
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (text.size() == 1) text = "+" + text;
+    try {
+      filter = segment::parse_setup(text);
+    } catch (const Error&) {
+      throw Error(where, "unknown setup '" + name + "' (expected +Z, -Z, +X, -X, +Y, -Y, 4axis:x|y|z or 5axis)");
+    }
+    if (filter.kind == segment::SetupFilter::Kind::ThreeAxis) filter.name = named_setup(text, where).name;
+  }
+  filter.max_angle_deg = max_angle_deg;
+  return filter;
+}
+
 Mesh mesh_in_setup(const Mesh& mesh, const SetupFrame& setup) {
   if (setup.identity()) return mesh;
   std::vector<Vec3> corners;

@@ -10,6 +10,8 @@ Each bag holds sensor_msgs/PointCloud2 messages on /scan/points (metres, REP 103
   bunny_scan.bag     PCL's bunny (a real scan, ASCII PCD) in the frame `workpiece`
   empty_cloud.bag    a cloud with no points
   lost_frame.bag     the dome cloud in a frame `nowhere` that no transform reaches
+  part_scan.bag      a real part scanned in a robot cell (scan_n_plan_workshop's part_scan.ply, 3,627 points,
+                     metres) in the cell's frame `cell`, 0.57-1.03 m away from its origin, as the scanner saw it
 The files are small (< 200 kB) and committed; run this again only when the content should change.
 """
 import math
@@ -70,6 +72,41 @@ def read_ascii_pcd(path):
     return pts
 
 
+def read_binary_ply_vertices(path):
+    """The x, y, z of the vertices of a binary little-endian PLY (the other vertex properties are skipped)."""
+    sizes = {"char": 1, "uchar": 1, "short": 2, "ushort": 2, "int": 4, "uint": 4, "float": 4, "double": 8}
+    formats = {"float": "f", "double": "d"}
+    with open(path, "rb") as f:
+        if f.readline().strip() != b"ply":
+            raise SystemExit(path + ": not a PLY file")
+        count, props, in_vertex = 0, [], False
+        while True:
+            words = f.readline().decode("ascii").split()
+            if not words:
+                continue
+            if words[0] == "format" and words[1] != "binary_little_endian":
+                raise SystemExit(path + ": only binary_little_endian PLY is read here")
+            if words[0] == "element":
+                in_vertex = words[1] == "vertex"
+                if in_vertex:
+                    count = int(words[2])
+            elif words[0] == "property" and in_vertex:
+                props.append((words[2], words[1]))
+            elif words[0] == "end_header":
+                break
+        stride = sum(sizes[t] for _, t in props)
+        offsets, at = {}, 0
+        for name, t in props:
+            offsets[name] = (at, t)
+            at += sizes[t]
+        data = f.read(stride * count)
+    pts = []
+    for i in range(count):
+        base = i * stride
+        pts.append(tuple(struct.unpack_from("<" + formats[offsets[c][1]], data, base + offsets[c][0])[0] for c in "xyz"))
+    return pts
+
+
 def write(path, clouds):
     with rosbag.Bag(path, "w") as bag:
         for i, (points, frame) in enumerate(clouds):
@@ -88,6 +125,8 @@ def main():
     write(os.path.join(out, "bunny_scan.bag"), [(read_ascii_pcd(os.path.join(shared, "cloud", "pcl_bunny.pcd")), "workpiece")])
     write(os.path.join(out, "empty_cloud.bag"), [([], "workpiece")])
     write(os.path.join(out, "lost_frame.bag"), [(dome, "nowhere")])
+    write(os.path.join(out, "part_scan.bag"),
+          [(read_binary_ply_vertices(os.path.join(shared, "cloud", "snp_part_scan.ply")), "cell")])
 
 
 if __name__ == "__main__":

@@ -3,8 +3,14 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <ros/network.h>
+#include <xmlrpcpp/XmlRpcClient.h>
+#include <sys/stat.h>
+
 #include <boost/function.hpp>
+#include <cstdlib>
 #include <mutex>
+#include <string>
 
 namespace rosmill::rostest {
 
@@ -42,6 +48,40 @@ class Latest {
   boost::shared_ptr<const M> last_;
   size_t count_ = 0;
 };
+
+// True when the node answers on its XML-RPC slave API (what `rosnode ping` does): a crashed node does not, even
+// while the master still lists it. (Not ~get_loggers: on this platform a C++ client calling it makes the called
+// node crash in log4cxx when the connection drops.)
+inline bool node_answers(const std::string& node) {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = node;
+  if (!ros::master::execute("lookupNode", args, result, payload, false)) return false;
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(std::string(payload), host, port)) return false;
+  XmlRpc::XmlRpcClient client(host.c_str(), int(port), "/");
+  XmlRpc::XmlRpcValue ping, reply;
+  ping[0] = ros::this_node::getName();
+  const bool ok = client.execute("getPid", ping, reply) && reply.getType() == XmlRpc::XmlRpcValue::TypeArray &&
+                  int(reply[0]) == 1;
+  client.close();
+  return ok;
+}
+
+// Plays a recorded bag into this test's master once every topic has a subscriber (PLATFORM_NOTES pitfall 5);
+// returns rosbag's exit status. A missing file is checked here: rosbag itself exits 0 for it.
+inline int play_bag(const std::string& path, double timeout_s = 30.0) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    ADD_FAILURE() << "no bag " << path;
+    return -1;
+  }
+  const std::string cmd = "timeout " + std::to_string(int(timeout_s)) + " rosbag play -q --wait-for-subscribers '" +
+                          path + "' >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
 
 inline int run_all(int argc, char** argv, const char* name) {
   testing::InitGoogleTest(&argc, argv);

@@ -11,6 +11,8 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/ros/convert.hpp"
 
+#include <atomic>
+
 using namespace rosmill;
 using rosmill::rostest::Latest;
 
@@ -58,7 +60,7 @@ TEST_F(PlannerServices, EmptyCloudIsRejected) {
   ros::WallDuration(1.0).sleep();
   Plan srv = call_plan("+Z", "", 0, "cloud");
   EXPECT_FALSE(srv.response.success);
-  EXPECT_NE(srv.response.message.find("no cloud"), std::string::npos) << srv.response.message;
+  EXPECT_NE(srv.response.message.find("no finite points"), std::string::npos) << srv.response.message;
   expect_alive();
 }
 
@@ -71,6 +73,7 @@ TEST_F(PlannerServices, CloudWithoutTransformIsRejected) {
   ros::WallDuration(2.0).sleep();  // the planner waits tf_timeout (1 s) for the transform
   Plan srv = call_plan("+Z", "", 0, "cloud");
   EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("no transform to 'workpiece'"), std::string::npos) << srv.response.message;
   expect_alive();
 }
 
@@ -89,7 +92,7 @@ TEST_F(PlannerServices, InvalidRequestsGetReasons) {
 
   Plan bad_tool = call_plan("+Z", "", 99, "mesh");
   EXPECT_FALSE(bad_tool.response.success);
-  EXPECT_NE(bad_tool.response.message.find("no tool 99"), std::string::npos) << bad_tool.response.message;
+  EXPECT_NE(bad_tool.response.message.find("no tool with id 99"), std::string::npos) << bad_tool.response.message;
 
   Plan bad_strategy = call_plan("+Z", "no-such-strategy", 0, "mesh");
   EXPECT_FALSE(bad_strategy.response.success);
@@ -116,18 +119,143 @@ TEST_F(PlannerServices, InvalidRequestsGetReasons) {
   expect_alive();
 }
 
+PlanItemMsg item(const std::string& setup, const std::string& strategy = "", int tool_id = 0) {
+  PlanItemMsg i;
+  i.setup = setup;
+  i.strategy = strategy;
+  i.tool_id = tool_id;
+  i.source = "mesh";
+  return i;
+}
+
 TEST_F(PlannerServices, ActionAbortsAnInvalidGoalWithItsReason) {
   actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   PlanToolpathGoal goal;
-  goal.setup = "sideways";
-  goal.source = "mesh";
+  goal.items.push_back(item("sideways"));
   client.sendGoal(goal);
   ASSERT_TRUE(client.waitForResult(ros::Duration(10.0)));
   EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED);
+  ASSERT_EQ(client.getResult()->results.size(), 1u);
   EXPECT_FALSE(client.getResult()->success);
-  EXPECT_NE(client.getResult()->message.find("sideways"), std::string::npos);
+  EXPECT_FALSE(client.getResult()->results[0].valid);
+  EXPECT_NE(client.getResult()->results[0].message.find("sideways"), std::string::npos);
+
+  client.sendGoal(PlanToolpathGoal());  // no items at all
+  ASSERT_TRUE(client.waitForResult(ros::Duration(10.0)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED);
+  EXPECT_NE(client.getResult()->message.find("no items"), std::string::npos);
   expect_alive();
+}
+
+// Per-item validity: each item of a goal gets its own verdict and reason; with proceed_on_failure the items after a
+// bad one are still planned, without it they are reported as not planned. Feedback names the item.
+TEST_F(PlannerServices, ActionReportsEachItem) {
+  ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
+  pub.publish(edge::to_mesh_msg(make_primitive("cone")));
+  ros::WallDuration(1.0).sleep();
+  actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  std::vector<uint32_t> feedback_items;
+  std::mutex m;
+  PlanToolpathGoal goal;
+  goal.items = {item("+Z", "raster", 2), item("+Z", "raster", 42), item("-X", "raster", 2)};
+  goal.proceed_on_failure = true;
+  goal.preview = true;
+  client.sendGoal(goal, {}, {}, [&](const PlanToolpathFeedbackConstPtr& fb) {
+    std::lock_guard<std::mutex> lock(m);
+    EXPECT_EQ(fb->items, 3u);
+    EXPECT_GE(fb->progress, 0.0f);
+    EXPECT_LE(fb->progress, 1.0f);
+    feedback_items.push_back(fb->item);
+  });
+  ASSERT_TRUE(client.waitForResult(ros::Duration(30.0)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED);  // not every item is valid
+  auto result = client.getResult();
+  ASSERT_EQ(result->results.size(), 3u);
+  EXPECT_TRUE(result->results[0].valid) << result->results[0].message;
+  EXPECT_FALSE(result->results[1].valid);
+  EXPECT_NE(result->results[1].message.find("no tool with id 42"), std::string::npos) << result->results[1].message;
+  EXPECT_TRUE(result->results[2].valid) << result->results[2].message;
+  EXPECT_EQ(result->results[2].job.toolpaths.at(0).setup, "-X");
+  EXPECT_GT(result->results[0].statistics.moves, 0u);
+  {
+    std::lock_guard<std::mutex> lock(m);
+    ASSERT_FALSE(feedback_items.empty());
+    EXPECT_EQ(feedback_items.front(), 0u);
+    EXPECT_EQ(*std::max_element(feedback_items.begin(), feedback_items.end()), 2u);
+  }
+
+  goal.proceed_on_failure = false;
+  client.sendGoal(goal);
+  ASSERT_TRUE(client.waitForResult(ros::Duration(30.0)));
+  result = client.getResult();
+  ASSERT_EQ(result->results.size(), 3u);
+  EXPECT_TRUE(result->results[0].valid);
+  EXPECT_FALSE(result->results[1].valid);
+  EXPECT_FALSE(result->results[2].valid);
+  EXPECT_NE(result->results[2].message.find("not planned"), std::string::npos) << result->results[2].message;
+  expect_alive();
+}
+
+// Preemption: a cancel stops the item being planned and keeps what was finished before it.
+TEST_F(PlannerServices, ActionCancelKeepsFinishedItems) {
+  ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
+  pub.publish(edge::to_mesh_msg(make_primitive("dome")));
+  ros::WallDuration(1.0).sleep();
+  actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  PlanToolpathGoal goal;
+  goal.preview = true;
+  goal.items.push_back(item("+Z", "raster", 2));
+  // A long one: the 3 mm ball at a 0.05 mm stepover over the whole dome takes far longer than the test waits.
+  PlanItemMsg slow = item("+Z", "raster", 3);
+  slow.parameters.stepover = 0.00005;
+  goal.items.push_back(slow);
+  goal.items.push_back(item("-X", "raster", 2));
+  std::atomic<bool> second_started{false};
+  client.sendGoal(goal, {}, {}, [&](const PlanToolpathFeedbackConstPtr& fb) {
+    if (fb->item == 1) second_started = true;
+  });
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (!second_started && ros::WallTime::now() < end) ros::WallDuration(0.01).sleep();
+  ASSERT_TRUE(second_started) << "the second item never started";
+  ros::WallDuration(0.3).sleep();
+  const ros::WallTime cancel_at = ros::WallTime::now();
+  client.cancelGoal();
+  ASSERT_TRUE(client.waitForResult(ros::Duration(10.0)));
+  EXPECT_LT((ros::WallTime::now() - cancel_at).toSec(), 5.0) << "cancel took too long";
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
+  auto result = client.getResult();
+  ASSERT_EQ(result->results.size(), 3u);
+  EXPECT_TRUE(result->results[0].valid);
+  EXPECT_FALSE(result->results[0].job.toolpaths.empty());
+  EXPECT_FALSE(result->results[1].valid);
+  EXPECT_NE(result->results[1].message.find("cancelled"), std::string::npos) << result->results[1].message;
+  EXPECT_FALSE(result->results[2].valid);
+  expect_alive();
+}
+
+// preview answers without touching the published toolpath.
+TEST_F(PlannerServices, PreviewDoesNotPublish) {
+  ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
+  pub.publish(edge::to_mesh_msg(make_primitive("cone")));
+  Latest<ToolpathJobMsg> published(nh, "toolpath");
+  ASSERT_TRUE(published.wait(10.0));
+  ros::WallDuration(1.0).sleep();
+  const size_t before = published.count();
+  Plan srv;
+  srv.request.setup = "-X";
+  srv.request.source = "mesh";
+  srv.request.preview = true;
+  ASSERT_TRUE(ros::service::call("plan", srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  ros::WallDuration(0.5).sleep();
+  EXPECT_EQ(published.count(), before);
+  srv.request.preview = false;
+  ASSERT_TRUE(ros::service::call("plan", srv));
+  ASSERT_TRUE(published.wait(5.0, before));
+  EXPECT_EQ(published.wait(1.0)->toolpaths.at(0).setup, "-X");
 }
 
 // +Z and -X machine different faces of the cube: the toolpaths differ, and each stays in the part's reach.

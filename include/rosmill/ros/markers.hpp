@@ -17,6 +17,13 @@ std_msgs::ColorRGBA move_colour(MoveType t);
 // A distinct colour per label (golden-ratio hues), for patches.
 std_msgs::ColorRGBA label_colour(uint32_t label);
 
+// A marker with an identity pose and unit scale, ready for points.
+visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std::string& ns, int id, int type);
+// Appends facet f's corners (m) to a TRIANGLE_LIST; a degenerate facet adds nothing (it has nothing to draw).
+void add_facet(visualization_msgs::Marker& triangles, const Mesh& mesh, size_t f);
+// A DELETEALL marker: the first of an array that replaces a whole view.
+visualization_msgs::Marker delete_all_marker(const std_msgs::Header& header);
+
 // The part as one TRIANGLE_LIST in the workpiece frame (grey unless `colour` is given).
 visualization_msgs::Marker mesh_marker(const Mesh& mesh, const std_msgs::Header& header, const std::string& ns,
                                        const std_msgs::ColorRGBA& colour);

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rosmill/cutter/cutter.hpp"
+#include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/plan/strategy.hpp"
 
 namespace rosmill::edge {
@@ -17,11 +17,9 @@ bool bool_param(const ::ros::NodeHandle& nh, const std::string& name, bool fallb
 double double_param(const ::ros::NodeHandle& nh, const std::string& name, double fallback, double min, double max);
 int int_param(const ::ros::NodeHandle& nh, const std::string& name, int fallback, int min, int max);
 
-// The tool table of the node's `tools` parameter: a list of maps
-//   {id: 1, name: "...", cutter: "ball:6", feed: 1200, plunge_feed: 300, spindle_rpm: 12000, stepover: 1, stepdown: 2}
-// (millimetres and mm/min, as a tool table is written). Throws Error naming the entry and field.
-std::vector<Tool> tool_table_param(const ::ros::NodeHandle& nh, const std::string& name);
-const Tool& find_tool(const std::vector<Tool>& tools, int id);
+// The tool table named by the node's `tool_table` parameter (a config/tools.yaml file): required; every error
+// names the parameter or the file, the tool and the field.
+ToolTable tool_table_param(const ::ros::NodeHandle& nh, const std::string& name);
 
 // The planner defaults of the `planner/*` parameters (millimetres).
 PlanParams plan_defaults_param(const ::ros::NodeHandle& nh);

@@ -6,6 +6,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
+#include "rosmill/segment/setup_filter.hpp"
 
 namespace rosmill::edge {
 
@@ -26,6 +27,11 @@ SetupFrame named_setup(const std::string& name, const std::string& where = "setu
 SetupFrame direction_setup(const Vec3& direction, const std::string& where = "direction");
 // The setup named, or, when name is empty, the one of `direction`.
 SetupFrame resolve_setup(const std::string& name, const Vec3& direction);
+
+// The segmentation's filter of a setup: named ("+Z", "z", "-x", "4axis:x", "5axis", any case) or, when name is
+// empty, the 3-axis setup of `direction`. Its name is "+Z"-style for 3-axis setups. Throws Error naming `where`.
+segment::SetupFilter setup_filter_of(const std::string& name, const Vec3& direction, double max_angle_deg,
+                                     const std::string& where = "setup");
 
 // Copies rotated into the setup frame (returned unchanged when the setup is +Z).
 Mesh mesh_in_setup(const Mesh& mesh, const SetupFrame& setup);

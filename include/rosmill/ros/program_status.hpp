@@ -1,0 +1,26 @@
+// The controller's status (core, mm, machine coordinates) as a ProgramStatusMsg (m, program coordinates) and as an
+// rviz view: the tool where the controller says it is and a line of text with the state and the line.
+#pragma once
+#include <visualization_msgs/MarkerArray.h>
+
+#include <Eigen/Geometry>
+
+#include "rosmill/ProgramStatusMsg.h"
+#include "rosmill/control/controller.hpp"
+
+namespace rosmill::edge {
+
+// The message state of a run: the controller's state, unless the bridge knows better (aborted, connecting).
+uint8_t status_state(control::RunState s);
+const char* status_state_name(uint8_t state);
+
+// `machine_to_workpiece` (mm) takes the controller's machine position to the workpiece frame: minus the work
+// offset (config/machine.yaml), then back from the setup frame the program was posted in.
+ProgramStatusMsg to_status_msg(const control::ControllerStatus& status, uint8_t state,
+                               const Eigen::Isometry3d& machine_to_workpiece);
+
+// Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") above `anchor` (m) and, when the
+// position is known, a SPHERE at the tool tip.
+visualization_msgs::MarkerArray status_markers(const ProgramStatusMsg& status, const geometry_msgs::Point& anchor);
+
+}  // namespace rosmill::edge

@@ -1,0 +1,76 @@
+#include "rosmill/ros/program_status.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/markers.hpp"
+
+namespace rosmill::edge {
+
+uint8_t status_state(control::RunState s) {
+  switch (s) {
+    case control::RunState::Disconnected:
+    case control::RunState::Idle: return ProgramStatusMsg::IDLE;
+    case control::RunState::Running: return ProgramStatusMsg::RUNNING;
+    case control::RunState::Paused: return ProgramStatusMsg::PAUSED;
+    case control::RunState::Finished: return ProgramStatusMsg::DONE;
+    case control::RunState::Alarm:
+    case control::RunState::Error: return ProgramStatusMsg::ERROR;
+  }
+  return ProgramStatusMsg::ERROR;
+}
+
+const char* status_state_name(uint8_t state) {
+  switch (state) {
+    case ProgramStatusMsg::IDLE: return "idle";
+    case ProgramStatusMsg::CONNECTING: return "connecting";
+    case ProgramStatusMsg::RUNNING: return "running";
+    case ProgramStatusMsg::PAUSED: return "paused";
+    case ProgramStatusMsg::DONE: return "done";
+    case ProgramStatusMsg::ERROR: return "error";
+    case ProgramStatusMsg::ABORTED: return "aborted";
+  }
+  return "unknown";
+}
+
+ProgramStatusMsg to_status_msg(const control::ControllerStatus& s, uint8_t state,
+                               const Eigen::Isometry3d& machine_to_workpiece) {
+  ProgramStatusMsg m;
+  m.state = state;
+  m.state_name = status_state_name(state);
+  m.current_line = s.current_line;
+  m.acknowledged_line = s.acknowledged_line;
+  m.total_lines = s.total_lines;
+  m.progress = s.total_lines > 0 ? float(std::min(1.0, double(s.acknowledged_line) / s.total_lines)) : 0.0f;
+  m.position_known = s.position_known;
+  if (s.position_known) m.position = to_point_msg(machine_to_workpiece * s.position);
+  m.last_error = s.error;
+  return m;
+}
+
+visualization_msgs::MarkerArray status_markers(const ProgramStatusMsg& status, const geometry_msgs::Point& anchor) {
+  visualization_msgs::MarkerArray array;
+  visualization_msgs::Marker text =
+      base_marker(status.header, "program", 0, visualization_msgs::Marker::TEXT_VIEW_FACING);
+  char line[160];
+  std::snprintf(line, sizeof line, "%s  line %u / %u  %.0f%%", status.state_name.c_str(), status.current_line,
+                status.total_lines, 100.0 * status.progress);
+  text.text = line;
+  if (!status.last_error.empty()) text.text += "\n" + status.last_error.substr(0, 120);
+  text.pose.position = anchor;
+  text.scale.z = 0.008;  // text height, m
+  const bool bad = status.state == ProgramStatusMsg::ERROR || status.state == ProgramStatusMsg::ABORTED;
+  text.color = bad ? rgba(1.0f, 0.3f, 0.3f) : rgba(1.0f, 1.0f, 1.0f);
+  array.markers.push_back(text);
+
+  visualization_msgs::Marker tip = base_marker(status.header, "program", 1, visualization_msgs::Marker::SPHERE);
+  tip.action = status.position_known ? visualization_msgs::Marker::ADD : visualization_msgs::Marker::DELETE;
+  tip.pose.position = status.position;
+  tip.scale.x = tip.scale.y = tip.scale.z = 0.004;
+  tip.color = rgba(1.0f, 0.9f, 0.1f);
+  array.markers.push_back(tip);
+  return array;
+}
+
+}  // namespace rosmill::edge
