@@ -5,11 +5,14 @@
 
 #include <exception>
 
+#include "rosmill/heap_reuse.hpp"
+
 namespace rosmill::edge {
 
 // `threads` 1 runs callbacks one at a time (ros::spin); more lets slow work and services overlap.
 template <typename Node>
 int run_node(int argc, char** argv, const char* name, int threads = 1) {
+  keep_freed_memory();  // a node serves job after job: each reuses the memory the last one freed
   ::ros::init(argc, argv, name);
   ::ros::NodeHandle nh, pnh("~");
   try {
