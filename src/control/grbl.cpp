@@ -86,7 +86,11 @@ void GrblController::start(const std::vector<std::string>& program, const SendOp
   status_.error.clear();
   status_.state = RunState::Running;
   last_heard_ = Clock::now();
-  pump();
+  try {
+    pump();
+  } catch (const Error& e) {
+    connection_lost(e);
+  }
 }
 
 void GrblController::pump() {
@@ -192,12 +196,7 @@ ControllerStatus GrblController::poll(double timeout_s) {
     }
     if (status_.state == RunState::Running) pump();
   } catch (const Error& e) {
-    transport_.reset();
-    reader_.reset();
-    forget_buffer();
-    status_.state = RunState::Disconnected;
-    status_.error = std::string(e.what()) + " (after program line " + std::to_string(status_.acknowledged_line) +
-                    " was acknowledged)";
+    connection_lost(e);
     return status_;
   }
   if (error_line_ && ran_after_error_ > error_line_)
@@ -215,6 +214,46 @@ ControllerStatus GrblController::poll(double timeout_s) {
                     std::to_string(status_.acknowledged_line) + ")";
   }
   return status_;
+}
+
+void GrblController::read_answers_left() {
+  // Bounded: a peer that is gone ends the stream at once; one that still talks (a write that timed out) gets
+  // a short while, never an endless wait.
+  const auto start = Clock::now();
+  std::string line;
+  try {
+    while (seconds_since(start) < 0.5 && reader_->next(line, 0.05)) handle_line(line);
+  } catch (const Error&) {
+    // The end of the stream or the reset itself: nothing more will arrive.
+  }
+}
+
+void GrblController::connection_lost(const Error& e) {
+  // The failure is often found by a write (broken pipe) while answers GRBL sent before the drop still wait to be
+  // read. Each of them is a line that ran: count it, or resuming would send that line, and run it, twice.
+  read_answers_left();
+  // What is still unanswered was sent and may or may not have run: GRBL's protocol cannot tell. Resuming from
+  // the first of them is the only choice that loses nothing; say plainly that it may repeat them.
+  size_t first = 0, last = 0, preamble = 0;
+  for (size_t i : in_flight_) {
+    const size_t line = queue_[i].line;
+    if (line == 0) ++preamble;
+    else if (!first) first = line;
+    if (line) last = line;
+  }
+  std::string unknown;
+  if (first)
+    unknown = "; program lines " + std::to_string(first) + ".." + std::to_string(last) +
+              " were sent but not answered: they may have run, check the machine before resuming";
+  else if (preamble)
+    unknown = "; " + std::to_string(preamble) + " resume preamble lines were sent but not answered";
+  const std::string earlier = status_.state == RunState::Error || status_.state == RunState::Alarm ? status_.error : "";
+  transport_.reset();
+  reader_.reset();
+  forget_buffer();
+  status_.state = RunState::Disconnected;
+  status_.error = std::string(e.what()) + " (after program line " + std::to_string(status_.acknowledged_line) +
+                  " was acknowledged)" + unknown + (earlier.empty() ? "" : "; before that: " + earlier);
 }
 
 void GrblController::feed_hold() {

@@ -9,7 +9,8 @@
 //  - real-time bytes outside the line stream: '?' status report "<Idle|MPos:x,y,z|FS:f,0|Ln:n>", '!' feed hold,
 //    '~' cycle start, 0x18 soft reset (buffer emptied, greeting sent again).
 //  - lines execute at a fixed pace, so the buffer fills; a dropped connection can be scheduled after a number
-//    of "ok"s (the receive buffer is lost, as a real board's is on a USB reset).
+//    of "ok"s, or for when every line received has run (the receive buffer is lost, as a real board's is on a USB
+//    reset); nothing runs after the drop, and a test can wait for it (wait_dropped) instead of sleeping.
 #pragma once
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -20,6 +21,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdlib>
 #include <mutex>
 #include <string>
@@ -28,20 +30,31 @@
 
 namespace rosmill::test {
 
+// How the simulation drops a connection.
+enum class GrblDrop {
+  // The answers sent before the drop arrive, then the end of the stream; what the sender still writes is read
+  // (and ignored) until it closes its end, so its writes never fail (a bridge that closes cleanly).
+  Drain,
+  // The answers sent before the drop arrive, then the end of the stream, and the socket is closed at once: the
+  // sender's next writes fail (broken pipe) while answers may still wait unread on its side (a bridge that hangs
+  // up without waiting).
+  HangUp,
+  // The connection is reset at once (RST): answers still queued or in transit are lost (a cable pulled).
+  Reset,
+};
+
 struct GrblSimulationConfig {
   double line_period_s = 50e-6;  // time to execute one line
   double soft_limit = 500.0;     // |axis| beyond this is ALARM:2
-  long drop_after_oks = -1;      // close the connection after this many "ok"s (counted over the whole run)
-  // false: the answers sent before the drop arrive, then the end of the stream (a bridge that closes cleanly).
-  // true: the connection is reset at once (RST), so answers still in transit are lost (a cable pulled).
-  bool abrupt_drop = false;
+  long drop_after_oks = -1;      // drop the connection after this many "ok"s (counted over the whole run)
+  GrblDrop drop = GrblDrop::Drain;
 };
 
 class GrblSimulation {
  public:
   using Config = GrblSimulationConfig;
 
-  explicit GrblSimulation(Config c = {}) : cfg_(c) {
+  explicit GrblSimulation(Config c = {}) : cfg_(c), drop_after_oks_(c.drop_after_oks), drop_kind_(c.drop) {
     listen_fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
     const int one = 1;
     ::setsockopt(listen_fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one);
@@ -57,7 +70,7 @@ class GrblSimulation {
     thread_ = std::thread([this] { serve(); });
   }
   ~GrblSimulation() {
-    stop_ = true;
+    stop_ = true;  // also ends a drain that waits for the sender to close
     thread_.join();
     ::close(listen_fd_);
   }
@@ -73,9 +86,22 @@ class GrblSimulation {
   int connections() const { return connections_; }
   int status_queries() const { return status_queries_; }
   bool held() const { return hold_; }
-  void schedule_drop_after(long oks, bool abrupt = false) {
-    cfg_.drop_after_oks = oks;
-    cfg_.abrupt_drop = abrupt;
+  // Safe to call while a program streams (the settings are read by the simulation's thread).
+  void schedule_drop_after(long oks, GrblDrop kind = GrblDrop::Drain) {
+    drop_kind_ = kind;
+    drop_after_oks_ = oks;
+  }
+  // Drop as soon as every line received so far has run and been answered, and nothing more is arriving: with
+  // the sender held, the drop then comes at a known point (all it sent ran), whatever the machine's load.
+  void drop_when_idle(GrblDrop kind) {
+    drop_kind_ = kind;
+    drop_when_idle_ = true;
+  }
+  // Waits until the connection has been dropped (and closed, unless it drains); false after `timeout_s` (a
+  // bound for a broken test, not a timing assumption).
+  bool wait_dropped(double timeout_s) const {
+    std::unique_lock<std::mutex> l(mu_);
+    return dropped_cv_.wait_for(l, std::chrono::duration<double>(timeout_s), [this] { return dropped_; });
   }
 
  private:
@@ -86,14 +112,14 @@ class GrblSimulation {
       const int fd = ::accept(listen_fd_, nullptr, nullptr);
       if (fd < 0) continue;
       ++connections_;
-      session(fd);
-      ::close(fd);
+      if (session(fd)) ::close(fd);
     }
   }
 
   void send(int fd, const std::string& s) { ::send(fd, s.data(), s.size(), MSG_NOSIGNAL); }
 
-  void session(int fd) {
+  // Serves one connection; false when it has closed `fd` itself (a drop that does not drain).
+  bool session(int fd) {
     std::string rx;  // the receive buffer
     hold_ = false;
     send(fd, "\r\nGrbl 1.1h ['$' for help]\r\n");
@@ -101,10 +127,14 @@ class GrblSimulation {
     while (!stop_) {
       pollfd p{fd, POLLIN, 0};
       ::poll(&p, 1, rx.find('\n') != std::string::npos ? 0 : 2);
+      if (drop_when_idle_ && !(p.revents & (POLLIN | POLLHUP)) && rx.find('\n') == std::string::npos) {
+        drop_when_idle_ = false;
+        return drop(fd);
+      }
       if (p.revents & (POLLIN | POLLHUP)) {
         char buf[512];
         const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
-        if (n <= 0) return;  // the sender went away
+        if (n <= 0) return true;  // the sender went away
         for (ssize_t i = 0; i < n; ++i) {
           const char c = buf[i];
           if (c == '?') {
@@ -136,29 +166,49 @@ class GrblSimulation {
       rx.erase(0, nl + 1);
       if (!line.empty() && line.back() == '\r') line.pop_back();
       send(fd, execute(line) + "\r\n");
-      if (cfg_.drop_after_oks >= 0 && oks_ >= cfg_.drop_after_oks) {
-        cfg_.drop_after_oks = -1;
-        drop(fd);  // the receive buffer is lost with the connection
-        return;
+      const long drop_at = drop_after_oks_;
+      if (drop_at >= 0 && oks_ >= drop_at) {
+        drop_after_oks_ = -1;
+        return drop(fd);  // the receive buffer is lost with the connection
       }
     }
+    return true;
   }
 
-  void drop(int fd) {
-    if (cfg_.abrupt_drop) {
-      const linger reset{1, 0};  // close() then sends RST: what the peer has not read yet is gone
+  // Called by the session, which returns right after; false when `fd` is closed already.
+  bool drop(int fd) {
+    const GrblDrop kind = drop_kind_;
+    if (kind == GrblDrop::Reset) {
+      // close() then sends RST and discards what is still queued to send (answers held back by Nagle).
+      const linger reset{1, 0};
       ::setsockopt(fd, SOL_SOCKET, SO_LINGER, &reset, sizeof reset);
-      return;
+    } else {
+      ::shutdown(fd, SHUT_WR);  // pushes out the answers still queued, then the end of the stream
     }
-    // End of stream after the answers already sent; read what the sender still sends until it closes, so that
-    // close() finds nothing unread (which would reset the connection and lose those answers).
-    ::shutdown(fd, SHUT_WR);
+    if (kind != GrblDrop::Drain) {
+      ::close(fd);
+      mark_dropped();
+      return false;
+    }
+    // End of stream after the answers already sent; read what the sender still sends until IT closes, so that
+    // close() finds nothing unread (which would reset the connection). No deadline: under load the sender may
+    // take long to read the end of the stream, and closing first would break its writes before it has read
+    // the answers (the destructor's stop_ bounds the wait).
+    mark_dropped();
     char buf[512];
-    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
-    while (std::chrono::steady_clock::now() < until) {
+    while (!stop_) {
       pollfd p{fd, POLLIN, 0};
       if (::poll(&p, 1, 20) > 0 && ::recv(fd, buf, sizeof buf, 0) <= 0) break;
     }
+    return true;
+  }
+
+  void mark_dropped() {
+    {
+      std::lock_guard<std::mutex> l(mu_);
+      dropped_ = true;
+    }
+    dropped_cv_.notify_all();
   }
 
   std::string status_report(const std::string& rx) const {
@@ -220,13 +270,18 @@ class GrblSimulation {
   }
 
   Config cfg_;
+  std::atomic<long> drop_after_oks_;
+  std::atomic<GrblDrop> drop_kind_;
+  std::atomic<bool> drop_when_idle_{false};
   int listen_fd_ = -1;
   int port_ = 0;
   std::thread thread_;
   std::atomic<bool> stop_{false}, overflowed_{false}, hold_{false};
   std::atomic<size_t> max_fill_{0};
   std::atomic<int> connections_{0}, status_queries_{0};
-  mutable std::mutex mu_;
+  mutable std::mutex mu_;  // guards executed_ and dropped_
+  mutable std::condition_variable dropped_cv_;
+  bool dropped_ = false;
   std::vector<std::string> executed_;
   long oks_ = 0, last_n_ = 0;
   bool alarm_ = false;

@@ -13,6 +13,7 @@
 
 using namespace rosmill;
 using namespace rosmill::control;
+using rosmill::test::GrblDrop;
 using rosmill::test::GrblSimulation;
 
 namespace {
@@ -46,21 +47,43 @@ std::unique_ptr<Controller> grbl(const GrblSimulation& sim) {
   return open_controller("grbl+tcp://127.0.0.1:" + std::to_string(sim.port()));
 }
 
+// The program line of the last N line the simulation executed (numbered_program puts N1 on line 6).
+size_t last_executed_line(const GrblSimulation& sim) {
+  const std::vector<long> n = executed_numbers(sim);
+  return n.empty() ? 5 : static_cast<size_t>(n.back()) + 5;
+}
+
+struct DropReport {
+  size_t from_line = 0;  // where the driver says to resume (--from-line N); 0 when missing
+  std::string message;
+};
+
 // Streams `program` through a connection that the simulation drops: the driver must report it, and its message
-// must say where to resume (--from-line N). Returns N; 0 (and a test failure) when either is missing.
-size_t resume_line_after_drop(Controller& c, const std::vector<std::string>& program) {
+// must say where to resume (--from-line N), and, when lines were sent but never answered, that those (from N on)
+// may have run: nothing the driver cannot know is hidden.
+DropReport resume_line_after_drop(Controller& c, const std::vector<std::string>& program,
+                                  const Progress& progress = {}) {
+  DropReport d;
   try {
-    run_to_end(c, program, SendOptions{});
+    run_to_end(c, program, SendOptions{}, progress);
   } catch (const Error& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("connection"), std::string::npos) << what;
-    const size_t at = what.find("--from-line ");
-    if (at != std::string::npos) return std::stoul(what.substr(at + 12));
-    ADD_FAILURE() << "no line to resume from in: " << what;
-    return 0;
+    d.message = e.what();
+    EXPECT_NE(d.message.find("connection"), std::string::npos) << d.message;
+    const size_t at = d.message.find("--from-line ");
+    if (at == std::string::npos) {
+      ADD_FAILURE() << "no line to resume from in: " << d.message;
+      return d;
+    }
+    d.from_line = std::stoul(d.message.substr(at + 12));
+    const size_t unknown = d.message.find(" were sent but not answered: they may have run");
+    if (unknown != std::string::npos) {
+      EXPECT_NE(d.message.rfind("program lines " + std::to_string(d.from_line) + "..", unknown), std::string::npos)
+          << "the unanswered lines should start at the resume line: " << d.message;
+    }
+    return d;
   }
   ADD_FAILURE() << "the dropped connection was not reported";
-  return 0;
+  return d;
 }
 
 }  // namespace
@@ -98,10 +121,12 @@ TEST(GrblSimulationStream, DisconnectAtARandomLineThenResumeLosesAndRepeatsNothi
     auto c = grbl(sim);
     c->connect();
     const auto program = numbered_program(10000);
-    const size_t resume_from = resume_line_after_drop(*c, program);
+    const size_t resume_from = resume_line_after_drop(*c, program).from_line;
     ASSERT_GT(resume_from, 0u);
-    // Every line acknowledged before the drop was executed; nothing after it.
+    // Nothing ran after the drop, and every answer sent before it was counted: the resume line is the one after
+    // the last that ran (not earlier: that line would run twice; not later: lines would be lost).
     EXPECT_EQ(sim.executed().size(), static_cast<size_t>(drop));
+    EXPECT_EQ(resume_from, last_executed_line(sim) + 1);
     c->connect();
     SendOptions o;
     o.from_line = resume_from;
@@ -123,19 +148,19 @@ TEST(GrblSimulationStream, DisconnectAtARandomLineThenResumeLosesAndRepeatsNothi
 
 TEST(GrblSimulationStream, AResetConnectionLosesNothingAndRepeatsOnlyUnansweredLines) {
   // Pulled cable: the connection is reset and the "ok"s in transit are lost, so the driver cannot know that the
-  // last few lines ran. Resuming after its last acknowledged line loses nothing; the lines it re-sends are only
-  // those whose answer was lost (no more than GRBL's buffer held), and the resume preamble first brings the tool to
-  // where the first of them starts, so running one again retraces its own path.
+  // last few lines ran, and says so. Resuming after its last acknowledged line loses nothing; the lines it
+  // re-sends are only those it named as unanswered (no more than GRBL's buffer held), and the resume preamble
+  // first brings the tool to where the first of them starts, so running one again retraces its own path.
   std::mt19937 rng(7);
   const long drop = std::uniform_int_distribution<long>(500, 9000)(rng);
   SCOPED_TRACE("connection reset after " + std::to_string(drop) + " executed lines");
   GrblSimulation sim;
-  sim.schedule_drop_after(drop, true);
+  sim.schedule_drop_after(drop, GrblDrop::Reset);
   auto c = grbl(sim);
   c->connect();
   const auto program = numbered_program(10000);
   SendOptions o;
-  o.from_line = resume_line_after_drop(*c, program);
+  o.from_line = resume_line_after_drop(*c, program).from_line;
   ASSERT_GT(o.from_line, 0u);
   const std::vector<long> before = executed_numbers(sim);
   c->connect();
@@ -152,6 +177,37 @@ TEST(GrblSimulationStream, AResetConnectionLosesNothingAndRepeatsOnlyUnansweredL
   }
   // Repeats are bounded by what fits in the 128-byte buffer (these lines are at least 8 bytes long).
   EXPECT_LE(d - f + 1, 128 / 8);
+}
+
+TEST(GrblSimulationStream, AnswersThatArrivedBeforeALostConnectionAreCountedEvenWhenAWriteFindsTheLossFirst) {
+  // Regression (seen under load in CI: 4 lines ran twice): when the driver was slow to read, the peer had
+  // closed its socket, the lost connection was found by a write (broken pipe), and the "ok"s that had already
+  // arrived were thrown away, so the resume line was before lines that had run. Made deterministic: the driver
+  // is held in its progress callback while the simulation runs and answers every line it was sent, then hangs
+  // up; only then does the driver read (the answers) and write (into the closed connection).
+  for (const GrblDrop kind : {GrblDrop::HangUp, GrblDrop::Drain}) {
+    SCOPED_TRACE(kind == GrblDrop::HangUp ? "hang-up" : "drained close");
+    GrblSimulation sim;
+    auto c = grbl(sim);
+    c->connect();
+    const auto program = numbered_program(10000);
+    bool held = false, dropped = false;
+    const DropReport d = resume_line_after_drop(*c, program, [&](const ControllerStatus& st) {
+      if (held || st.acknowledged_line < 3000) return;
+      held = true;
+      sim.drop_when_idle(kind);
+      dropped = sim.wait_dropped(60.0);
+    });
+    ASSERT_TRUE(held && dropped) << "the simulation did not drop the connection";
+    // Every line sent before the drop ran and was answered: none of them is repeated. (Lines the driver wrote
+    // after the drop never ran; the message names them as unanswered, from the resume line on.)
+    EXPECT_EQ(d.from_line, last_executed_line(sim) + 1) << d.message;
+    c->connect();
+    SendOptions o;
+    o.from_line = d.from_line;
+    EXPECT_EQ(run_to_end(*c, program, o).state, RunState::Finished);
+    expect_each_once_in_order(executed_numbers(sim), 10000);
+  }
 }
 
 TEST(GrblSimulationStream, ErrorAndAlarmAreReportedWithTheLine) {

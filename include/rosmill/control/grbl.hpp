@@ -7,6 +7,10 @@
 #include "rosmill/control/controller.hpp"
 #include "rosmill/control/transport.hpp"
 
+namespace rosmill {
+class Error;
+}
+
 namespace rosmill::control {
 
 class GrblController : public Controller {
@@ -37,6 +41,8 @@ class GrblController : public Controller {
   void forget_buffer();  // GRBL's receive buffer is empty (reset, new connection)
   void handle_line(const std::string& line);
   void parse_status(const std::string& report);
+  void read_answers_left();                // after a transport failure: the answers that arrived before it
+  void connection_lost(const Error& e);    // the transport failed: count what arrived, report what is unknown
 
   std::function<std::unique_ptr<Transport>()> open_;
   std::string describe_;
