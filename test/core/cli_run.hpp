@@ -15,16 +15,24 @@ struct CliRun {
   std::string out, err;
 };
 
-inline CliRun run_rosmill(const std::string& args) {
-  const std::string err_path = ::testing::TempDir() + "/rosmill_stderr_" + std::to_string(::getpid()) + ".txt";
+// Runs `ROSMILL_CLI shell_args` through the shell (so `shell_args` may end in a redirection such as 2>&1) and
+// captures its stdout and exit status.
+inline CliRun run_rosmill_shell(const std::string& shell_args) {
   CliRun run;
-  FILE* pipe = ::popen((std::string(ROSMILL_CLI) + " " + args + " 2>" + err_path).c_str(), "r");
+  FILE* pipe = ::popen((std::string(ROSMILL_CLI) + " " + shell_args).c_str(), "r");
   if (!pipe) return run;
   char buf[4096];
   size_t n;
   while ((n = std::fread(buf, 1, sizeof buf, pipe)) > 0) run.out.append(buf, n);
   const int rc = ::pclose(pipe);
   run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  return run;
+}
+
+// Stdout and stderr apart.
+inline CliRun run_rosmill(const std::string& args) {
+  const std::string err_path = ::testing::TempDir() + "/rosmill_stderr_" + std::to_string(::getpid()) + ".txt";
+  CliRun run = run_rosmill_shell(args + " 2>" + err_path);
   std::ifstream err(err_path);
   std::stringstream ss;
   ss << err.rdbuf();

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.hpp"
+
 #include "rosmill/plan/toolpath_io.hpp"
 
 using nlohmann::json;
@@ -16,22 +18,8 @@ using namespace rosmill;
 
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out;  // stdout, then stderr
-};
-
-CliRun rosmill_plan(const std::string& args) {
-  CliRun run;
-  FILE* pipe = ::popen((std::string(ROSMILL_CLI) + " plan " + args + " 2>&1").c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
-  const int rc = ::pclose(pipe);
-  run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  return run;
-}
+// `rosmill plan args`, stdout then stderr.
+CliRun rosmill_plan(const std::string& args) { return run_rosmill_shell("plan " + args + " 2>&1"); }
 
 const std::string kScan = ROSMILL_TEST_DATA "/snp_part_scan.ply";  // metres
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
 #include "rosmill/cutter/reference_drop.hpp"
 #include "rosmill/io/stl.hpp"
 
@@ -20,23 +21,8 @@ using namespace rosmill;
 
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out;
-};
-
 // Runs the rosmill tool with `args`, stdout and stderr together.
-CliRun run_cli(const std::string& args) {
-  CliRun run;
-  FILE* pipe = ::popen((std::string(ROSMILL_CLI) + " " + args + " 2>&1").c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
-  const int rc = ::pclose(pipe);
-  run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  return run;
-}
+CliRun run_cli(const std::string& args) { return run_rosmill_shell(args + " 2>&1"); }
 
 const std::string kBox = ROSMILL_TEST_DATA "/pycam-textbox.stl";
 

@@ -7,26 +7,15 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.hpp"
+
 using nlohmann::json;
 
 namespace {
 
-struct CliRun {
-  int status = -1;
-  std::string out;
-};
-
-// Runs the rosmill tool with `args`; stdout is captured, stderr goes to `stderr_file` when given.
+// Runs the rosmill tool with `args`; stdout is captured, stderr goes where `stderr_redirect` says.
 CliRun rosmill(const std::string& args, const std::string& stderr_redirect = "2>/dev/null") {
-  CliRun run;
-  FILE* pipe = ::popen((std::string(ROSMILL_CLI) + " " + args + " " + stderr_redirect).c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
-  const int rc = ::pclose(pipe);
-  run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  return run;
+  return run_rosmill_shell(args + " " + stderr_redirect);
 }
 
 }  // namespace
