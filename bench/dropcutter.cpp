@@ -82,6 +82,15 @@ int main(int argc, char** argv) {
       const Vec3& p = cl[std::min(cl.size() - 1, static_cast<size_t>(where * double(cl.size())))];
       checks[i] = check_drop(cutter, mesh, p.x(), p.y(), p.z(), mesh.bbox.min.z(), 1e-6);
     });
+    // Every point that is not equal, exactly, so that it can be turned into a test.
+    for (size_t i = 0; i < checks.size(); ++i) {
+      if (checks[i] == ReferenceCheck::Equal) continue;
+      const double where = std::fmod(0.6180339887498949 * double(i), 1.0);
+      const Vec3& p = cl[std::min(cl.size() - 1, static_cast<size_t>(where * double(cl.size())))];
+      std::printf("  %s at x %.17g y %.17g: drop %.17g, reference %.17g\n",
+                  checks[i] == ReferenceCheck::RimTie ? "rim tie" : "differs", p.x(), p.y(), p.z(),
+                  std::max(reference_drop(cutter, mesh, p.x(), p.y()), mesh.bbox.min.z()));
+    }
     const auto count = [&](ReferenceCheck c) { return std::count(checks.begin(), checks.end(), c); };
     const double rate = cl.size() / seconds;
     const long differ = count(ReferenceCheck::Differs);

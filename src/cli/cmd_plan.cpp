@@ -22,6 +22,7 @@
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/plan/stock.hpp"
 #include "rosmill/plan/strategy.hpp"
 #include "rosmill/plan/toolpath_io.hpp"
 
@@ -29,7 +30,7 @@ namespace rosmill::cli {
 namespace {
 
 struct Options {
-  std::string file, strategy, tool = "ball:6", tools, units, out, dialect = "linuxcnc";
+  std::string file, strategy, tool = "ball:6", tools, units, out, dialect = "linuxcnc", stock;
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = 0.001, angle = 0.0;
   bool json = false;
   // Cloud input (seed 004).
@@ -107,6 +108,19 @@ void run(const Options& o) {
     mesh = read_stl(o.file, ro);
     input.mesh = &mesh;
   }
+  Mesh stock;
+  if (!o.stock.empty()) {
+    if (o.strategy != "rough") throw Error("--stock", "a stock mesh is used by --strategy rough only");
+    StlReadOptions ro;
+    if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
+    try {
+      stock = read_stl(o.stock, ro);
+      check_stock_mesh(stock, input.mesh);
+    } catch (const Error& e) {
+      throw Error("--stock " + o.stock, e.what());
+    }
+    params.stock_mesh = &stock;
+  }
 
   const auto t0 = std::chrono::steady_clock::now();
   const Job job = seed_cloud && input.cloud ? plan_cloud_strategy(o.strategy, cloud, params, holes)
@@ -159,6 +173,7 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--allowance", o->allowance, "stock to leave, mm");
   auto* tolerance = cmd->add_option("--tolerance", o->tolerance, "chord and gouge tolerance, mm");
   cmd->add_option("--angle", o->angle, "raster direction, degrees");
+  cmd->add_option("--stock", o->stock, "rough: stock STL (closed, containing the part; same --units) instead of the box");
   cmd->add_option("--units", o->units, "units of the file: mm, inch, m (STL default mm, clouds m)");
   cmd->add_flag("--json", o->json, "print one JSON object");
   cmd->add_option("-o,--out", o->out, "write toolpath.json, or a G-code program when it ends in .ngc, .nc or .gcode");

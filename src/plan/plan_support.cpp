@@ -39,6 +39,7 @@ PlanFrame make_frame(const Surface& surface, const PlanParams& params) {
   f.stock.min.x() -= params.stock_margin, f.stock.min.y() -= params.stock_margin;
   f.stock.max.x() += params.stock_margin, f.stock.max.y() += params.stock_margin;
   f.stock.max.z() += params.stock_margin;
+  if (params.stock_mesh) f.stock = params.stock_mesh->bbox;
   f.safe_z = f.stock.max.z() + params.safe_clearance;
   return f;
 }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "rosmill/error.hpp"
+#include "rosmill/plan/stock.hpp"
 
 namespace rosmill {
 namespace {
@@ -94,6 +96,17 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
   std::vector<double> levels;
   for (double z = f.stock.max.z() - f.stepdown; z > floor + 1e-9; z -= f.stepdown) levels.push_back(z);
   levels.push_back(floor);
+  std::unique_ptr<StockReach> reach;
+  if (params.stock_mesh)
+    reach = std::make_unique<StockReach>(*params.stock_mesh, levels, f.stock.max.z(), R, f.tolerance);
+  // A straight link from `from` to `to` at a level stays in the stock's reach (always, for the box).
+  auto link_in_reach = [&](size_t li, const Vec2& from, const Vec2& to) {
+    if (!reach) return true;
+    const double len = (to - from).norm();
+    if (len < 1e-9) return true;
+    const auto in = reach->along(li, from, (to - from) / len, len);
+    return in.size() == 1 && in[0].first <= 1e-9 && in[0].second >= len - 1e-9;
+  };
 
   Toolpath tp;
   tp.strategy = "rough";
@@ -107,17 +120,29 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
     for (const SampledLine& L : lines) {
       if (L.s.empty()) continue;
       auto spans = free_spans(L, z, half);
+      std::vector<std::pair<double, double>> keep;
+      if (reach) {
+        keep = reach->along(li, L.origin, L.dir, L.s.back());
+        spans = intersect_spans(spans, keep);
+      }
+      // A piece end where the line crosses the stock's reach: the cutter there is a radius clear of the slab's
+      // material (and the slabs above were cleared or air), so it goes straight down, no ramp.
+      auto in_air = [&](double s) {
+        for (const auto& k : keep)
+          if ((s == k.first && k.first > 0) || (s == k.second && k.second < L.s.back())) return true;
+        return false;
+      };
       if (reverse) {
         std::reverse(spans.begin(), spans.end());
         for (auto& sp : spans) std::swap(sp.first, sp.second);
       }
-      for (const auto& sp : spans) {
-        const Vec2 a = L.origin + sp.first * L.dir, b = L.origin + sp.second * L.dir;
+      for (auto sp : spans) {
+        Vec2 a = L.origin + sp.first * L.dir, b = L.origin + sp.second * L.dir;
         if (!w.at_safe() && std::abs(w.position().z() - z) < 1e-12) {
           // Stay down when the straight link at this level is proven free (sampled like the lines).
           const Vec2 from = w.position().head<2>();
           const double len = (a - from).norm();
-          bool free = len <= 2 * f.stepover;
+          bool free = len <= 2 * f.stepover && link_in_reach(li, from, a);
           const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
           for (int k = 0; free && k <= n; ++k) {
             const Vec2 p = from + (a - from) * (double(k) / n);
@@ -129,8 +154,14 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
             continue;
           }
         }
-        w.enter(Vec3(a.x(), a.y(), above));
-        ramp_in(w, a, b, above, z, options.ramp_slope);
+        // A piece with one end in air is entered there, whatever the zigzag's direction.
+        if (!in_air(sp.first) && in_air(sp.second)) std::swap(sp.first, sp.second), std::swap(a, b);
+        if (in_air(sp.first)) {
+          w.enter(Vec3(a.x(), a.y(), z));
+        } else {
+          w.enter(Vec3(a.x(), a.y(), above));
+          ramp_in(w, a, b, above, z, options.ramp_slope);
+        }
         w.feed(Vec3(b.x(), b.y(), z));
       }
       reverse = !reverse;
@@ -144,6 +175,11 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
 
 Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress) {
   return rough_on(surface, params, RoughOptions{}, progress);
+}
+
+Job plan_rough(const PlanInput& input, const PlanParams& params, const PlanProgress& progress) {
+  if (params.stock_mesh) check_stock_mesh(*params.stock_mesh, input.mesh);
+  return on_surface(rough_strategy)(input, params, progress);
 }
 
 }  // namespace rosmill

@@ -15,7 +15,7 @@ const std::vector<StrategyEntry>& strategies() {
   static const std::vector<StrategyEntry> table = {
       {"raster", "parallel zigzag finishing at a stepover and angle", false, false, on_surface(raster_strategy)},
       {"waterline", "closed z-level finishing loops every step-down", false, false, on_surface(waterline_strategy)},
-      {"rough", "z-level zigzag area clearing with ramp entry", false, false, on_surface(rough_strategy)},
+      {"rough", "z-level zigzag area clearing with ramp entry", false, false, plan_rough},
       {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true, false, plan_contour},
       {"cloud-rough", "seed 004 roughing of a point cloud: flat 10 mm, grid 2R-0.5δ, levels of d", false, true, cloud_rough_strategy},
       {"cloud-semi", "seed 004 semi-finishing of a point cloud: ball 5 mm raster, buffer points", false, true, cloud_semi_strategy},

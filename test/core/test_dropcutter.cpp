@@ -265,6 +265,34 @@ TEST(DropCutter, RimTangentEdgeKeepsItsContact) {
   }
 }
 
+// The one rim tie of `bench/run dropcutter` (demo2.stl.gz, flat 10, axis at x = -5 on the grid's first column):
+// a sloped edge of the wall x = 0 lies at exactly the radius, 5 mm, from the axis, but the rounding of its
+// distance put it a hair outside and the cutter fell to the floor. Its triangle, exactly as in the file; the
+// answer in closed form is the edge's height at the axis's y.
+TEST(DropCutter, FlatRimOnSlopedWallEdgeFromDemo2) {
+  const Vec3 a(2.082192, -22.24316, -4.3928060000000002), b(0, -22.24316, -4.3928060000000002),
+      c(0, -23.557369999999999, -3.6158800000000002);
+  const Mesh tri = one_triangle(a, b, c);
+  const double x = -5, y = -23.470588235294109;
+  const double on_edge = b.z() + (y - b.y()) / (c.y() - b.y()) * (c.z() - b.z());
+  const Drop d = MeshSurface(tri).drop(Cutter::flat(10), x, y);
+  EXPECT_TRUE(d.touched);
+  EXPECT_NEAR(d.z, on_edge, 1e-12);
+  // The reference is right within the 1e-6 but not to the last digit here: at a tangency its chord of
+  // the footprint is the square root of a rounding (2.5e-8 mm long along this edge).
+  EXPECT_NEAR(reference_drop(Cutter::flat(10), tri, x, y), on_edge, 1e-7);
+  EXPECT_EQ(check_drop(Cutter::flat(10), tri, x, y, d.z, tri.bbox.min.z(), 1e-6), ReferenceCheck::Equal);
+  // The same tangency for the other shapes, whose contact at the rim is at the edge's height less R.
+  for (const Cutter& cutter : {Cutter::ball(10), Cutter::bull(10, 2)}) {
+    const Drop e = MeshSurface(tri).drop(cutter, x, y);
+    EXPECT_TRUE(e.touched) << cutter_type_name(cutter.type);
+    EXPECT_NEAR(e.z, on_edge - cutter.radius() * (cutter.type == CutterType::BallEnd ? 1.0 : 0.4), 1e-9)
+        << cutter_type_name(cutter.type);
+  }
+  // A hair further out nothing is touched.
+  EXPECT_FALSE(MeshSurface(tri).drop(Cutter::flat(10), x - 1e-9, y).touched);
+}
+
 TEST(DropCutter, OffsetCutterKeepsAllowance) {
   const MeshSurface s(make_primitive("cube"));
   const Cutter g = offset_cutter(Cutter::flat(10), 0.5);

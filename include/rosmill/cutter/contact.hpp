@@ -96,9 +96,17 @@ inline double edge_contact(const CutterProfile& cp, double x, double y, const do
   // Squared distance of the axis from the line by the cross product: no cancellation when the axis is at the
   // rim's distance (|p|^2 - t0^2 L^2 loses the digits that the chord's half length, a square root, needs).
   const double cross = px * ey - py * ex;
-  const double d0sq = cross * cross / L2;
-  if (d0sq > cp.R2) return kNoContact;
+  double d0sq = cross * cross / L2;
   const double L = std::sqrt(L2);
+  if (d0sq > cp.R2) {
+    // An edge at exactly the rim's distance is touched (the drop jumps there, by the wall's height). The computed
+    // distance can exceed R by the rounding of px, py and the cross product: within that bound the edge is taken
+    // as tangent, since touching is the safe side (it lifts the cutter, a miss can drop it into a wall).
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    const double rounding = 4 * eps * (std::abs(px * ey) + std::abs(py * ex) + cp.R * L);
+    if (std::abs(cross) > cp.R * L + rounding) return kNoContact;
+    d0sq = cp.R2;
+  }
   const double half = std::sqrt(cp.R2 - d0sq) / L;  // half the chord of the footprint, in t
   const double lo = std::max(0.0, t0 - half), hi = std::min(1.0, t0 + half);
   if (lo > hi) return kNoContact;

@@ -2,7 +2,10 @@
 // cut in zigzag lines over the stock box, only where the cutter fits: a line is sampled once with the cutter
 // widened by half the sample spacing, so a sample that is free at a level proves the real cutter free within
 // that half spacing either side, and the cut pieces are exactly the union of those proven-free spans. A piece
-// is entered from above the level just cleared and ramps down into the material along itself.
+// is entered from above the level just cleared and ramps down into the material along itself. With a stock mesh
+// (PlanParams::stock_mesh) the pieces are further kept to where the cutter reaches the stock's material at that
+// level (plan/stock.hpp), so air the box would have cut is left alone; a piece that starts where the cutter
+// enters the stock's reach from outside goes straight down there, in air, instead of ramping.
 #pragma once
 #include "rosmill/plan/plan_support.hpp"
 
@@ -15,5 +18,8 @@ struct RoughOptions {
 Job rough_on(const Surface& surface, const PlanParams& params, const RoughOptions& options,
              const PlanProgress& progress = {});
 Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
+// The strategy table's entry: checks a stock mesh (closed, holding the part when the input is a mesh), then
+// runs rough_strategy on the input's surface.
+Job plan_rough(const PlanInput& input, const PlanParams& params, const PlanProgress& progress);
 
 }  // namespace rosmill

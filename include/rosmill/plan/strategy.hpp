@@ -28,6 +28,9 @@ struct PlanParams {
   double tolerance = 0.001;  // chord / gouge tolerance (mm)
   double angle_deg = 0.0;    // raster direction in the XY plane
   double stock_margin = 5.0; // box stock: the part's bounding box grown by this (mm)
+  // Roughing from a stock mesh instead of the box (closed, containing the part, same frame and units; not owned;
+  // see plan/stock.hpp). Its bounding box then gives the levels' top and the safe height.
+  const Mesh* stock_mesh = nullptr;
   double safe_clearance = 5.0; // safe_z above the stock top (mm)
 };
 
