@@ -64,16 +64,6 @@ CloudGrid CloudGrid::regridded(double cell) const {
   return CloudGrid(pts, cell);
 }
 
-int CloudGrid::col(double x) const {
-  const double c = std::floor((x - x0_) / cell_);
-  return int(std::clamp(c, 0.0, double(nx_ - 1)));
-}
-
-int CloudGrid::row(double y) const {
-  const double r = std::floor((y - y0_) / cell_);
-  return int(std::clamp(r, 0.0, double(ny_ - 1)));
-}
-
 double auto_grid_cell(size_t n, double xy_area) {
   if (n == 0 || !(xy_area > 0)) return 1.0;
   // About four points per cell on a uniformly covered footprint.

@@ -17,6 +17,11 @@ namespace {
 
 constexpr double kNothing = -std::numeric_limits<double>::infinity();
 
+// The index cell, in auto_grid_cell()'s (about four points): 1.5 of them (about nine points) halves the cells a
+// ball's footprint visits and costs little pruning (bench_cloud: finish about a quarter less CPU on relief-300k).
+// The drop is the highest point under the footprint whatever the cell, so the size changes no result.
+constexpr double kQueryCellScale = 1.5;
+
 double corner_radius(const Cutter& c) {
   const double R = c.radius();
   return c.type == CutterType::FlatEnd ? 0.0 : c.type == CutterType::BallEnd ? R : std::clamp(c.corner_radius, 0.0, R);
@@ -51,7 +56,8 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   Box3 box;
   for (const Vec3& p : points) box.add(p);
   const Vec3 size = box.size();
-  const double cell = options.cell > 0 ? options.cell : auto_grid_cell(points.size(), std::max(size.x() * size.y(), 1e-6));
+  const double cell = options.cell > 0 ? options.cell
+                                       : kQueryCellScale * auto_grid_cell(points.size(), std::max(size.x() * size.y(), 1e-6));
   grid_ = CloudGrid(points, cell);
   spacing_ = rosmill::mean_spacing(grid_);
   max_sink_ = options.max_sink;
@@ -91,7 +97,8 @@ Drop CloudSurface::drop_hinted(const CutterProfile& cp, const CutterProfile& lid
   }
   auto scan = [&](int col, int row, double d2min) {
     const size_t cell = grid_.index(col, row);
-    if (grid_.zmax(cell) - cp.height_sq(d2min) <= best) return;
+    // zmax alone first (empty cells, cells below the best): saves the ball's square root.
+    if (grid_.zmax(cell) <= best || grid_.zmax(cell) - cp.height_sq(d2min) <= best) return;
     for (const GridPoint *p = grid_.begin(cell), *e = grid_.end(cell); p != e; ++p) {
       if (p->z <= best) continue;
       const double dx = p->x - x, dy = p->y - y, d2 = dx * dx + dy * dy;

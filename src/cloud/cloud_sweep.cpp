@@ -80,12 +80,15 @@ SweepHit sweep_depth(const CloudSurface& surface, const Cutter& cutter, const Ve
   const GridPoint* worst = nullptr;
   double worst_s = 0.0;
   const Vec2 B = b.head<2>();
+  const double lowest_tip = std::min(a.z(), b.z());
   const int c0 = g.col(std::min(f.A.x(), B.x()) - cp.R), c1 = g.col(std::max(f.A.x(), B.x()) + cp.R);
   const int r0 = g.row(std::min(f.A.y(), B.y()) - cp.R), r1 = g.row(std::max(f.A.y(), B.y()) + cp.R);
   for (int row = r0; row <= r1; ++row)
     for (int col = c0; col <= c1; ++col) {
       const size_t cell = g.index(col, row);
-      if (g.count(cell) == 0) continue;
+      // No point of the cell above the move's lowest tip by more than the depth found: nothing to look at
+      // (empty cells too, zmax -inf).
+      if (g.zmax(cell) - lowest_tip <= hit.depth) continue;
       // The cell's centre, its distance from the move's plan segment and the stretch of the move that can have
       // the cell under the footprint: bounds on how deep any of its points can go.
       const Vec2 centre(g.x0() + (col + 0.5) * g.cell(), g.y0() + (row + 0.5) * g.cell());

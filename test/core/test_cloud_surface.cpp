@@ -7,6 +7,7 @@
 #include <random>
 
 #include "rosmill/cloud/cloud_surface.hpp"
+#include "rosmill/cloud/cloud_sweep.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
@@ -106,6 +107,41 @@ TEST(CloudSurface, GridIndexMatchesBruteForce) {
         }
         ASSERT_EQ(many[i].z, d.z);
         ASSERT_EQ(many[i].touched, d.touched);
+      }
+    }
+  }
+}
+
+// The index cell is a speed setting only: the drop is the highest contact over every point under the footprint
+// and the sweep the deepest point along the move, whatever cells they are found in (bit for bit).
+TEST(CloudSurface, IndexCellChangesNoDropAndNoSweep) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 30), h(0, 3);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 20000; ++i) {
+    const double x = u(rng), y = u(rng);
+    pts.push_back(Vec3(x, y, 2 * std::sin(x / 4) + h(rng) * 0.05));
+  }
+  std::vector<Vec2> xy;
+  std::uniform_real_distribution<double> q(-2, 32);
+  for (int i = 0; i < 400; ++i) xy.push_back(Vec2(q(rng), q(rng)));
+  CloudSurfaceOptions o;
+  o.detect_holes = false;
+  o.sampling_radius = 0.1;
+  const CloudSurface ref(pts, o);
+  for (double cell : {0.15, 0.6, 2.5}) {
+    o.cell = cell;
+    const CloudSurface s(pts, o);
+    for (const Cutter& c : {Cutter::flat(6), Cutter::ball(3), Cutter::bull(6, 1)}) {
+      std::vector<Drop> a(xy.size()), b(xy.size());
+      ref.drop_many(c, xy.data(), xy.size(), a.data());
+      s.drop_many(c, xy.data(), xy.size(), b.data());
+      for (size_t i = 0; i + 1 < xy.size(); ++i) {
+        ASSERT_EQ(a[i].z, b[i].z) << "cell " << cell << " at " << xy[i].transpose();
+        const Vec3 from(xy[i].x(), xy[i].y(), a[i].z - 0.3), to(xy[i + 1].x(), xy[i + 1].y(), a[i + 1].z - 0.3);
+        const SweepHit ha = sweep_depth(ref, c, from, to), hb = sweep_depth(s, c, from, to);
+        ASSERT_EQ(ha.depth, hb.depth) << "cell " << cell << " move " << i;
+        if (ha.depth > 0) ASSERT_NEAR(ha.at, hb.at, 1e-9);
       }
     }
   }

@@ -5,6 +5,7 @@
 // tree descent and no allocation; a kd-tree is slower for this query shape.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -31,9 +32,9 @@ class CloudGrid {
   size_t size() const { return points_.size(); }
   const Box3& bounds() const { return bounds_; }
 
-  // Cell column/row of a coordinate, clamped to the grid.
-  int col(double x) const;
-  int row(double y) const;
+  // Cell column/row of a coordinate, clamped to the grid (inline: every drop and sweep asks for a few).
+  int col(double x) const { return int(std::clamp(std::floor((x - x0_) / cell_), 0.0, double(nx_ - 1))); }
+  int row(double y) const { return int(std::clamp(std::floor((y - y0_) / cell_), 0.0, double(ny_ - 1))); }
   size_t index(int c, int r) const { return size_t(r) * size_t(nx_) + size_t(c); }
   // Squared plan distance from (x, y) to the rectangle of cell (c, r); 0 inside it.
   double distance2(int c, int r, double x, double y) const {
