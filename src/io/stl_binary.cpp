@@ -70,15 +70,17 @@ void weld_range(const char* data, size_t first, size_t last, const std::string& 
 
 }  // namespace
 
-// Large files are welded in two halves side by side; the second half's vertices are then added to the first
+// Files of 32k triangles and more are welded in two halves side by side (below that the threads' start costs
+// more than they save); the second half's vertices are then added to the first
 // half's welder in their own order, which numbers every vertex exactly as one pass over the file would (first
 // appearance), and the second half's faces are renumbered.
 void parse_binary_welded(const char* data, size_t count, const std::string& name, IndexedTriangles& out,
                          size_t& stored_normal_mismatches) {
   out.faces.resize(count);
-  const int parts = count >= 200000 ? 2 : 1;
+  const int parts = count >= 32768 ? 2 : 1;
   std::vector<VertexWelder> welders;
-  for (int k = 0; k < parts; ++k) welders.emplace_back(count / (2 * parts) + 16);
+  // A closed mesh has about half as many vertices as triangles; the first welder ends up holding them all.
+  for (int k = 0; k < parts; ++k) welders.emplace_back(k == 0 ? count / 2 + 16 : count / (2 * parts) + 16);
   std::vector<size_t> mismatches(parts, 0);
   std::vector<std::exception_ptr> failures(parts);
   auto bound = [&](int k) { return count * size_t(k) / size_t(parts); };
