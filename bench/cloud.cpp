@@ -7,7 +7,6 @@
 // Prints, per cloud, the seconds of each step (median of 3 runs, wall clock, and CPU seconds of all threads, which
 // stay meaningful when other jobs share the two cores), the drop-cutter queries and the CL points.
 // Usage: bench_cloud [threads]
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +19,7 @@
 
 #include <tbb/global_control.h>
 
+#include "cpu_time.hpp"
 #include "rosmill/cloud/cloud_plan.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/io/cloud_io.hpp"
@@ -29,19 +29,13 @@ using namespace rosmill;
 
 namespace {
 
-double cpu_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 // Wall and CPU seconds of one call.
 template <class F>
 std::pair<double, double> timed(F&& f) {
-  const double c0 = cpu_now();
+  const double c0 = cpu_seconds_used();
   const auto t0 = std::chrono::steady_clock::now();
   f();
-  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), cpu_now() - c0};
+  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), cpu_seconds_used() - c0};
 }
 
 // A relief over [0, 120] x [0, 100]: waves 4 mm high, a round boss 12 mm high and a pocket 6 mm deep.

@@ -5,7 +5,6 @@
 //  2. the block reduction of arc fitting on the seed primitives' contour toolpaths (strategy "contour", flat end
 //     mill 6 mm, step-down 5 mm): motion blocks without and with arcs, at the default 0.005 mm and at 0.02 mm.
 // Usage: bench_post
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +13,7 @@
 #include <functional>
 #include <vector>
 
+#include "cpu_time.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/plan/strategy.hpp"
@@ -23,12 +23,6 @@ using namespace rosmill;
 
 namespace {
 
-double cpu_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 struct Timing {
   double seconds, cpu_seconds;
 };
@@ -36,11 +30,11 @@ struct Timing {
 Timing median_of_3(const std::function<void()>& work) {
   std::vector<double> wall, cpu;
   for (int k = 0; k < 3; ++k) {
-    const double c0 = cpu_now();
+    const double c0 = cpu_seconds_used();
     const auto t0 = std::chrono::steady_clock::now();
     work();
     wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    cpu.push_back(cpu_now() - c0);
+    cpu.push_back(cpu_seconds_used() - c0);
   }
   std::sort(wall.begin(), wall.end());
   std::sort(cpu.begin(), cpu.end());

@@ -4,7 +4,6 @@
 // CPU seconds of all threads (median of 3), which stay meaningful when other jobs share the two cores.
 // Usage: bench_slice [STL_DIR]
 #include <algorithm>
-#include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
@@ -13,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "cpu_time.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/slice/slicer.hpp"
@@ -29,21 +29,15 @@ struct Run {
   double cpu_seconds;  // CPU time of all threads, median of 3: what the work costs when other jobs share the cores
 };
 
-double cpu_now() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 Run time_slicing(const Mesh& mesh, const std::vector<double>& planes) {
   std::vector<double> times, cpu;
   SliceSummary s;
   for (int k = 0; k < 3; ++k) {
-    const double c0 = cpu_now();
+    const double c0 = cpu_seconds_used();
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<SliceLayer> layers = slice_mesh(mesh, planes);
     times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    cpu.push_back(cpu_now() - c0);
+    cpu.push_back(cpu_seconds_used() - c0);
     s = summarize(layers);
   }
   std::sort(times.begin(), times.end());

@@ -9,9 +9,9 @@
 #include <sstream>
 #include <string>
 
-#include <sys/resource.h>
 #include <tbb/global_control.h>
 
+#include "cpu_time.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
@@ -25,13 +25,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// CPU seconds of the process, all threads: less sensitive than wall time to other work on a shared machine.
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 struct Case {
   const char* name;
@@ -93,9 +86,9 @@ int main(int argc, char** argv) {
     VerifyOptions o;
     o.resolution = 2 * c.dome_radius / 1000;
     o.compare.stepover = 2 * c.dome_radius / (c.lines - 1);
-    const double cpu0 = cpu_seconds();
+    const double cpu0 = cpu_seconds_used();
     const VerifyResult r = verify_program(dome, program, stock, o);
-    const double cpu = cpu_seconds() - cpu0;
+    const double cpu = cpu_seconds_used() - cpu0;
     const double footprint = M_PI * 0.25 * c.ball * c.ball / (o.resolution * o.resolution);
     std::printf("%-34s %8zu %6s %9.0f %8.1f %7.3f %10.3f %8.3f %8.3f %8.4f %9.4f\n", c.name, program.moves.size(),
                 r.report.cells == 1000000 ? "1000^2" : "?", footprint,
