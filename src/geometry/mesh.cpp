@@ -200,9 +200,18 @@ IndexedTriangles weld_corners(const std::vector<Vec3>& corners, const WeldOption
   }
   static_assert(sizeof(Mesh::Face) == 3 * sizeof(uint32_t), "faces are three packed vertex ids");
   out.faces.resize(corners.size() / 3);
-  VertexWelder welder(corners.size() / 5 + 16);  // closed meshes have about one vertex per six corners
-  welder.add_many(corners.data(), 3 * out.faces.size(), out.faces.empty() ? nullptr : out.faces[0].data());
-  out.vertices = welder.take_vertices();
+  DoubleWelder welder(corners.size() / 5 + 16);  // closed meshes have about one vertex per six corners
+  constexpr size_t kBatch = 64;
+  DoubleWelder::Key keys[kBatch];
+  uint32_t* ids = out.faces.empty() ? nullptr : out.faces[0].data();
+  const size_t n = 3 * out.faces.size();
+  for (size_t start = 0; start < n; start += kBatch) {
+    const size_t m = std::min(kBatch, n - start);
+    for (size_t k = 0; k < m; ++k) keys[k] = weld_key(corners[start + k]);
+    welder.add_many(keys, m, ids + start);
+  }
+  out.vertices.reserve(welder.size());
+  for (const DoubleWelder::Key& key : welder.keys()) out.vertices.push_back(key_position(key));
   return out;
 }
 

@@ -1,85 +1,115 @@
 #include "rosmill/geometry/vertex_welder.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 #include "rosmill/error.hpp"
 
 namespace rosmill {
 namespace {
 
-uint64_t bits_of(double v) {
-  v += 0.0;  // -0 + 0 is +0: both zeros hash alike (they compare equal below)
-  uint64_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
+constexpr size_t kBatch = 96;  // keys hashed and prefetched before any is probed
+
+// Each word times its own odd constant: the product's top bits depend on every bit of the word, and the table
+// index is taken from the top bits (coordinates often differ only in their high bits: 25.0 and 30.0).
+template <class Word>
+uint64_t key_hash(const std::array<Word, 3>& k) {
+  return uint64_t(k[0]) * 0x9E3779B97F4A7C15ull ^ uint64_t(k[1]) * 0xC2B2AE3D27D4EB4Full ^
+         uint64_t(k[2]) * 0x165667B19E3779F9ull;
 }
 
-// STL coordinates are float32 values widened to double, so their low 29 bits are zero: each coordinate is
-// multiplied by its own odd constant (spreading its bits upwards), and the sum is folded so that the table
-// index (the low bits) depends on all of them.
-uint64_t position_hash(const Vec3& p) {
-  uint64_t h = bits_of(p.x()) * 0x9E3779B97F4A7C15ull + bits_of(p.y()) * 0xC2B2AE3D27D4EB4Full +
-               bits_of(p.z()) * 0x165667B19E3779F9ull;
-  h ^= h >> 32;
-  h *= 0xD6E8FEB86659FD93ull;
-  return h ^ (h >> 29);
-}
-
-size_t power_of_two_at_least(size_t n) {
-  size_t c = 64;
-  while (c < n) c <<= 1;
-  return c;
+template <class Word>
+bool same_key(const std::array<Word, 3>& a, const std::array<Word, 3>& b) {
+  return ((a[0] ^ b[0]) | (a[1] ^ b[1]) | (a[2] ^ b[2])) == 0;
 }
 
 }  // namespace
 
-VertexWelder::VertexWelder(size_t expected_vertices) {
-  slots_.assign(power_of_two_at_least(2 * expected_vertices), Slot{0, kEmpty});
-  mask_ = slots_.size() - 1;
-  vertices_.reserve(expected_vertices);
+template <class Word>
+ExactWelder<Word>::ExactWelder(size_t expected_vertices) {
+  size_t slots = 64;
+  while (2 * slots < 3 * expected_vertices) slots <<= 1;
+  allocate(slots);
+  keys_.reserve(expected_vertices);
 }
 
-uint32_t VertexWelder::insert(const Vec3& p, uint64_t hash) {
-  const uint32_t tag = uint32_t(hash >> 32);
-  for (uint64_t i = hash & mask_;; i = (i + 1) & mask_) {
-    Slot& s = slots_[i];
-    if (s.id == kEmpty) {
-      if (vertices_.size() >= kEmpty) throw Error("mesh", "more than 4,294,967,294 distinct vertices");
-      s = Slot{tag, uint32_t(vertices_.size())};
-      vertices_.push_back(p);
-      return s.id;
-    }
-    if (s.tag == tag && vertices_[s.id] == p) return s.id;
-  }
+template <class Word>
+void ExactWelder<Word>::allocate(size_t slots) {
+  Slot free{};
+  free.key[0] = kFree;
+  slots_.assign(slots, free);
+  mask_ = slots - 1;
+  shift_ = 64 - __builtin_ctzll(slots);
 }
 
-void VertexWelder::grow() {
+template <class Word>
+size_t ExactWelder<Word>::home(const Key& key) const {
+  return size_t(key_hash(key) >> shift_);
+}
+
+template <class Word>
+void ExactWelder<Word>::grow() {
   std::vector<Slot> old = std::move(slots_);
-  slots_.assign(2 * old.size(), Slot{0, kEmpty});
-  mask_ = slots_.size() - 1;
+  allocate(2 * old.size());
   for (const Slot& s : old) {
-    if (s.id == kEmpty) continue;
-    const uint64_t hash = position_hash(vertices_[s.id]);
-    uint64_t i = hash & mask_;
-    while (slots_[i].id != kEmpty) i = (i + 1) & mask_;
+    if (s.key[0] == kFree) continue;
+    size_t i = home(s.key);
+    while (slots_[i].key[0] != kFree) i = (i + 1) & mask_;
     slots_[i] = s;
   }
 }
 
-void VertexWelder::add_many(const Vec3* points, size_t n, uint32_t* ids) {
-  constexpr size_t kBatch = 16;
-  uint64_t hash[kBatch];
-  for (size_t start = 0; start < n; start += kBatch) {
-    const size_t m = std::min(kBatch, n - start);
-    // At most half full after this batch, so probe sequences stay short.
-    if (2 * (vertices_.size() + m) > slots_.size()) grow();
-    for (size_t k = 0; k < m; ++k) {
-      hash[k] = position_hash(points[start + k]);
-      __builtin_prefetch(&slots_[hash[k] & mask_]);
+template <class Word>
+uint32_t ExactWelder<Word>::insert(const Key& key, size_t i) {
+  for (;; i = (i + 1) & mask_) {
+    Slot& s = slots_[i];
+    if (same_key(s.key, key)) return s.id;
+    if (s.key[0] == kFree) {
+      s.key = key;
+      s.id = uint32_t(keys_.size());
+      keys_.push_back(key);
+      return s.id;
     }
-    for (size_t k = 0; k < m; ++k) ids[start + k] = insert(points[start + k], hash[k]);
   }
 }
+
+template <class Word>
+uint32_t ExactWelder<Word>::find(const Key& key, size_t i) const {
+  for (;; i = (i + 1) & mask_) {
+    const Slot& s = slots_[i];
+    if (same_key(s.key, key)) return s.id;
+    if (s.key[0] == kFree) return kAbsent;
+  }
+}
+
+template <class Word>
+void ExactWelder<Word>::add_many(const Key* keys, size_t n, uint32_t* ids) {
+  size_t at[kBatch];
+  for (size_t start = 0; start < n; start += kBatch) {
+    const size_t m = std::min(kBatch, n - start);
+    if (keys_.size() + m >= kAbsent) throw Error("mesh", "more than 4,294,967,294 distinct vertices");
+    if (3 * (keys_.size() + m) > 2 * slots_.size()) grow();  // at most two thirds full: short probe runs
+    for (size_t k = 0; k < m; ++k) {
+      at[k] = home(keys[start + k]);
+      __builtin_prefetch(&slots_[at[k]]);
+    }
+    for (size_t k = 0; k < m; ++k) ids[start + k] = insert(keys[start + k], at[k]);
+  }
+}
+
+template <class Word>
+void ExactWelder<Word>::find_many(const Key* keys, size_t n, uint32_t* ids) const {
+  size_t at[kBatch];
+  for (size_t start = 0; start < n; start += kBatch) {
+    const size_t m = std::min(kBatch, n - start);
+    for (size_t k = 0; k < m; ++k) {
+      at[k] = home(keys[start + k]);
+      __builtin_prefetch(&slots_[at[k]]);
+    }
+    for (size_t k = 0; k < m; ++k) ids[start + k] = find(keys[start + k], at[k]);
+  }
+}
+
+template class ExactWelder<uint32_t>;
+template class ExactWelder<uint64_t>;
 
 }  // namespace rosmill

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <exception>
+#include <optional>
 
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/vertex_welder.hpp"
@@ -17,94 +18,156 @@ uint32_t binary_declared_count(const char* data) {
   return count;
 }
 
-bool stored_normal_disagrees(const Vec3& stored, const Vec3& a, const Vec3& b, const Vec3& c) {
-  // Judged at 10 degrees: exporters that write the CAD surface's normal at the facet differ from the flat
-  // facet's normal by a few degrees on curved faces (featuretype.STL: up to 4.7); a flipped, stale or garbage
-  // normal is far beyond that.
-  constexpr double kCosTolerance = 0.98480775301220802;  // cos(10 degrees)
-  const double stored_len2 = stored.squaredNorm();
-  if (!(stored_len2 > 0.0)) return !std::isfinite(stored_len2);  // zero: not stored; NaN: wrong
-  const Vec3 n = (b - a).cross(c - a);
-  const double n_len2 = n.squaredNorm();
-  if (!(n_len2 > 0.0)) return false;  // degenerate corners: nothing to compare with
-  const double d = stored.dot(n);  // disagree when d < cos(10 deg) |stored| |n|; compared squared, no root
-  return d < 0.0 || d * d < kCosTolerance * kCosTolerance * stored_len2 * n_len2;
-}
-
 namespace {
 
-// Triangle t's corners into c[0..2]; counts a disagreeing stored normal. Throws on a non-finite coordinate.
-void read_record(const char* data, size_t t, const std::string& name, Vec3* c, size_t& mismatches) {
-  float f[12];
-  std::memcpy(f, data + kStlBinaryPrefix + t * kStlRecordBytes, sizeof f);
-  for (int i = 0; i < 3; ++i) {
-    c[i] = Vec3(f[3 + 3 * i], f[4 + 3 * i], f[5 + 3 * i]);
-    if (!c[i].allFinite())
-      throw Error(name, "triangle " + std::to_string(t) + " (byte " +
-                            std::to_string(kStlBinaryPrefix + t * kStlRecordBytes) +
-                            ") has a coordinate that is not finite (NaN or infinity)");
+using CornerKey = FloatWelder::Key;
+static_assert(sizeof(CornerKey) == 3 * sizeof(uint32_t), "a corner key is its three float32 words");
+constexpr size_t kWords = 12;  // float32 words of a record: the stored normal (3), then the corners (9)
+constexpr size_t kBatch = 32;  // triangles decoded, then welded together (the welder prefetches them at once)
+
+// The exponent bits of the corner words of a batch (a stored normal that is not finite is judged, not refused).
+struct CornerExponents {
+  uint32_t mask[kBatch * kWords];
+  constexpr CornerExponents() : mask() {
+    for (size_t i = 0; i < kBatch * kWords; ++i) mask[i] = i % kWords >= 3 ? 0x7f800000u : 0u;
   }
-  if (stored_normal_disagrees(Vec3(f[0], f[1], f[2]), c[0], c[1], c[2])) ++mismatches;
+};
+constexpr CornerExponents kCornerExponents;
+
+float as_float(uint32_t word) {
+  float f;
+  std::memcpy(&f, &word, sizeof f);
+  return f;
+}
+
+bool finite_word(uint32_t word) { return (word & 0x7f800000u) != 0x7f800000u; }
+
+[[noreturn]] void throw_not_finite(const uint32_t* words, size_t t0, size_t m, const std::string& name) {
+  size_t k = 0;
+  while (k + 1 < m && std::all_of(words + kWords * k + 3, words + kWords * (k + 1), finite_word)) ++k;
+  const size_t t = t0 + k;
+  throw Error(name, "triangle " + std::to_string(t) + " (byte " + std::to_string(kStlBinaryPrefix + t * kStlRecordBytes) +
+                        ") has a coordinate that is not finite (NaN or infinity)");
+}
+
+// Triangles [t0, t0 + m) as 3 m corner keys (their float32 bit patterns); counts disagreeing stored normals.
+// Throws at the first corner that is not finite.
+void decode_batch(const char* data, size_t t0, size_t m, const std::string& name, CornerKey* keys,
+                  size_t& mismatches) {
+  uint32_t words[kBatch * kWords];
+  for (size_t k = 0; k < m; ++k)
+    std::memcpy(words + kWords * k, data + kStlBinaryPrefix + (t0 + k) * kStlRecordBytes, kWords * sizeof(uint32_t));
+  // An all-ones exponent (NaN, infinity) carries into bit 31 when one exponent unit is added; -0 becomes +0
+  // (the keys' rule). No branch per word, so the loop vectorizes.
+  uint32_t carry = 0;
+  for (size_t i = 0; i < kWords * m; ++i) {
+    const uint32_t word = words[i];
+    carry |= (word & kCornerExponents.mask[i]) + 0x00800000u;
+    words[i] = weld_word(as_float(word));
+  }
+  if (carry & 0x80000000u) throw_not_finite(words, t0, m, name);
+  for (size_t k = 0; k < m; ++k) {
+    const uint32_t* w = words + kWords * k;
+    Vec3 f[4];  // the stored normal and the corners (-0 folded, which changes no comparison of the check)
+    for (int i = 0; i < 4; ++i) f[i] = Vec3(as_float(w[3 * i]), as_float(w[3 * i + 1]), as_float(w[3 * i + 2]));
+    if (stored_normal_disagrees(f[0], f[1], f[2], f[3])) ++mismatches;
+    std::memcpy(keys[3 * k].data(), w + 3, 3 * sizeof(CornerKey));
+  }
+}
+
+// Welds triangles [first, last) into `welder`, writing their faces (ids local to that welder).
+void weld_range(const char* data, size_t first, size_t last, const std::string& name, FloatWelder& welder,
+                Mesh::Face* faces, size_t& mismatches) {
+  CornerKey keys[3 * kBatch];
+  for (size_t t0 = first; t0 < last; t0 += kBatch) {
+    const size_t m = std::min(kBatch, last - t0);
+    decode_batch(data, t0, m, name, keys, mismatches);
+    welder.add_many(keys, 3 * m, faces[t0].data());
+  }
+}
+
+// The welder's vertex positions into vertices[0, size).
+void write_positions(const FloatWelder& welder, Vec3* vertices) {
+  const int64_t n = int64_t(welder.size());
+#pragma omp parallel for schedule(static) if (n > 100000)
+  for (int64_t v = 0; v < n; ++v) vertices[v] = key_position(welder.keys()[v]);
+}
+
+// The second half's vertex ids in the whole file's numbering: a vertex the first half also has keeps the first
+// half's id, the others follow the first half's vertices in their own order. That is exactly the numbering of
+// one pass over the whole file (first appearance), and no key is inserted again.
+std::vector<uint32_t> merged_ids(const FloatWelder& first, const FloatWelder& second, size_t& vertex_count) {
+  if (first.size() + second.size() >= FloatWelder::kAbsent)
+    throw Error("mesh", "more than 4,294,967,294 distinct vertices");
+  const int64_t n = int64_t(second.size());
+  constexpr int64_t kChunk = 4096;
+  std::vector<uint32_t> ids(static_cast<size_t>(n));
+#pragma omp parallel for schedule(static)
+  for (int64_t c = 0; c < n; c += kChunk)
+    first.find_many(second.keys().data() + c, size_t(std::min(kChunk, n - c)), ids.data() + c);
+  uint32_t next = uint32_t(first.size());
+  for (uint32_t& id : ids)
+    if (id == FloatWelder::kAbsent) id = next++;
+  vertex_count = next;
+  return ids;
 }
 
 }  // namespace
 
 void parse_binary(const char* data, size_t count, const std::string& name, StlSoup& soup) {
   soup.corners.resize(3 * count);
-  for (size_t t = 0; t < count; ++t) read_record(data, t, name, &soup.corners[3 * t], soup.stored_normal_mismatches);
-}
-
-namespace {
-
-// Welds triangles [first, last) into `welder`, writing their faces (ids local to that welder).
-void weld_range(const char* data, size_t first, size_t last, const std::string& name, VertexWelder& welder,
-                std::array<uint32_t, 3>* faces, size_t& mismatches) {
-  constexpr size_t kBatch = 16;  // triangles decoded, then welded together (the welder prefetches a batch)
-  Vec3 corners[3 * kBatch];
-  for (size_t t0 = first; t0 < last; t0 += kBatch) {
-    const size_t m = std::min(kBatch, last - t0);
-    for (size_t k = 0; k < m; ++k) read_record(data, t0 + k, name, corners + 3 * k, mismatches);
-    welder.add_many(corners, 3 * m, faces[t0].data());
+  CornerKey keys[3 * kBatch];
+  for (size_t t0 = 0; t0 < count; t0 += kBatch) {
+    const size_t m = std::min(kBatch, count - t0);
+    decode_batch(data, t0, m, name, keys, soup.stored_normal_mismatches);
+    for (size_t i = 0; i < 3 * m; ++i) soup.corners[3 * t0 + i] = key_position(keys[i]);
   }
 }
 
-}  // namespace
-
 // Files of 32k triangles and more are welded in two halves side by side (below that the threads' start costs
-// more than they save); the second half's vertices are then added to the first
-// half's welder in their own order, which numbers every vertex exactly as one pass over the file would (first
-// appearance), and the second half's faces are renumbered.
+// more than they save), each half in its own welder, built by its own thread; then merged_ids() numbers the
+// second half's vertices in the whole file's order and its faces are renumbered.
 void parse_binary_welded(const char* data, size_t count, const std::string& name, IndexedTriangles& out,
                          size_t& stored_normal_mismatches) {
   out.faces.resize(count);
-  const int parts = count >= 32768 ? 2 : 1;
-  std::vector<VertexWelder> welders;
-  // A closed mesh has about half as many vertices as triangles; the first welder ends up holding them all.
-  for (int k = 0; k < parts; ++k) welders.emplace_back(k == 0 ? count / 2 + 16 : count / (2 * parts) + 16);
-  std::vector<size_t> mismatches(parts, 0);
-  std::vector<std::exception_ptr> failures(parts);
-  auto bound = [&](int k) { return count * size_t(k) / size_t(parts); };
-#pragma omp parallel for num_threads(parts) schedule(static, 1)
-  for (int k = 0; k < parts; ++k) {
+  if (count < 32768) {
+    FloatWelder welder(count / 2 + 16);  // a closed mesh has about half as many vertices as triangles
+    weld_range(data, 0, count, name, welder, out.faces.data(), stored_normal_mismatches);
+    out.vertices.resize(welder.size());
+    write_positions(welder, out.vertices.data());
+    return;
+  }
+  const size_t half = count / 2;
+  std::optional<FloatWelder> welders[2];
+  size_t mismatches[2] = {0, 0};
+  std::exception_ptr failures[2];
+#pragma omp parallel for num_threads(2) schedule(static, 1)
+  for (int k = 0; k < 2; ++k) {
     try {
-      weld_range(data, bound(k), bound(k + 1), name, welders[k], out.faces.data(), mismatches[k]);
+      welders[k].emplace(count / 4 + count / 16);  // a quarter of the triangles' count, and the seam
+      weld_range(data, k == 0 ? 0 : half, k == 0 ? half : count, name, *welders[k], out.faces.data(), mismatches[k]);
     } catch (...) {
       failures[k] = std::current_exception();
     }
   }
-  for (int k = 0; k < parts; ++k)  // the error a sequential read would have met first
-    if (failures[k]) std::rethrow_exception(failures[k]);
-  for (int k = 1; k < parts; ++k) {
-    const std::vector<Vec3>& local = welders[k].vertices();
-    std::vector<uint32_t> global(local.size());
-    welders[0].add_many(local.data(), local.size(), global.data());
-    const int64_t first = int64_t(bound(k)), last = int64_t(bound(k + 1));
+  for (const std::exception_ptr& failure : failures)  // the error a sequential read would have met first
+    if (failure) std::rethrow_exception(failure);
+  stored_normal_mismatches += mismatches[0] + mismatches[1];
+
+  const FloatWelder& first = *welders[0];
+  const FloatWelder& second = *welders[1];
+  size_t vertex_count = 0;
+  const std::vector<uint32_t> ids = merged_ids(first, second, vertex_count);
+  out.vertices.resize(vertex_count);
+  write_positions(first, out.vertices.data());
+  const int64_t n2 = int64_t(ids.size());
+#pragma omp parallel for schedule(static) if (n2 > 100000)
+  for (int64_t v = 0; v < n2; ++v)
+    if (ids[v] >= first.size()) out.vertices[ids[v]] = key_position(second.keys()[v]);
+  const int64_t end = int64_t(count);
 #pragma omp parallel for schedule(static)
-    for (int64_t t = first; t < last; ++t)
-      for (uint32_t& v : out.faces[t]) v = global[v];
-  }
-  for (size_t m : mismatches) stored_normal_mismatches += m;
-  out.vertices = welders[0].take_vertices();
+  for (int64_t t = int64_t(half); t < end; ++t)
+    for (uint32_t& v : out.faces[t]) v = ids[v];
 }
 
 }  // namespace rosmill::io

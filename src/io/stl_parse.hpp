@@ -2,7 +2,9 @@
 // Internal to src/io: read_stl() and read_stl_buffer() wrap these with format detection and welding.
 #pragma once
 #include <cstddef>
+#include <Eigen/Geometry>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,8 +40,20 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
 // Parses ASCII text; throws Error("name:line", what) on the first problem.
 void parse_ascii(const char* data, size_t size, const std::string& name, StlSoup& soup);
 
-// Counts a stored normal that disagrees with the corners' right-hand normal (both unit, zero stored normals and
-// degenerate corners are not judged).
-bool stored_normal_disagrees(const Vec3& stored, const Vec3& a, const Vec3& b, const Vec3& c);
+// True when a stored normal disagrees with the corners' right-hand normal (zero stored normals and degenerate
+// corners are not judged). Inline: binary loading calls it for every triangle.
+inline bool stored_normal_disagrees(const Vec3& stored, const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Judged at 10 degrees: exporters that write the CAD surface's normal at the facet differ from the flat
+  // facet's normal by a few degrees on curved faces (featuretype.STL: up to 4.7); a flipped, stale or garbage
+  // normal is far beyond that.
+  constexpr double kCosTolerance = 0.98480775301220802;  // cos(10 degrees)
+  const double stored_len2 = stored.squaredNorm();
+  if (!(stored_len2 > 0.0)) return !std::isfinite(stored_len2);  // zero: not stored; NaN: wrong
+  const Vec3 n = (b - a).cross(c - a);
+  const double n_len2 = n.squaredNorm();
+  if (!(n_len2 > 0.0)) return false;  // degenerate corners: nothing to compare with
+  const double d = stored.dot(n);  // disagree when d < cos(10 deg) |stored| |n|; compared squared, no root
+  return d < 0.0 || d * d < kCosTolerance * kCosTolerance * stored_len2 * n_len2;
+}
 
 }  // namespace rosmill::io

@@ -173,6 +173,26 @@ TEST(StlInputs, NonFiniteCoordinates) {
   expect_error("nan_bin.stl", binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}, {0, 0, nan, 1, 0, 0, 0, 1, 0}}, 2),
                "triangle 1 (byte 134) has a coordinate that is not finite");
   expect_error("inf_bin.stl", binary_stl({{0, 0, 0, 1, inf, 0, 0, 1, 0}}, 1), "triangle 0");
+  // Triangles are decoded in batches: the error names the triangle inside its batch (here the last corner's z
+  // of triangle 45, in the second batch of 32), not the batch.
+  std::vector<std::array<float, 9>> many(70, {0, 0, 0, 1, 0, 0, 0, 1, 0});
+  many[45][8] = -inf;
+  many[60][0] = nan;
+  expect_error("nan_bin_batch.stl", binary_stl(many, 70), "triangle 45 (byte 2334)");
+}
+
+TEST(StlInputs, BinaryNegativeZeroWeldsWithZeroAndANonFiniteNormalIsJudgedNotRefused) {
+  // Two triangles sharing the edge (0,0,0)-(1,0,0), the shared corners written once with -0 components.
+  std::string bytes = binary_stl({{0, 0, 0, 1, 0, 0, 0, 1, 0}, {1, -0.0f, -0.0f, -0.0f, -0.0f, -0.0f, 0, -1, 0}}, 2);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&bytes[84], &nan, sizeof nan);  // the first triangle's stored normal
+  StlInfo info;
+  const Mesh m = read_stl_buffer(bytes.data(), bytes.size(), "zeros.stl", {}, &info);
+  EXPECT_EQ(m.vertices.size(), 4u);  // (0,0,0), (1,0,0), (0,1,0), (0,-1,0)
+  EXPECT_TRUE(m.edges.size() == 5u && m.faces[1][0] == m.faces[0][1] && m.faces[1][1] == m.faces[0][0]);
+  EXPECT_EQ(info.stored_normal_mismatches, 1u);
+  for (const Vec3& v : m.vertices)
+    for (int i = 0; i < 3; ++i) EXPECT_FALSE(v[i] == 0.0 && std::signbit(v[i])) << "-0 kept at vertex " << v.transpose();
 }
 
 TEST(StlInputs, NotAnStlFile) {

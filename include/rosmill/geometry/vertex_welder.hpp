@@ -1,47 +1,85 @@
 // Exact vertex welding: one vertex per distinct corner position, numbered in order of first appearance (which
 // keeps the locality of the file's triangle order for every later pass).
 //
-// A flat open-addressing table of (hash tag, vertex id) slots, grown at half load: no allocation per corner, and
-// add_many() prefetches the slots of a batch before probing them, so the table's cache misses overlap. This is
-// the hot loop of STL loading (about 6 corners per vertex).
+// A position is welded by its coordinates' bit patterns (a weld key): float32 words straight from a binary STL,
+// float64 words for anything parsed into doubles. -0 is folded to +0 first, so the two zeros weld; keys are
+// never NaN (callers refuse non-finite coordinates before welding).
+//
+// A flat open-addressing table of (key, vertex id) slots, at most two thirds full: no allocation per corner, a
+// hit compares the key inside its slot (one cache line), and add_many() prefetches the slots of a batch before
+// probing them, so the table's cache misses overlap. This is the hot loop of STL loading (about 6 corners per
+// vertex).
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
 #include "rosmill/geometry/types.hpp"
 
 namespace rosmill {
 
-class VertexWelder {
+template <class Word>
+class ExactWelder {
  public:
+  using Key = std::array<Word, 3>;
+  static constexpr uint32_t kAbsent = 0xffffffffu;
+
   // `expected_vertices` sizes the table (it grows when exceeded).
-  explicit VertexWelder(size_t expected_vertices = 1024);
+  explicit ExactWelder(size_t expected_vertices = 1024);
 
-  // The vertex id of each of `n` points (finite coordinates; -0 and +0 are the same position).
-  void add_many(const Vec3* points, size_t n, uint32_t* ids);
-  uint32_t add(const Vec3& p) {
-    uint32_t id;
-    add_many(&p, 1, &id);
-    return id;
-  }
+  // The vertex id of each of `n` keys, adding the new ones.
+  void add_many(const Key* keys, size_t n, uint32_t* ids);
+  // The vertex id of each of `n` keys, or kAbsent; reads only, so several threads may call it at once.
+  void find_many(const Key* keys, size_t n, uint32_t* ids) const;
 
-  const std::vector<Vec3>& vertices() const { return vertices_; }
-  std::vector<Vec3> take_vertices() { return std::move(vertices_); }
+  size_t size() const { return keys_.size(); }
+  // The distinct keys, indexed by vertex id.
+  const std::vector<Key>& keys() const { return keys_; }
 
  private:
   struct Slot {
-    uint32_t tag;  // high bits of the hash, to skip most coordinate comparisons
-    uint32_t id;   // kEmpty when free
+    Key key;      // kFree in key[0] when the slot is free
+    uint32_t id;
   };
-  static constexpr uint32_t kEmpty = 0xffffffffu;
+  static constexpr Word kFree = Word(~Word(0));  // a NaN pattern: never a key
 
-  uint32_t insert(const Vec3& p, uint64_t hash);
+  size_t home(const Key& key) const;
+  uint32_t insert(const Key& key, size_t home);
+  uint32_t find(const Key& key, size_t home) const;
+  void allocate(size_t slots);
   void grow();
 
   std::vector<Slot> slots_;
-  uint64_t mask_ = 0;
-  std::vector<Vec3> vertices_;
+  size_t mask_ = 0;
+  int shift_ = 0;  // the table index is the hash's top bits
+  std::vector<Key> keys_;
 };
+
+using FloatWelder = ExactWelder<uint32_t>;   // binary STL corners
+using DoubleWelder = ExactWelder<uint64_t>;  // corners parsed into doubles
+
+// A coordinate's weld word: its bit pattern with -0 folded to +0 (without a branch, so loops over many
+// coordinates vectorize).
+template <class Scalar>
+auto weld_word(Scalar v) {
+  using Word = std::conditional_t<sizeof(Scalar) == sizeof(uint32_t), uint32_t, uint64_t>;
+  static_assert(std::is_floating_point_v<Scalar> && sizeof(Scalar) == sizeof(Word), "float or double");
+  Word b;
+  std::memcpy(&b, &v, sizeof b);
+  return Word(b & (Word(0) - Word((b << 1) != 0)));
+}
+inline DoubleWelder::Key weld_key(const Vec3& p) { return {weld_word(p.x()), weld_word(p.y()), weld_word(p.z())}; }
+
+// The position a key stands for.
+template <class Word>
+Vec3 key_position(const std::array<Word, 3>& key) {
+  using Scalar = std::conditional_t<sizeof(Word) == sizeof(float), float, double>;
+  Scalar c[3];
+  std::memcpy(c, key.data(), sizeof c);
+  return Vec3(c[0], c[1], c[2]);
+}
 
 }  // namespace rosmill
