@@ -211,7 +211,7 @@ IndexedTriangles weld_corners(const std::vector<Vec3>& corners, const WeldOption
     welder.add_many(keys, m, ids + start);
   }
   out.vertices.reserve(welder.size());
-  for (const DoubleWelder::Key& key : welder.keys()) out.vertices.push_back(key_position(key));
+  for (size_t v = 0; v < welder.size(); ++v) out.vertices.push_back(key_position(welder.keys()[v]));
   return out;
 }
 

@@ -29,7 +29,7 @@ ExactWelder<Word>::ExactWelder(size_t expected_vertices) {
   size_t slots = 64;
   while (2 * slots < 3 * expected_vertices) slots <<= 1;
   allocate(slots);
-  keys_.reserve(expected_vertices);
+  keys_.resize(expected_vertices);
 }
 
 template <class Word>
@@ -59,17 +59,10 @@ void ExactWelder<Word>::grow() {
 }
 
 template <class Word>
-uint32_t ExactWelder<Word>::insert(const Key& key, size_t i) {
-  for (;; i = (i + 1) & mask_) {
-    Slot& s = slots_[i];
-    if (same_key(s.key, key)) return s.id;
-    if (s.key[0] == kFree) {
-      s.key = key;
-      s.id = uint32_t(keys_.size());
-      keys_.push_back(key);
-      return s.id;
-    }
-  }
+void ExactWelder<Word>::make_room(size_t more) {
+  if (size_ + more >= kAbsent) throw Error("mesh", "more than 4,294,967,294 distinct vertices");
+  if (3 * (size_ + more) > 2 * slots_.size()) grow();  // at most two thirds full: short probe runs
+  if (size_ + more > keys_.size()) keys_.resize(std::max(2 * keys_.size(), size_ + more));
 }
 
 template <class Word>
@@ -86,13 +79,34 @@ void ExactWelder<Word>::add_many(const Key* keys, size_t n, uint32_t* ids) {
   size_t at[kBatch];
   for (size_t start = 0; start < n; start += kBatch) {
     const size_t m = std::min(kBatch, n - start);
-    if (keys_.size() + m >= kAbsent) throw Error("mesh", "more than 4,294,967,294 distinct vertices");
-    if (3 * (keys_.size() + m) > 2 * slots_.size()) grow();  // at most two thirds full: short probe runs
+    make_room(m);
+    // The table's fields in locals: the probing loop then keeps them in registers.
+    Slot* const slots = slots_.data();
+    const size_t mask = mask_;
+    Key* const stored = keys_.data();
+    uint32_t size = uint32_t(size_);
     for (size_t k = 0; k < m; ++k) {
       at[k] = home(keys[start + k]);
-      __builtin_prefetch(&slots_[at[k]]);
+      __builtin_prefetch(&slots[at[k]]);
     }
-    for (size_t k = 0; k < m; ++k) ids[start + k] = insert(keys[start + k], at[k]);
+    for (size_t k = 0; k < m; ++k) {
+      const Key& key = keys[start + k];
+      for (size_t i = at[k];; i = (i + 1) & mask) {
+        Slot& s = slots[i];
+        if (same_key(s.key, key)) {
+          ids[start + k] = s.id;
+          break;
+        }
+        if (s.key[0] == kFree) {
+          s.key = key;
+          s.id = size;
+          stored[size] = key;
+          ids[start + k] = size++;
+          break;
+        }
+      }
+    }
+    size_ = size;
   }
 }
 

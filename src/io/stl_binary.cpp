@@ -104,7 +104,7 @@ std::vector<uint32_t> merged_ids(const FloatWelder& first, const FloatWelder& se
   std::vector<uint32_t> ids(static_cast<size_t>(n));
 #pragma omp parallel for schedule(static)
   for (int64_t c = 0; c < n; c += kChunk)
-    first.find_many(second.keys().data() + c, size_t(std::min(kChunk, n - c)), ids.data() + c);
+    first.find_many(second.keys() + c, size_t(std::min(kChunk, n - c)), ids.data() + c);
   uint32_t next = uint32_t(first.size());
   for (uint32_t& id : ids)
     if (id == FloatWelder::kAbsent) id = next++;

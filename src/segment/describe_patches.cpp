@@ -102,8 +102,8 @@ void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<uint32_
 }  // namespace
 
 void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uint32_t count,
-                      const std::vector<uint32_t>& edges, std::vector<Patch>& patches,
-                      std::vector<uint32_t>& facet_order) {
+                      const std::vector<uint32_t>& edges, const std::vector<LabelPair>& pairs,
+                      std::vector<Patch>& patches, std::vector<uint32_t>& facet_order) {
   patches.assign(count, Patch{});
   std::vector<Vec3> normal_sum(count, Vec3::Zero());
   for (size_t f = 0; f < labels.size(); ++f) {
@@ -127,7 +127,7 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
   for (uint32_t i = 0; i < count; ++i) fill[i] = patches[i].first_facet;
   for (size_t f = 0; f < labels.size(); ++f) facet_order[fill[labels[f]]++] = uint32_t(f);
 
-  for (const LabelPair& pair : label_pairs(mesh, labels, edges)) {
+  for (const LabelPair& pair : pairs) {
     patches[pair.a].neighbours.push_back(pair.b);
     patches[pair.b].neighbours.push_back(pair.a);
   }

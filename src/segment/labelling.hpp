@@ -24,15 +24,17 @@ std::vector<LabelPair> label_pairs(const Mesh& mesh, const std::vector<uint32_t>
 
 // Recombination (seed 001, 3.2.2): every label smaller than the rule merges into the neighbour sharing the
 // longest boundary with it, in rounds until none is left that has a neighbour. `group` (optional, per label)
-// makes a neighbour of the same group win over any other. Relabels compactly and returns the new count.
+// makes a neighbour of the same group win over any other. Relabels compactly and returns the new count;
+// `pairs` receives the label pairs of the result (as label_pairs() would give them, in another order).
 uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t count,
                    const std::vector<uint32_t>& edges, const SizeRule& rule, double total_area,
-                   const std::vector<uint32_t>* group = nullptr);
+                   std::vector<LabelPair>& pairs, const std::vector<uint32_t>* group = nullptr);
 
-// Patch records (facets, area, mean normal, neighbours, boundary loops) for compact labels 0..count-1.
+// Patch records (facets, area, mean normal, neighbours, boundary loops) for compact labels 0..count-1, whose
+// label pairs recombine() gave.
 void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uint32_t count,
-                      const std::vector<uint32_t>& edges, std::vector<Patch>& patches,
-                      std::vector<uint32_t>& facet_order);
+                      const std::vector<uint32_t>& edges, const std::vector<LabelPair>& pairs,
+                      std::vector<Patch>& patches, std::vector<uint32_t>& facet_order);
 
 // True when facet f has an area (and so a normal).
 inline bool has_area(const Mesh& mesh, size_t f) { return mesh.areas[f] > 0.0; }

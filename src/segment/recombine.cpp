@@ -79,9 +79,12 @@ std::vector<LabelPair> label_pairs(const Mesh& mesh, const std::vector<uint32_t>
 
 uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t count,
                    const std::vector<uint32_t>& edges, const SizeRule& rule, double total_area,
-                   const std::vector<uint32_t>* group) {
+                   std::vector<LabelPair>& pairs_out, const std::vector<uint32_t>* group) {
   const bool active = rule.kind == SizeRule::Kind::FacetCount ? rule.min_facets > 0 : rule.min_area_fraction > 0;
-  if (!active || count < 2) return count;
+  if (!active || count < 2) {
+    pairs_out = label_pairs(mesh, labels, edges);
+    return count;
+  }
 
   // Sizes per label; merged sizes are summed at the roots of `sets` after each round.
   std::vector<double> area(count, 0.0);
@@ -147,8 +150,21 @@ uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t cou
     }
     if (!merged) break;
   }
-  for (uint32_t& l : labels) l = sets.find(l);
-  return compact_labels(labels, count);
+  // Final labels numbered in the order of their first facet, as compact_labels() numbers them; the last
+  // round's graph (already in final roots, summed) becomes the pairs of the final labels.
+  std::vector<uint32_t> final_label(count, kNone);
+  uint32_t final_count = 0;
+  for (uint32_t& l : labels) {
+    uint32_t& mapped = final_label[sets.find(l)];
+    if (mapped == kNone) mapped = final_count++;
+    l = mapped;
+  }
+  pairs_out.clear();
+  for (const LabelPair& p : graph) {
+    const uint32_t a = final_label[p.a], b = final_label[p.b];
+    pairs_out.push_back({std::min(a, b), std::max(a, b), p.length});
+  }
+  return final_count;
 }
 
 }  // namespace rosmill::segment::detail

@@ -136,11 +136,12 @@ SetupSegmentation segment_setup(const EgiSet& egis, const SetupFilter& filter, c
   // Recombination, preferring a neighbour cut from the same patch.
   std::vector<uint32_t> group(count);
   for (uint32_t f = 0; f < mesh.face_count(); ++f) group[out.labels_[f]] = patches.label(f);
+  std::vector<detail::LabelPair> pairs;
   count = detail::recombine(mesh, out.labels_, count, edges, small ? *small : patches.options().small,
-                            patches.total_area(), &group);
+                            patches.total_area(), pairs, &group);
 
   std::vector<Patch> shapes;
-  detail::describe_patches(mesh, out.labels_, count, edges, shapes, out.facet_order_);
+  detail::describe_patches(mesh, out.labels_, count, edges, pairs, shapes, out.facet_order_);
   out.segments_.resize(count);
   for (uint32_t f = 0; f < mesh.face_count(); ++f) {
     if (!reach[f]) continue;

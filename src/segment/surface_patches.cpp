@@ -141,8 +141,9 @@ SurfacePatches segment_surface(const Mesh& mesh, const SegmentOptions& options) 
   for (uint32_t f = 0; f < n; ++f) out.labels_[f] = sets.find(f);
   uint32_t count = detail::compact_labels(out.labels_, uint32_t(n));
   out.notes_.patches_before_recombination = count;
-  count = detail::recombine(mesh, out.labels_, count, out.cut_edges_, options.small, out.total_area_);
-  detail::describe_patches(mesh, out.labels_, count, out.cut_edges_, out.patches_, out.facet_order_);
+  std::vector<detail::LabelPair> pairs;
+  count = detail::recombine(mesh, out.labels_, count, out.cut_edges_, options.small, out.total_area_, pairs);
+  detail::describe_patches(mesh, out.labels_, count, out.cut_edges_, pairs, out.patches_, out.facet_order_);
   return out;
 }
 

@@ -35,9 +35,9 @@ class ExactWelder {
   // The vertex id of each of `n` keys, or kAbsent; reads only, so several threads may call it at once.
   void find_many(const Key* keys, size_t n, uint32_t* ids) const;
 
-  size_t size() const { return keys_.size(); }
-  // The distinct keys, indexed by vertex id.
-  const std::vector<Key>& keys() const { return keys_; }
+  size_t size() const { return size_; }
+  // The distinct keys, indexed by vertex id: keys()[0, size()).
+  const Key* keys() const { return keys_.data(); }
 
  private:
   struct Slot {
@@ -47,15 +47,16 @@ class ExactWelder {
   static constexpr Word kFree = Word(~Word(0));  // a NaN pattern: never a key
 
   size_t home(const Key& key) const;
-  uint32_t insert(const Key& key, size_t home);
   uint32_t find(const Key& key, size_t home) const;
   void allocate(size_t slots);
   void grow();
+  void make_room(size_t more);
 
   std::vector<Slot> slots_;
   size_t mask_ = 0;
   int shift_ = 0;  // the table index is the hash's top bits
-  std::vector<Key> keys_;
+  std::vector<Key> keys_;  // sized ahead of size_ (no reallocation inside the probing loop)
+  size_t size_ = 0;
 };
 
 using FloatWelder = ExactWelder<uint32_t>;   // binary STL corners
