@@ -92,6 +92,25 @@ TEST(SegmentEgi, BinOfAgreesWithThePolarAndAzimuthDefinition) {
   }
 }
 
+// Directions exactly on a ring border (z = cos(r step) as computed) and one double either side: the ring is
+// the number of borders strictly above z, for coarse and very fine bins (1000 rings: many borders share a
+// lookup cell near the poles).
+TEST(SegmentEgi, RingBordersAreExactAtTheBorderValues) {
+  for (int rings : {7, 18, 1000}) {
+    const EgiBins bins(rings);
+    const double step = M_PI / rings;
+    std::vector<double> border;
+    for (int r = 1; r < rings; ++r) border.push_back(std::cos(r * step));
+    for (int r = 1; r < rings; ++r)
+      for (double z : {std::nextafter(border[r - 1], 2.0), border[r - 1], std::nextafter(border[r - 1], -2.0)}) {
+        int expected = 0;
+        for (double c : border) expected += z < c;
+        const uint32_t b = bins.bin_of(Vec3(std::sqrt(std::max(0.0, 1 - z * z)), 0.0, z));
+        ASSERT_EQ(int(std::acos(bins.centre(b).z()) / step), expected) << "rings " << rings << " z " << z;
+      }
+  }
+}
+
 TEST(SegmentEgi, PatchHistogramsHoldThePatchArea) {
   Mesh m = make_primitive("dome");
   const SurfacePatches sp = segment_surface(m);
