@@ -3,7 +3,8 @@
 // Why: on the virtual machines rosmill runs on (the CI's 2-core VMs among them), the first write to a page the
 // process has not used before costs about 2 ms per MB (a host-side fault per 4 KB page), ten times the cost of
 // the work itself for a large mesh. glibc's malloc returns big blocks (mmap) and the heap's free top (trim) to
-// the kernel on free, so every load or segmentation of a 2M-triangle mesh would pay that again. A node serves
+// the kernel on free, so every load or segmentation of a 2M-triangle mesh would pay that again (and a worker
+// thread's own malloc arena gives its pages back too, so all threads share one arena). A node serves
 // request after request, and a benchmark repeats a job: both should call this once at start-up. The cost is
 // that the process's resident size stays at its high-water mark.
 #pragma once
