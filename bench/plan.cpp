@@ -14,22 +14,14 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/plan/strategy.hpp"
+#include "bundled_models.hpp"
 
 using namespace rosmill;
 
 namespace {
 
-struct Model {
-  const char* file;
-  Units units;
-};
-
-const Model kModels[] = {
-    {"failedinpycam.stl", Units::Millimetre}, {"pycam-textbox.stl", Units::Millimetre},
-    {"featuretype.STL", Units::Inch},         {"ktoolcav.stl", Units::Inch},
-    {"wheel_in_box.stl", Units::Millimetre},  {"mount_rush.stl", Units::Millimetre},
-    {"counter.unitsmm.STL", Units::Millimetre}, {"demo2.stl.gz", Units::Millimetre},
-};
+using test_data::BundledModel;
+using test_data::kBundledModels;
 
 struct Setting {
   const char* strategy;
@@ -47,7 +39,7 @@ int main(int argc, char** argv) {
                               {"raster", Cutter::ball(6), 1.0, 2.0, 0.0}};
   std::printf("threads %d; seconds = surface index + planning, wall clock\n", threads);
   std::printf("%-20s %7s %-10s %9s %10s %12s\n", "model", "tris", "strategy", "seconds", "moves", "cutting mm");
-  for (const Model& m : kModels) {
+  for (const BundledModel& m : kBundledModels) {
     StlReadOptions ro;
     ro.units = m.units;
     Mesh mesh;

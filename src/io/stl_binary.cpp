@@ -1,7 +1,6 @@
 // Binary STL body: 50-byte records of little-endian float32 normal and corners, then a 16-bit attribute.
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <exception>
 #include <optional>

@@ -10,26 +10,26 @@
 #include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 #include "rosmill/io/stl.hpp"
+#include "bundled_models.hpp"
 
 using namespace rosmill;
 using namespace rosmill::gcode;
 
 namespace {
 
-struct Model {
-  const char* file;
-  Units units;
-};
+using test_data::BundledModel;
 
-const Model kModels[] = {
-    {"failedinpycam.stl", Units::Millimetre}, {"pycam-textbox.stl", Units::Millimetre},
-    {"featuretype.STL", Units::Inch},         {"ktoolcav.stl", Units::Inch},
-    {"wheel_in_box.stl", Units::Millimetre},  {"mount_rush.stl", Units::Millimetre},
-};
+// The models of test/data (the two large ones take minutes through every strategy and dialect).
+std::vector<BundledModel> small_models() {
+  std::vector<BundledModel> out;
+  for (const BundledModel& m : test_data::kBundledModels)
+    if (m.small) out.push_back(m);
+  return out;
+}
 
-class EveryStrategyOnModel : public ::testing::TestWithParam<Model> {};
+class EveryStrategyOnModel : public ::testing::TestWithParam<BundledModel> {};
 
-std::string model_name(const ::testing::TestParamInfo<Model>& info) {
+std::string model_name(const ::testing::TestParamInfo<BundledModel>& info) {
   std::string n;
   for (const char* c = info.param.file; *c && *c != '.'; ++c) n.push_back(std::isalnum(static_cast<unsigned char>(*c)) ? *c : '_');
   return n;
@@ -38,7 +38,7 @@ std::string model_name(const ::testing::TestParamInfo<Model>& info) {
 }  // namespace
 
 TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMachine) {
-  const Model& model = GetParam();
+  const BundledModel& model = GetParam();
   StlReadOptions ro;
   ro.units = model.units;
   const Mesh mesh = read_stl(ROSMILL_TEST_DATA "/" + std::string(model.file), ro);
@@ -85,4 +85,4 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
   EXPECT_EQ(verified, 2 * strategies().size());
 }
 
-INSTANTIATE_TEST_SUITE_P(BundledModels, EveryStrategyOnModel, ::testing::ValuesIn(kModels), model_name);
+INSTANTIATE_TEST_SUITE_P(BundledModels, EveryStrategyOnModel, ::testing::ValuesIn(small_models()), model_name);
