@@ -60,6 +60,7 @@ uint32_t compact_labels(std::vector<uint32_t>& labels, uint32_t label_bound) {
 std::vector<LabelPair> label_pairs(const Mesh& mesh, const std::vector<uint32_t>& labels,
                                    const std::vector<uint32_t>& edges) {
   std::vector<LabelPair> pairs;
+  pairs.reserve(edges.size());  // one pair per manifold edge between two labels
   for (uint32_t e : edges) {
     const MeshEdge& edge = mesh.edges[e];
     if (edge.face_count < 2) continue;
@@ -102,6 +103,7 @@ uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t cou
   std::vector<LabelPair> graph = label_pairs(mesh, labels, edges);
   UnionFind sets(count);
   std::vector<LabelPair> pairs;
+  pairs.reserve(graph.size());
   std::vector<uint32_t> best(count);
   std::vector<double> best_length(count);
   std::vector<bool> best_same(count);
