@@ -8,11 +8,6 @@
 namespace rosmill::segment::detail {
 namespace {
 
-struct HalfEdge {
-  uint32_t label, from, to;
-  bool open;
-};
-
 // The corner of face f whose edge (corner -> next corner) is e.
 int corner_of_edge(const Mesh& mesh, uint32_t f, uint32_t e) {
   for (int i = 0; i < 3; ++i)
@@ -46,12 +41,14 @@ std::vector<HalfEdge> border_half_edges(const Mesh& mesh, const std::vector<uint
   return grouped;
 }
 
-// Chains one patch's border half-edges [begin, end) into loops by following each edge's end vertex. `head` and
-// `link` (sized to the mesh's vertices and kNone outside this call) list the half-edges leaving each vertex.
-// Each loop starts at its smallest vertex, so the output does not depend on the order of the half-edges.
+}  // namespace
+
+// Each closed loop starts at its smallest vertex and the loops are listed by their first vertex, so the output
+// does not depend on the order of the half-edges (phase 2 lists them in another order than phase 1).
 void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<uint32_t>& head, std::vector<uint32_t>& link,
                  std::vector<BoundaryLoop>& loops) {
   const uint32_t n = uint32_t(end - begin);
+  const size_t first_loop = loops.size();
   link.assign(n, kNone);
   for (uint32_t i = n; i-- > 0;) {  // lists in half-edge order
     link[i] = head[begin[i].from];
@@ -97,9 +94,9 @@ void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<uint32_
     loops.push_back(std::move(loop));
   }
   for (const HalfEdge* h = begin; h != end; ++h) head[h->from] = kNone;
+  std::stable_sort(loops.begin() + first_loop, loops.end(),
+                   [](const BoundaryLoop& a, const BoundaryLoop& b) { return a.vertices.front() < b.vertices.front(); });
 }
-
-}  // namespace
 
 void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uint32_t count,
                       const std::vector<uint32_t>& edges, const std::vector<LabelPair>& pairs,
@@ -118,8 +115,7 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
     p.id = i;
     p.first_facet = offset;
     offset += p.facet_count;
-    const double len = normal_sum[i].norm();
-    if (len > 1e-12 * std::max(p.area, 1e-300)) p.normal = normal_sum[i] / len;
+    p.normal = mean_normal(normal_sum[i], p.area);
   }
   // Counting sort of the facets by patch.
   facet_order.resize(labels.size());

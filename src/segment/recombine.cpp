@@ -13,8 +13,9 @@ double edge_length(const Mesh& mesh, uint32_t e) {
   return (mesh.vertices[edge.a] - mesh.vertices[edge.b]).norm();
 }
 
-// Sums the lengths of equal pairs in place, keeping the order of first appearance. Pairs come one per border
-// edge (tens of thousands) and are summed in an open-addressing table sized to them.
+}  // namespace
+
+// Pairs come one per border edge (tens of thousands): they are summed in an open-addressing table sized to them.
 void sum_equal_pairs(std::vector<LabelPair>& pairs) {
   size_t capacity = 64;
   while (capacity < 2 * pairs.size()) capacity <<= 1;
@@ -40,12 +41,14 @@ void sum_equal_pairs(std::vector<LabelPair>& pairs) {
   pairs.resize(out);
 }
 
+bool is_active(const SizeRule& rule) {
+  return rule.kind == SizeRule::Kind::FacetCount ? rule.min_facets > 0 : rule.min_area_fraction > 0;
+}
+
 bool is_small(const SizeRule& rule, size_t facets, double area, double total_area) {
   if (rule.kind == SizeRule::Kind::FacetCount) return facets < rule.min_facets;
   return area < rule.min_area_fraction * total_area;
 }
-
-}  // namespace
 
 uint32_t compact_labels(std::vector<uint32_t>& labels, uint32_t label_bound) {
   std::vector<uint32_t> map(label_bound, kNone);
@@ -78,44 +81,31 @@ std::vector<LabelPair> label_pairs(const Mesh& mesh, const std::vector<uint32_t>
   return pairs;
 }
 
-uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t count,
-                   const std::vector<uint32_t>& edges, const SizeRule& rule, double total_area,
-                   std::vector<LabelPair>& pairs_out, const std::vector<uint32_t>* group) {
-  const bool active = rule.kind == SizeRule::Kind::FacetCount ? rule.min_facets > 0 : rule.min_area_fraction > 0;
-  if (!active || count < 2) {
-    pairs_out = label_pairs(mesh, labels, edges);
-    return count;
-  }
-
-  // Sizes per label; merged sizes are summed at the roots of `sets` after each round.
-  std::vector<double> area(count, 0.0);
-  std::vector<size_t> facets(count, 0);
-  for (size_t f = 0; f < labels.size(); ++f) {
-    area[labels[f]] += mesh.areas[f];
-    ++facets[labels[f]];
-  }
+std::vector<uint32_t> merge_small(std::vector<LabelPair>& graph, std::vector<double> area,
+                                  std::vector<uint32_t> facets, const SizeRule& rule, double total_area,
+                                  const std::vector<uint32_t>* group) {
+  const uint32_t count = uint32_t(area.size());
   std::vector<uint32_t> root_group;
   if (group) root_group = *group;
-
-  // The label graph, rewritten after each round in terms of the merged roots: it shrinks round by round (phase 2
-  // on counter.unitsmm: 33,624 pairs, then 17,084, 4,436, ...), so the rounds cost about twice the first.
-  // The choice of each small label's neighbour does not depend on the order of the pairs.
-  std::vector<LabelPair> graph = label_pairs(mesh, labels, edges);
+  // The label graph is rewritten after each round in terms of the merged roots: it shrinks round by round
+  // (phase 2 on counter.unitsmm: 33,624 pairs, then 17,084, 4,436, ...), so the rounds cost about twice the
+  // first. The choice of each small label's neighbour does not depend on the order of the pairs.
   UnionFind sets(count);
   std::vector<LabelPair> pairs;
   pairs.reserve(graph.size());
   std::vector<uint32_t> best(count);
   std::vector<double> best_length(count);
   std::vector<bool> best_same(count);
-  for (;;) {
-    // The label graph as it stands after earlier rounds' merges.
-    pairs.clear();
-    for (const LabelPair& p : graph) {
-      const uint32_t a = sets.find(p.a), b = sets.find(p.b);
-      if (a != b) pairs.push_back({std::min(a, b), std::max(a, b), p.length});
+  for (bool first = true;; first = false) {
+    if (!first) {  // the label graph as it stands after the last round's merges
+      pairs.clear();
+      for (const LabelPair& p : graph) {
+        const uint32_t a = sets.find(p.a), b = sets.find(p.b);
+        if (a != b) pairs.push_back({std::min(a, b), std::max(a, b), p.length});
+      }
+      sum_equal_pairs(pairs);
+      graph.swap(pairs);
     }
-    sum_equal_pairs(pairs);
-    graph.swap(pairs);
     std::fill(best.begin(), best.end(), kNone);
     // Dominant neighbour of each small root: same group first, then the longest shared boundary, then the
     // larger neighbour, then the lower id.
@@ -152,19 +142,35 @@ uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t cou
     }
     if (!merged) break;
   }
+  std::vector<uint32_t> root(count);
+  for (uint32_t l = 0; l < count; ++l) root[l] = sets.find(l);
+  return root;
+}
+
+uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t count,
+                   const std::vector<uint32_t>& edges, const SizeRule& rule, double total_area,
+                   std::vector<LabelPair>& pairs_out, const std::vector<uint32_t>* group) {
+  pairs_out = label_pairs(mesh, labels, edges);
+  if (!is_active(rule) || count < 2) return count;
+  std::vector<double> area(count, 0.0);
+  std::vector<uint32_t> facets(count, 0);
+  for (size_t f = 0; f < labels.size(); ++f) {
+    area[labels[f]] += mesh.areas[f];
+    ++facets[labels[f]];
+  }
+  const std::vector<uint32_t> root = merge_small(pairs_out, std::move(area), std::move(facets), rule, total_area, group);
   // Final labels numbered in the order of their first facet, as compact_labels() numbers them; the last
-  // round's graph (already in final roots, summed) becomes the pairs of the final labels.
+  // round's graph (in final roots, summed) becomes the pairs of the final labels.
   std::vector<uint32_t> final_label(count, kNone);
   uint32_t final_count = 0;
   for (uint32_t& l : labels) {
-    uint32_t& mapped = final_label[sets.find(l)];
+    uint32_t& mapped = final_label[root[l]];
     if (mapped == kNone) mapped = final_count++;
     l = mapped;
   }
-  pairs_out.clear();
-  for (const LabelPair& p : graph) {
+  for (LabelPair& p : pairs_out) {
     const uint32_t a = final_label[p.a], b = final_label[p.b];
-    pairs_out.push_back({std::min(a, b), std::max(a, b), p.length});
+    p = {std::min(a, b), std::max(a, b), p.length};
   }
   return final_count;
 }

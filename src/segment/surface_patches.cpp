@@ -122,6 +122,28 @@ size_t attach_degenerate(const Mesh& mesh, double threshold, UnionFind& sets) {
   return degenerate;
 }
 
+// SurfacePatches::inner_neighbours: one pass over the positions (both cores) through the inverse of facet_order.
+std::vector<std::array<uint32_t, 3>> inner_neighbours(const Mesh& mesh, const std::vector<uint32_t>& labels,
+                                                      const std::vector<uint32_t>& facet_order) {
+  const int64_t n = int64_t(facet_order.size());
+  std::vector<uint32_t> position(n);
+  std::vector<std::array<uint32_t, 3>> inner(n);
+#pragma omp parallel if (n > 20000)
+  {
+#pragma omp for schedule(static)
+    for (int64_t i = 0; i < n; ++i) position[facet_order[i]] = uint32_t(i);
+#pragma omp for schedule(static)
+    for (int64_t i = 0; i < n; ++i) {
+      const uint32_t f = facet_order[i];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t g = mesh.neighbour(f, k);
+        inner[i][k] = g != kNone && labels[g] == labels[f] ? position[g] : kNone;
+      }
+    }
+  }
+  return inner;
+}
+
 }  // namespace
 
 SurfacePatches segment_surface(const Mesh& mesh, const SegmentOptions& options) {
@@ -144,6 +166,7 @@ SurfacePatches segment_surface(const Mesh& mesh, const SegmentOptions& options) 
   std::vector<detail::LabelPair> pairs;
   count = detail::recombine(mesh, out.labels_, count, out.cut_edges_, options.small, out.total_area_, pairs);
   detail::describe_patches(mesh, out.labels_, count, out.cut_edges_, pairs, out.patches_, out.facet_order_);
+  out.inner_neighbours_ = inner_neighbours(mesh, out.labels_, out.facet_order_);
   return out;
 }
 

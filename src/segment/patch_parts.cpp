@@ -1,0 +1,162 @@
+// A mixed patch cut into parts of equal reachability, recombined among siblings, and described. Everything runs
+// on positions inside the patch (SurfacePatches::inner_neighbours), so a patch's work stays in its own slice of
+// memory and costs a few passes over its facets.
+#include "patch_parts.hpp"
+
+namespace rosmill::segment::detail {
+namespace {
+
+// Labels the connected parts of equal reachability by flooding across the patch's inner edges; parts are
+// numbered by their first position. `cross` receives 4 * i + k for each inner edge k of local facet i that
+// separates two parts (once per edge: from its lower position).
+uint32_t flood_parts(const std::array<uint32_t, 3>* inner, uint32_t base, PartsScratch& s) {
+  const uint32_t n = uint32_t(s.reach.size());
+  s.part.assign(n, kNone);
+  s.cross.clear();
+  uint32_t count = 0;
+  for (uint32_t seed = 0; seed < n; ++seed) {
+    if (s.part[seed] != kNone) continue;
+    s.part[seed] = count;
+    s.stack.assign(1, seed);
+    while (!s.stack.empty()) {
+      const uint32_t i = s.stack.back();
+      s.stack.pop_back();
+      for (uint32_t k = 0; k < 3; ++k) {
+        if (inner[i][k] == kNone) continue;
+        const uint32_t j = inner[i][k] - base;
+        if (s.reach[j] != s.reach[i]) {
+          if (i < j) s.cross.push_back(4 * i + k);
+        } else if (s.part[j] == kNone) {
+          s.part[j] = count;
+          s.stack.push_back(j);
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+double corner_edge_length(const Mesh& mesh, uint32_t f, uint32_t k) {
+  return (mesh.vertices[mesh.faces[f][k]] - mesh.vertices[mesh.faces[f][(k + 1) % 3]]).norm();
+}
+
+// Merges the small parts into siblings; renumbers s.part to the final parts (by first position) and s.graph to
+// the pairs between them. Returns the final count.
+uint32_t recombine_parts(const Mesh& mesh, const uint32_t* order, uint32_t count, const SizeRule& rule,
+                         double total_area, PartsScratch& s) {
+  const uint32_t n = uint32_t(s.part.size());
+  s.area.assign(count, 0.0);
+  s.facets.assign(count, 0);
+  for (uint32_t i = 0; i < n; ++i) {
+    s.area[s.part[i]] += mesh.areas[order[i]];
+    ++s.facets[s.part[i]];
+  }
+  const std::vector<uint32_t> root = merge_small(s.graph, std::move(s.area), std::move(s.facets), rule, total_area);
+  // Roots are their sets' smallest parts, so numbering the roots in part order numbers by first position.
+  std::vector<uint32_t>& final_part = s.fill;
+  final_part.assign(count, kNone);
+  uint32_t final_count = 0;
+  for (uint32_t p = 0; p < count; ++p)
+    if (root[p] == p) final_part[p] = final_count++;
+  for (uint32_t& p : s.part) p = final_part[root[p]];
+  for (LabelPair& q : s.graph) {
+    const uint32_t a = final_part[q.a], b = final_part[q.b];
+    q = {std::min(a, b), std::max(a, b), q.length};
+  }
+  return final_count;
+}
+
+// Sizes, normals, reachable areas, neighbours and the facets grouped by part.
+void describe_parts(const Mesh& mesh, const uint32_t* order, uint32_t count, PartsScratch& s, PatchParts& out) {
+  const uint32_t n = uint32_t(s.part.size());
+  out.parts.assign(count, Patch{});
+  out.reachable_area.assign(count, 0.0);
+  std::vector<Vec3> normal_sum(count, Vec3::Zero());
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t f = order[i], p = s.part[i];
+    ++out.parts[p].facet_count;
+    out.parts[p].area += mesh.areas[f];
+    normal_sum[p] += mesh.areas[f] * mesh.normals[f];
+    if (s.reach[i]) out.reachable_area[p] += mesh.areas[f];
+  }
+  s.fill.resize(count);
+  for (uint32_t p = 0, offset = 0; p < count; ++p) {
+    Patch& part = out.parts[p];
+    part.id = p;
+    part.first_facet = s.fill[p] = offset;
+    offset += part.facet_count;
+    part.normal = mean_normal(normal_sum[p], part.area);
+  }
+  out.order.resize(n);
+  for (uint32_t i = 0; i < n; ++i) out.order[s.fill[s.part[i]]++] = order[i];
+  for (const LabelPair& q : s.graph) {
+    out.parts[q.a].neighbours.push_back(q.b);
+    out.parts[q.b].neighbours.push_back(q.a);
+  }
+  for (Patch& part : out.parts) std::sort(part.neighbours.begin(), part.neighbours.end());
+}
+
+// The half-edges on the parts' borders (grouped by part), the loops they chain into, and the patch-border
+// edges whose other facets lie in other patches.
+void trace_borders(const Mesh& mesh, const uint32_t* order, const std::array<uint32_t, 3>* inner, uint32_t base,
+                   PartsScratch& s, PatchParts& out) {
+  const uint32_t n = uint32_t(s.part.size()), count = uint32_t(out.parts.size());
+  s.half.clear();
+  out.outer.clear();
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t f = order[i];
+    for (uint32_t k = 0; k < 3; ++k) {
+      const uint32_t j = inner[i][k];
+      if (j != kNone && s.part[j - base] == s.part[i]) continue;
+      const uint32_t from = mesh.faces[f][k], to = mesh.faces[f][(k + 1) % 3];
+      if (from == to) continue;  // an edge of a facet with a repeated corner
+      bool open = false;
+      if (j == kNone) {
+        const uint32_t e = mesh.face_edges[f][k];
+        open = mesh.edges[e].face_count == 1;
+        if (!open) out.outer.push_back({s.part[i], e});
+      }
+      s.half.push_back({s.part[i], from, to, open});
+    }
+  }
+  s.fill.assign(count + 1, 0);
+  for (const HalfEdge& h : s.half) ++s.fill[h.label + 1];
+  for (uint32_t p = 0; p < count; ++p) s.fill[p + 1] += s.fill[p];
+  s.grouped.resize(s.half.size());
+  std::vector<uint32_t> start(s.fill.begin(), s.fill.end());
+  for (const HalfEdge& h : s.half) s.grouped[s.fill[h.label]++] = h;
+  for (uint32_t p = 0; p < count; ++p)
+    chain_loops(s.grouped.data() + start[p], s.grouped.data() + start[p + 1], s.head, s.link, out.parts[p].loops);
+}
+
+}  // namespace
+
+void split_patch(const SurfacePatches& patches, const Patch& patch, const std::vector<uint8_t>& reach,
+                 const SizeRule& rule, PartsScratch& s, PatchParts& out) {
+  const Mesh& mesh = patches.mesh();
+  const uint32_t base = patch.first_facet, n = patch.facet_count;
+  const uint32_t* order = patches.facet_order().data() + base;
+  const std::array<uint32_t, 3>* inner = patches.inner_neighbours().data() + base;
+  out.patch = patch.id;
+  s.reach.resize(n);
+  for (uint32_t i = 0; i < n; ++i) s.reach[i] = reach[order[i]];
+  if (s.head.size() != mesh.vertex_count()) s.head.assign(mesh.vertex_count(), kNone);
+
+  uint32_t count = flood_parts(inner, base, s);
+  s.graph.clear();
+  for (uint32_t c : s.cross) {
+    const uint32_t i = c / 4, k = c % 4, j = inner[i][k] - base;
+    const uint32_t a = s.part[i], b = s.part[j];
+    s.graph.push_back({std::min(a, b), std::max(a, b), corner_edge_length(mesh, order[i], k)});
+  }
+  sum_equal_pairs(s.graph);
+  if (is_active(rule) && count > 1) count = recombine_parts(mesh, order, count, rule, patches.total_area(), s);
+  describe_parts(mesh, order, count, s, out);
+  out.small_left = false;
+  for (const Patch& part : out.parts)
+    out.small_left = out.small_left || (count > 1 && is_small(rule, part.facet_count, part.area, patches.total_area()));
+  trace_borders(mesh, order, inner, base, s, out);
+}
+
+}  // namespace rosmill::segment::detail
