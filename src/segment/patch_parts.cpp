@@ -128,6 +128,9 @@ void trace_borders(const Mesh& mesh, const uint32_t* order, const std::array<uin
   for (const HalfEdge& h : s.half) s.grouped[s.fill[h.label]++] = h;
   for (uint32_t p = 0; p < count; ++p)
     chain_loops(s.grouped.data() + start[p], s.grouped.data() + start[p + 1], s.head, s.link, out.parts[p].loops);
+  // The outer edges by part (stable), so that the caller meets each part's in one run.
+  std::stable_sort(out.outer.begin(), out.outer.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
 }
 
 }  // namespace

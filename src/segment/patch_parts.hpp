@@ -19,8 +19,8 @@ struct PatchParts {
   // first facet); neighbours are sibling parts; loops are final.
   std::vector<Patch> parts;
   std::vector<double> reachable_area;
-  // (part, mesh edge) of each border half-edge of the patch whose edge has other facets: the neighbours across
-  // patches, resolved once every segment has its number.
+  // (part, mesh edge) of each border half-edge of the patch whose edge has other facets, by part: the neighbours
+  // across patches, resolved once every segment has its number.
   std::vector<std::pair<uint32_t, uint32_t>> outer;
   // A part still smaller than the rule (it touches no sibling): only a recombination across patches settles it.
   bool small_left = false;

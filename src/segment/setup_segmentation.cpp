@@ -258,14 +258,17 @@ void assemble_segments(const SurfacePatches& patches, const std::vector<Verdict>
     std::copy(from, from + seg.shape.facet_count, facet_order.begin() + offset);
     offset += seg.shape.facet_count;
   }
-  // Neighbours across the split patches' borders, both ways.
+  // Neighbours across the split patches' borders, both ways. A part's outer edges come in one run, so a stamp
+  // per segment keeps each pair once from that side (long borders of tiny facets repeat a pair thousands of times).
+  std::vector<uint32_t> stamp(segments.size(), kNone);
   for (uint32_t s = 0; s < split.size(); ++s)
     for (const auto& [part, e] : split[s].outer) {
       const uint32_t a = of_part[s][part];
       const MeshEdge& edge = mesh.edges[e];
       for (uint32_t k = 0; k < edge.face_count; ++k) {
         const uint32_t b = labels[mesh.edge_faces[edge.first_face + k]];
-        if (b == a) continue;
+        if (b == a || stamp[b] == a) continue;
+        stamp[b] = a;
         segments[a].shape.neighbours.push_back(b);
         segments[b].shape.neighbours.push_back(a);
       }
