@@ -75,18 +75,22 @@ void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<uint32_
     BoundaryLoop loop;
     loop.mesh_border = true;
     const HalfEdge* h = begin + s;
+    // Gathered in a buffer of the thread's, so that each loop allocates once (both cores describe patches).
+    thread_local std::vector<uint32_t> chain;
+    chain.clear();
     for (;;) {
-      loop.vertices.push_back(h->from);
+      chain.push_back(h->from);
       loop.mesh_border = loop.mesh_border && h->open;
       if (h->to == begin[s].from) break;
       const uint32_t next = take_from(h->to);
       if (next == kNone) {  // broken orientation or a non-manifold vertex: report the chain open
-        loop.vertices.push_back(h->to);
+        chain.push_back(h->to);
         loop.closed = false;
         break;
       }
       h = begin + next;
     }
+    loop.vertices.assign(chain.begin(), chain.end());
     if (loop.closed) {
       std::rotate(loop.vertices.begin(), std::min_element(loop.vertices.begin(), loop.vertices.end()),
                   loop.vertices.end());

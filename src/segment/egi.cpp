@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 
 #include "rosmill/error.hpp"
 
@@ -16,15 +17,33 @@ Vec3 direction(double polar, double azimuth) {
 
 double angle_between(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
 
-// A number in [0, 4) that grows with the angle of (x, y) from +X counter-clockwise, as atan2 does, but with one
-// division: the "diamond angle". A zero vector (either sign) gives 0.
-double pseudo_angle(double x, double y) {
-  if (x == 0.0 && y == 0.0) return 0.0;
-  if (y >= 0.0) return x >= 0.0 ? y / (x + y) : 1.0 - x / (y - x);
-  return x < 0.0 ? 2.0 - y / (-x - y) : 3.0 + x / (x - y);
+uint32_t pow2_at_least(double v, uint32_t lo, uint32_t hi) {
+  uint32_t p = lo;
+  while (p < hi && p < v) p *= 2;
+  return p;
 }
 
 }  // namespace
+
+// Lookup cells over [lo, lo + cells / scale) for ascending borders: each cell counts the borders before it and
+// keeps the one inside it. A key's cell is computed in floating point, so "inside" reaches a margin past the
+// cell's ends; a border within the margin of two cells is inside both, and such cells are searched.
+std::vector<EgiBins::Cell> EgiBins::lookup_cells(const double* border, uint32_t n, double lo, uint32_t cells,
+                                                 double scale) {
+  const double margin = 1e-9;
+  std::vector<Cell> out(cells);
+  uint32_t k = 0;
+  for (uint32_t c = 0; c < cells; ++c) {
+    const double start = lo + c / scale - margin, end = lo + (c + 1) / scale + margin;
+    while (k < n && border[k] < start) ++k;
+    uint32_t inside = 0;
+    while (k + inside < n && border[k + inside] <= end) ++inside;
+    out[c].below = k;
+    out[c].border = inside == 1 ? border[k] : std::numeric_limits<double>::infinity();
+    out[c].more = inside > 1 ? inside : 0;
+  }
+  return out;
+}
 
 EgiBins::EgiBins(int rings) : rings_(rings), ring_step_(M_PI / std::max(rings, 1)) {
   if (rings < 1 || rings > 1000) throw Error("parameter egi rings", "must be in 1..1000, got " + std::to_string(rings));
@@ -56,30 +75,29 @@ EgiBins::EgiBins(int rings) : rings_(rings), ring_step_(M_PI / std::max(rings, 1
     for (int s = 0; s < sectors; ++s)
       sector_start_.push_back(s == 0 ? 0.0 : pseudo_angle(std::cos(s * width), std::sin(s * width)));
   }
-  for (int r = 1; r < rings; ++r) ring_border_cos_.push_back(std::cos(r * ring_step_));
-}
 
-uint32_t EgiBins::ring_of(double z) const {
-  // The ring's polar angle passes r * step where z drops below cos(r * step).
-  uint32_t lo = 0, hi = uint32_t(ring_border_cos_.size());
-  while (lo < hi) {
-    const uint32_t mid = (lo + hi) / 2;
-    if (z < ring_border_cos_[mid]) lo = mid + 1;
-    else hi = mid;
+  // Ring cells over u = -z, whose borders -cos(r step) ascend; cells about half the narrowest ring (at the poles).
+  for (int r = 1; r < rings; ++r) ring_border_u_.push_back(-std::cos(r * ring_step_));
+  const uint32_t ring_cells = pow2_at_least(4.0 / (1.0 - std::cos(ring_step_)), 64, 4096);
+  ring_cell_scale_ = ring_cells / 2.0;
+  ring_cells_ = lookup_cells(ring_border_u_.data(), uint32_t(ring_border_u_.size()), -1.0, ring_cells, ring_cell_scale_);
+  // Sector cells: a sector spans at least pi / sectors of pseudo-angle, so 2 x sectors cells of 4 / cells hold
+  // at most one start each.
+  sector_cell_first_.push_back(0);
+  for (int r = 0; r < rings; ++r) {
+    const uint32_t first = ring_first_[r], sectors = ring_first_[r + 1] - first;
+    const uint32_t cells = pow2_at_least(2.0 * sectors, 8, 256);
+    const std::vector<Cell> ring = lookup_cells(sector_start_.data() + first + 1, sectors - 1, 0.0, cells, cells / 4.0);
+    sector_cells_.insert(sector_cells_.end(), ring.begin(), ring.end());
+    sector_cell_first_.push_back(uint32_t(sector_cells_.size()));
   }
-  return lo;
 }
 
-uint32_t EgiBins::sector_of(uint32_t ring, double x, double y) const {
-  const double a = pseudo_angle(-x, -y);
-  const double* first = sector_start_.data() + ring_first_[ring];
-  const double* last = sector_start_.data() + ring_first_[ring + 1];
-  return uint32_t(std::upper_bound(first + 1, last, a) - first) - 1;
-}
-
-uint32_t EgiBins::bin_of(const Vec3& n) const {
-  const uint32_t ring = ring_of(n.z());
-  return ring_first_[ring] + sector_of(ring, n.x(), n.y());
+// Out of line: ring_of and sector_of stay small enough to inline.
+uint32_t EgiBins::search_cell(const Cell& cell, const double* border, double key, bool strict) {
+  uint32_t count = cell.below;
+  for (uint32_t k = cell.below; k < cell.below + cell.more; ++k) count += strict ? border[k] < key : border[k] <= key;
+  return count;
 }
 
 const EgiBins& default_egi_bins() {
@@ -93,32 +111,73 @@ double EgiBins::solid_angle(uint32_t bin) const {
   return band / (ring_first_[ring + 1] - ring_first_[ring]);
 }
 
+namespace {
+
+// A run of one patch's facets (in facet_order) whose histogram one thread sums.
+struct EgiChunk {
+  uint32_t patch, begin, end;
+};
+
+// Chunks of at most 8192 facets, so that one large patch keeps both cores busy.
+std::vector<EgiChunk> egi_chunks(const SurfacePatches& patches) {
+  constexpr uint32_t kChunk = 8192;
+  std::vector<EgiChunk> chunks;
+  for (const Patch& p : patches.patches())
+    for (uint32_t b = p.first_facet; b < p.first_facet + p.facet_count; b += kChunk)
+      chunks.push_back({p.id, b, std::min(b + kChunk, p.first_facet + p.facet_count)});
+  return chunks;
+}
+
+}  // namespace
+
 EgiSet::EgiSet(const SurfacePatches& patches, const EgiBins& bins) : patches_(&patches), bins_(bins) {
   const Mesh& mesh = patches.mesh();
-  const int64_t n = int64_t(mesh.face_count());
-  std::vector<uint32_t> bin(n);
-#pragma omp parallel for schedule(static) if (n > 20000)
-  for (int64_t f = 0; f < n; ++f) bin[f] = bins_.bin_of(mesh.normals[f]);
-
-  // Each patch's facets are contiguous in facet_order: sum into a dense histogram, then keep the bins touched.
+  const uint32_t* order = patches.facet_order().data();
+  const std::vector<EgiChunk> chunks = egi_chunks(patches);
+  // Each chunk's histogram as its touched bins and their areas, summed in a dense array of the thread's.
+  std::vector<PatchEgi> partial(chunks.size());
+  const int64_t n = int64_t(chunks.size());
+#pragma omp parallel if (mesh.face_count() > 20000)
+  {
+    std::vector<double> dense(bins_.size(), 0.0);
+    std::vector<uint32_t> touched;
+#pragma omp for schedule(dynamic, 1)
+    for (int64_t c = 0; c < n; ++c) {
+      touched.clear();
+      for (uint32_t i = chunks[c].begin; i < chunks[c].end; ++i) {
+        const double a = mesh.areas[order[i]];
+        if (!(a > 0.0)) continue;
+        const uint32_t b = bins_.bin_of(mesh.normals[order[i]]);
+        if (dense[b] == 0.0) touched.push_back(b);
+        dense[b] += a;
+      }
+      partial[c].bins.assign(touched.begin(), touched.end());
+      partial[c].areas.resize(touched.size());
+      for (size_t k = 0; k < touched.size(); ++k) {
+        partial[c].areas[k] = dense[touched[k]];
+        dense[touched[k]] = 0.0;
+      }
+    }
+  }
+  // A patch's chunks are consecutive: merge their histograms, bins ascending.
   std::vector<double> dense(bins_.size(), 0.0);
   std::vector<uint32_t> touched;
   egis_.resize(patches.count());
-  for (const Patch& p : patches.patches()) {
+  for (size_t c = 0; c < chunks.size();) {
+    PatchEgi& egi = egis_[chunks[c].patch];
     touched.clear();
-    for (const uint32_t* f = patches.facets_begin(p); f != patches.facets_end(p); ++f) {
-      const double a = mesh.areas[*f];
-      if (!(a > 0.0)) continue;
-      if (dense[bin[*f]] == 0.0) touched.push_back(bin[*f]);
-      dense[bin[*f]] += a;
-    }
+    for (const uint32_t patch = chunks[c].patch; c < chunks.size() && chunks[c].patch == patch; ++c)
+      for (size_t k = 0; k < partial[c].bins.size(); ++k) {
+        const uint32_t b = partial[c].bins[k];
+        if (dense[b] == 0.0) touched.push_back(b);
+        dense[b] += partial[c].areas[k];
+      }
     std::sort(touched.begin(), touched.end());
-    PatchEgi& egi = egis_[p.id];
-    egi.bins = touched;
-    egi.areas.reserve(touched.size());
-    for (uint32_t b : touched) {
-      egi.areas.push_back(dense[b]);
-      dense[b] = 0.0;
+    egi.bins.assign(touched.begin(), touched.end());
+    egi.areas.resize(touched.size());
+    for (size_t k = 0; k < touched.size(); ++k) {
+      egi.areas[k] = dense[touched[k]];
+      dense[touched[k]] = 0.0;
     }
   }
 }

@@ -128,9 +128,13 @@ void trace_borders(const Mesh& mesh, const uint32_t* order, const std::array<uin
   for (const HalfEdge& h : s.half) s.grouped[s.fill[h.label]++] = h;
   for (uint32_t p = 0; p < count; ++p)
     chain_loops(s.grouped.data() + start[p], s.grouped.data() + start[p + 1], s.head, s.link, out.parts[p].loops);
-  // The outer edges by part (stable), so that the caller meets each part's in one run.
-  std::stable_sort(out.outer.begin(), out.outer.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  // The outer edges by part (a counting sort), so that the caller meets each part's in one run.
+  s.fill.assign(count + 1, 0);
+  for (const auto& o : out.outer) ++s.fill[o.first + 1];
+  for (uint32_t p = 0; p < count; ++p) s.fill[p + 1] += s.fill[p];
+  s.outer.resize(out.outer.size());
+  for (const auto& o : out.outer) s.outer[s.fill[o.first]++] = o;
+  out.outer.swap(s.outer);
 }
 
 }  // namespace

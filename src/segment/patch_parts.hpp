@@ -34,6 +34,7 @@ struct PartsScratch {
   std::vector<double> area;
   std::vector<uint32_t> facets;
   std::vector<HalfEdge> half, grouped;
+  std::vector<std::pair<uint32_t, uint32_t>> outer;
   std::vector<uint32_t> head, link;  // head: one per mesh vertex, kNone between calls
 };
 

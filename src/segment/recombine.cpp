@@ -19,7 +19,10 @@ double edge_length(const Mesh& mesh, uint32_t e) {
 void sum_equal_pairs(std::vector<LabelPair>& pairs) {
   size_t capacity = 64;
   while (capacity < 2 * pairs.size()) capacity <<= 1;
-  std::vector<uint32_t> slot(capacity, kNone);  // index into the reduced prefix of `pairs`
+  // Index into the reduced prefix of `pairs`. The table is kept per thread: recombination calls this once per
+  // round, patch after patch on both cores, and allocations there contend for one heap.
+  thread_local std::vector<uint32_t> slot;
+  slot.assign(capacity, kNone);
   const size_t mask = capacity - 1;
   size_t out = 0;
   for (size_t i = 0; i < pairs.size(); ++i) {
@@ -87,51 +90,51 @@ std::vector<uint32_t> merge_small(std::vector<LabelPair>& graph, std::vector<dou
   const uint32_t count = uint32_t(area.size());
   std::vector<uint32_t> root_group;
   if (group) root_group = *group;
-  // The label graph is rewritten after each round in terms of the merged roots: it shrinks round by round
-  // (phase 2 on counter.unitsmm: 33,624 pairs, then 17,084, 4,436, ...), so the rounds cost about twice the
-  // first. The choice of each small label's neighbour does not depend on the order of the pairs.
+  // The small roots, ascending (merges keep them so: a root only grows, and a merged set's root is its smallest
+  // label), and a flag per label: a round only visits these. The label graph is rewritten after each round in
+  // terms of the merged roots, so it shrinks round by round. The choice of each small label's neighbour does not
+  // depend on the order of the pairs.
+  std::vector<uint32_t> small;
+  std::vector<uint8_t> is_small_root(count, 0);
+  for (uint32_t l = 0; l < count; ++l)
+    if (is_small(rule, facets[l], area[l], total_area)) {
+      small.push_back(l);
+      is_small_root[l] = 1;
+    }
   UnionFind sets(count);
   std::vector<LabelPair> pairs;
   pairs.reserve(graph.size());
-  std::vector<uint32_t> best(count);
-  std::vector<double> best_length(count);
-  std::vector<bool> best_same(count);
-  for (bool first = true;; first = false) {
-    if (!first) {  // the label graph as it stands after the last round's merges
-      pairs.clear();
-      for (const LabelPair& p : graph) {
-        const uint32_t a = sets.find(p.a), b = sets.find(p.b);
-        if (a != b) pairs.push_back({std::min(a, b), std::max(a, b), p.length});
-      }
-      sum_equal_pairs(pairs);
-      graph.swap(pairs);
-    }
-    std::fill(best.begin(), best.end(), kNone);
+  struct Choice {
+    uint32_t to = kNone;
+    bool same = false;
+    double length = 0.0;
+  };
+  std::vector<Choice> best(count);
+  while (!small.empty()) {
     // Dominant neighbour of each small root: same group first, then the longest shared boundary, then the
     // larger neighbour, then the lower id.
     auto offer = [&](uint32_t from, uint32_t to, double length) {
-      if (!is_small(rule, facets[from], area[from], total_area)) return;
+      if (!is_small_root[from]) return;
+      Choice& c = best[from];
       const bool same = group && root_group[from] == root_group[to];
-      bool better = best[from] == kNone;
-      if (!better && same != best_same[from]) better = same;
-      else if (!better && length != best_length[from]) better = length > best_length[from];
-      else if (!better && area[to] != area[best[from]]) better = area[to] > area[best[from]];
-      else if (!better) better = to < best[from];
-      if (better) {
-        best[from] = to;
-        best_length[from] = length;
-        best_same[from] = same;
-      }
+      bool better = c.to == kNone;
+      if (!better && same != c.same) better = same;
+      else if (!better && length != c.length) better = length > c.length;
+      else if (!better && area[to] != area[c.to]) better = area[to] > area[c.to];
+      else if (!better) better = to < c.to;
+      if (better) c = {to, same, length};
     };
     for (const LabelPair& p : graph) {
       offer(p.a, p.b, p.length);
       offer(p.b, p.a, p.length);
     }
     bool merged = false;
-    for (uint32_t r = 0; r < count; ++r) {
-      if (best[r] == kNone) continue;
-      const uint32_t target_group = group ? root_group[sets.find(best[r])] : 0;
-      const uint32_t a = sets.find(r), b = sets.find(best[r]);
+    for (uint32_t r : small) {
+      const uint32_t to = best[r].to;
+      if (to == kNone) continue;
+      best[r].to = kNone;
+      const uint32_t target_group = group ? root_group[sets.find(to)] : 0;
+      const uint32_t a = sets.find(r), b = sets.find(to);
       if (a == b) continue;
       const uint32_t root = sets.unite(a, b);
       const uint32_t other = root == a ? b : a;
@@ -141,6 +144,20 @@ std::vector<uint32_t> merge_small(std::vector<LabelPair>& graph, std::vector<dou
       merged = true;
     }
     if (!merged) break;
+    // The label graph as it stands after this round's merges.
+    pairs.clear();
+    for (const LabelPair& p : graph) {
+      const uint32_t a = sets.find(p.a), b = sets.find(p.b);
+      if (a != b) pairs.push_back({std::min(a, b), std::max(a, b), p.length});
+    }
+    sum_equal_pairs(pairs);
+    graph.swap(pairs);
+    size_t kept = 0;
+    for (uint32_t r : small) {
+      is_small_root[r] = sets.find(r) == r && is_small(rule, facets[r], area[r], total_area);
+      if (is_small_root[r]) small[kept++] = r;
+    }
+    small.resize(kept);
   }
   std::vector<uint32_t> root(count);
   for (uint32_t l = 0; l < count; ++l) root[l] = sets.find(l);

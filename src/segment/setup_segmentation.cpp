@@ -62,18 +62,25 @@ void settle_degenerate(const SurfacePatches& patches, const std::vector<Verdict>
 }
 
 // Per facet reachability: the patch's verdict, or the exact test for the facets of mixed patches.
-std::vector<uint8_t> facet_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict,
-                                 const SetupFilter& filter) {
+template <typename Test>
+void fill_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict, const Test& test,
+                std::vector<uint8_t>& reach) {
   const Mesh& mesh = patches.mesh();
   const int64_t n = int64_t(mesh.face_count());
-  std::vector<uint8_t> reach(n);
   const uint32_t* label = patches.labels().data();
-  const ReachTest reaches(filter);
+  const Vec3* normal = mesh.normals.data();
+  const Verdict* v = verdict.data();
 #pragma omp parallel for schedule(static) if (n > 20000)
   for (int64_t f = 0; f < n; ++f) {
-    const Verdict v = verdict[label[f]];
-    reach[f] = v == Verdict::Mixed ? uint8_t(reaches(mesh.normals[f])) : uint8_t(v);
+    const Verdict patch = v[label[f]];
+    reach[f] = patch == Verdict::Mixed ? uint8_t(test(normal[f])) : uint8_t(patch);
   }
+}
+
+std::vector<uint8_t> facet_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict,
+                                 const SetupFilter& filter) {
+  std::vector<uint8_t> reach(patches.mesh().face_count());
+  fill_reach(patches, verdict, ReachTest(filter), reach);
   settle_degenerate(patches, verdict, reach);
   return reach;
 }
