@@ -8,19 +8,31 @@ namespace {
 
 // Labels the connected parts of equal reachability by flooding across the patch's inner edges; parts are
 // numbered by their first position. `cross` receives 4 * i + k for each inner edge k of local facet i that
-// separates two parts (once per edge: from its lower position).
-uint32_t flood_parts(const std::array<uint32_t, 3>* inner, uint32_t base, PartsScratch& s) {
+// separates two parts (once per edge: from its lower position). Each part's facets, area and normal sum are
+// gathered on the way (a part is all reachable or all not).
+uint32_t flood_parts(const Mesh& mesh, const uint32_t* order, const std::array<uint32_t, 3>* inner, uint32_t base,
+                     PartsScratch& s) {
   const uint32_t n = uint32_t(s.reach.size());
   s.part.assign(n, kNone);
   s.cross.clear();
+  s.area.clear();
+  s.facets.clear();
+  s.normal.clear();
   uint32_t count = 0;
   for (uint32_t seed = 0; seed < n; ++seed) {
     if (s.part[seed] != kNone) continue;
     s.part[seed] = count;
     s.stack.assign(1, seed);
+    double area = 0.0;
+    uint32_t facets = 0;
+    Vec3 normal = Vec3::Zero();
     while (!s.stack.empty()) {
       const uint32_t i = s.stack.back();
       s.stack.pop_back();
+      const double a = mesh.areas[order[i]];
+      area += a;
+      ++facets;
+      normal += a * mesh.normals[order[i]];
       for (uint32_t k = 0; k < 3; ++k) {
         if (inner[i][k] == kNone) continue;
         const uint32_t j = inner[i][k] - base;
@@ -32,6 +44,9 @@ uint32_t flood_parts(const std::array<uint32_t, 3>* inner, uint32_t base, PartsS
         }
       }
     }
+    s.area.push_back(area);
+    s.facets.push_back(facets);
+    s.normal.push_back(normal);
     ++count;
   }
   return count;
@@ -41,55 +56,56 @@ double corner_edge_length(const Mesh& mesh, uint32_t f, uint32_t k) {
   return (mesh.vertices[mesh.faces[f][k]] - mesh.vertices[mesh.faces[f][(k + 1) % 3]]).norm();
 }
 
-// Merges the small parts into siblings; renumbers s.part to the final parts (by first position) and s.graph to
-// the pairs between them. Returns the final count.
-uint32_t recombine_parts(const Mesh& mesh, const uint32_t* order, uint32_t count, const SizeRule& rule,
-                         double total_area, PartsScratch& s) {
-  const uint32_t n = uint32_t(s.part.size());
-  s.area.assign(count, 0.0);
-  s.facets.assign(count, 0);
-  for (uint32_t i = 0; i < n; ++i) {
-    s.area[s.part[i]] += mesh.areas[order[i]];
-    ++s.facets[s.part[i]];
+// The part graph: the lengths the parts share, summed per pair.
+void part_graph(const Mesh& mesh, const uint32_t* order, const std::array<uint32_t, 3>* inner, uint32_t base,
+                PartsScratch& s) {
+  s.graph.clear();
+  for (uint32_t c : s.cross) {
+    const uint32_t i = c / 4, k = c % 4, j = inner[i][k] - base;
+    const uint32_t a = s.part[i], b = s.part[j];
+    s.graph.push_back({std::min(a, b), std::max(a, b), corner_edge_length(mesh, order[i], k)});
   }
-  const std::vector<uint32_t> root = merge_small(s.graph, std::move(s.area), std::move(s.facets), rule, total_area);
+  sum_equal_pairs(s.graph);
+}
+
+// Merges the small parts into siblings. s.final_part receives each part's final part (numbered by first
+// position), s.graph the pairs between final parts. Returns the final count.
+uint32_t recombine_parts(uint32_t count, const SizeRule& rule, double total_area, PartsScratch& s) {
+  s.final_part.resize(count);
+  if (!is_active(rule) || count < 2) {
+    for (uint32_t p = 0; p < count; ++p) s.final_part[p] = p;
+    return count;
+  }
+  const std::vector<uint32_t> root = merge_small(s.graph, s.area, s.facets, rule, total_area);
   // Roots are their sets' smallest parts, so numbering the roots in part order numbers by first position.
-  std::vector<uint32_t>& final_part = s.fill;
-  final_part.assign(count, kNone);
   uint32_t final_count = 0;
-  for (uint32_t p = 0; p < count; ++p)
-    if (root[p] == p) final_part[p] = final_count++;
-  for (uint32_t& p : s.part) p = final_part[root[p]];
+  for (uint32_t p = 0; p < count; ++p) s.final_part[p] = root[p] == p ? final_count++ : s.final_part[root[p]];
   for (LabelPair& q : s.graph) {
-    const uint32_t a = final_part[q.a], b = final_part[q.b];
+    const uint32_t a = s.final_part[q.a], b = s.final_part[q.b];
     q = {std::min(a, b), std::max(a, b), q.length};
   }
   return final_count;
 }
 
-// Sizes, normals, reachable areas, neighbours and the facets grouped by part.
-void describe_parts(const Mesh& mesh, const uint32_t* order, uint32_t count, PartsScratch& s, PatchParts& out) {
-  const uint32_t n = uint32_t(s.part.size());
-  out.parts.assign(count, Patch{});
-  out.reachable_area.assign(count, 0.0);
-  std::vector<Vec3> normal_sum(count, Vec3::Zero());
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t f = order[i], p = s.part[i];
-    ++out.parts[p].facet_count;
-    out.parts[p].area += mesh.areas[f];
-    normal_sum[p] += mesh.areas[f] * mesh.normals[f];
-    if (s.reach[i]) out.reachable_area[p] += mesh.areas[f];
+// Sizes, normals, reachable areas and neighbours of the final parts, from the parts' sums.
+void describe_parts(uint32_t count, uint32_t final_count, PartsScratch& s, PatchParts& out) {
+  out.parts.assign(final_count, Patch{});
+  out.reachable_area.assign(final_count, 0.0);
+  std::vector<Vec3> normal_sum(final_count, Vec3::Zero());
+  for (uint32_t p = 0; p < count; ++p) {
+    Patch& part = out.parts[s.final_part[p]];
+    part.facet_count += s.facets[p];
+    part.area += s.area[p];
+    normal_sum[s.final_part[p]] += s.normal[p];
+    if (s.part_reach[p]) out.reachable_area[s.final_part[p]] += s.area[p];
   }
-  s.fill.resize(count);
-  for (uint32_t p = 0, offset = 0; p < count; ++p) {
+  for (uint32_t p = 0, offset = 0; p < final_count; ++p) {
     Patch& part = out.parts[p];
     part.id = p;
-    part.first_facet = s.fill[p] = offset;
+    part.first_facet = offset;
     offset += part.facet_count;
     part.normal = mean_normal(normal_sum[p], part.area);
   }
-  out.order.resize(n);
-  for (uint32_t i = 0; i < n; ++i) out.order[s.fill[s.part[i]]++] = order[i];
   for (const LabelPair& q : s.graph) {
     out.parts[q.a].neighbours.push_back(q.b);
     out.parts[q.b].neighbours.push_back(q.a);
@@ -97,15 +113,20 @@ void describe_parts(const Mesh& mesh, const uint32_t* order, uint32_t count, Par
   for (Patch& part : out.parts) std::sort(part.neighbours.begin(), part.neighbours.end());
 }
 
-// The half-edges on the parts' borders (grouped by part), the loops they chain into, and the patch-border
-// edges whose other facets lie in other patches.
+// One pass over the facets (s.part holds final parts): the facets grouped by part, and the half-edges on the
+// parts' borders (then grouped by part and chained into loops), and the patch-border edges whose other facets lie
+// in other patches.
 void trace_borders(const Mesh& mesh, const uint32_t* order, const std::array<uint32_t, 3>* inner, uint32_t base,
                    PartsScratch& s, PatchParts& out) {
   const uint32_t n = uint32_t(s.part.size()), count = uint32_t(out.parts.size());
   s.half.clear();
   out.outer.clear();
+  s.fill.resize(count);
+  for (uint32_t p = 0; p < count; ++p) s.fill[p] = out.parts[p].first_facet;
+  out.order.resize(n);
   for (uint32_t i = 0; i < n; ++i) {
     const uint32_t f = order[i];
+    out.order[s.fill[s.part[i]]++] = f;
     for (uint32_t k = 0; k < 3; ++k) {
       const uint32_t j = inner[i][k];
       if (j != kNone && s.part[j - base] == s.part[i]) continue;
@@ -150,19 +171,19 @@ void split_patch(const SurfacePatches& patches, const Patch& patch, const std::v
   for (uint32_t i = 0; i < n; ++i) s.reach[i] = reach[order[i]];
   if (s.head.size() != mesh.vertex_count()) s.head.assign(mesh.vertex_count(), kNone);
 
-  uint32_t count = flood_parts(inner, base, s);
-  s.graph.clear();
-  for (uint32_t c : s.cross) {
-    const uint32_t i = c / 4, k = c % 4, j = inner[i][k] - base;
-    const uint32_t a = s.part[i], b = s.part[j];
-    s.graph.push_back({std::min(a, b), std::max(a, b), corner_edge_length(mesh, order[i], k)});
-  }
-  sum_equal_pairs(s.graph);
-  if (is_active(rule) && count > 1) count = recombine_parts(mesh, order, count, rule, patches.total_area(), s);
-  describe_parts(mesh, order, count, s, out);
+  const uint32_t count = flood_parts(mesh, order, inner, base, s);
+  s.part_reach.resize(count);
+  for (uint32_t i = 0, p = 0; i < n && p < count; ++i)
+    if (s.part[i] == p) s.part_reach[p++] = s.reach[i];  // a part's first facet comes before the next part's
+  part_graph(mesh, order, inner, base, s);
+  const uint32_t final_count = recombine_parts(count, rule, patches.total_area(), s);
+  if (final_count < count)
+    for (uint32_t& p : s.part) p = s.final_part[p];
+  describe_parts(count, final_count, s, out);
   out.small_left = false;
   for (const Patch& part : out.parts)
-    out.small_left = out.small_left || (count > 1 && is_small(rule, part.facet_count, part.area, patches.total_area()));
+    out.small_left =
+        out.small_left || (final_count > 1 && is_small(rule, part.facet_count, part.area, patches.total_area()));
   trace_borders(mesh, order, inner, base, s, out);
 }
 

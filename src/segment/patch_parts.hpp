@@ -28,11 +28,13 @@ struct PatchParts {
 
 // Buffers reused from patch to patch by one thread.
 struct PartsScratch {
-  std::vector<uint8_t> reach;
-  std::vector<uint32_t> part, stack, cross, fill;
+  std::vector<uint8_t> reach, part_reach;
+  std::vector<uint32_t> part, final_part, stack, cross, fill;
   std::vector<LabelPair> graph;
+  // Per part (before recombination): area, facet count, sum of area * normal.
   std::vector<double> area;
   std::vector<uint32_t> facets;
+  std::vector<Vec3> normal;
   std::vector<HalfEdge> half, grouped;
   std::vector<std::pair<uint32_t, uint32_t>> outer;
   std::vector<uint32_t> head, link;  // head: one per mesh vertex, kNone between calls
