@@ -8,11 +8,12 @@
 
 #include "labelling.hpp"
 #include "patch_parts.hpp"
+#include "setup_steps.hpp"
 
 namespace rosmill::segment {
 namespace {
 
-enum class Verdict : uint8_t { Unreachable = 0, Reachable = 1, Mixed = 2 };
+using detail::Verdict;
 
 // Whole-patch verdict from the EGI: every occupied bin lies inside (or outside) the filter's reach.
 Verdict patch_verdict(const EgiSet& egis, const PatchEgi& egi, const SetupFilter& filter) {
@@ -85,85 +86,6 @@ std::vector<uint8_t> facet_reach(const SurfacePatches& patches, const std::vecto
   return reach;
 }
 
-// Labels the connected parts of equal reachability, part by part (so without a union-find over every facet): a
-// patch that is all reachable or all not stays one part; a mixed one is flooded across its manifold edges, and
-// the edges between its parts join `edges`. Returns the number of parts.
-uint32_t split_by_reach(const SurfacePatches& patches, const std::vector<uint8_t>& reach,
-                        std::vector<uint32_t>& labels, std::vector<uint32_t>& edges) {
-  const Mesh& mesh = patches.mesh();
-  labels.assign(mesh.face_count(), kNone);
-  std::vector<uint32_t> stack;
-  uint32_t count = 0;
-  for (const Patch& p : patches.patches()) {
-    const uint32_t* begin = patches.facets_begin(p);
-    const uint32_t* end = patches.facets_end(p);
-    bool mixed = false;
-    for (const uint32_t* f = begin; f != end && !mixed; ++f) mixed = reach[*f] != reach[*begin];
-    if (!mixed) {
-      for (const uint32_t* f = begin; f != end; ++f) labels[*f] = count;
-      ++count;
-      continue;
-    }
-    for (const uint32_t* seed = begin; seed != end; ++seed) {
-      if (labels[*seed] != kNone) continue;
-      labels[*seed] = count;
-      stack.assign(1, *seed);
-      while (!stack.empty()) {
-        const uint32_t f = stack.back();
-        stack.pop_back();
-        for (int i = 0; i < 3; ++i) {
-          const uint32_t g = mesh.neighbour(f, i);
-          if (g == kNone || patches.label(g) != p.id) continue;
-          if (reach[g] != reach[f]) {
-            if (f < g) edges.push_back(mesh.face_edges[f][i]);
-          } else if (labels[g] == kNone) {
-            labels[g] = count;
-            stack.push_back(g);
-          }
-        }
-      }
-      ++count;
-    }
-  }
-  return count;
-}
-
-// Segment fields that follow from its shape and reachable area.
-void finish_segment(Segment& seg, uint32_t patch, double reachable_area) {
-  seg.patch = patch;
-  seg.reachable_area = reachable_area;
-  seg.reachable = seg.shape.area > 0.0 ? reachable_area >= 0.5 * seg.shape.area : true;
-}
-
-// The segments as one recombination over every part of every patch (a neighbour of the same patch first). Used
-// when something small may have to join another patch: a phase 1 patch smaller than this rule, a part touching
-// no sibling; and on non-manifold meshes, whose inner edges the patch-local split does not see.
-void segment_across_patches(const SurfacePatches& patches, const std::vector<uint8_t>& reach, const SizeRule& rule,
-                            std::vector<uint32_t>& labels, std::vector<uint32_t>& facet_order,
-                            std::vector<Segment>& segments) {
-  const Mesh& mesh = patches.mesh();
-  std::vector<uint32_t> edges = patches.cut_edges();
-  uint32_t count = split_by_reach(patches, reach, labels, edges);
-  // A sharp edge inside a patch (joined around it) is a cut edge and may also separate two parts: listed twice,
-  // it would count twice in the boundary lengths and give its border two half-edges.
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  std::vector<uint32_t> group(count);
-  for (uint32_t f = 0; f < mesh.face_count(); ++f) group[labels[f]] = patches.label(f);
-  std::vector<detail::LabelPair> pairs;
-  count = detail::recombine(mesh, labels, count, edges, rule, patches.total_area(), pairs, &group);
-  std::vector<Patch> shapes;
-  detail::describe_patches(mesh, labels, count, edges, pairs, shapes, facet_order);
-  std::vector<double> reachable_area(count, 0.0);
-  for (uint32_t f = 0; f < mesh.face_count(); ++f)
-    if (reach[f]) reachable_area[labels[f]] += mesh.areas[f];
-  segments.resize(count);
-  for (uint32_t s = 0; s < count; ++s) {
-    segments[s].shape = std::move(shapes[s]);
-    finish_segment(segments[s], patches.label(facet_order[segments[s].shape.first_facet]), reachable_area[s]);
-  }
-}
-
 // True when no phase 1 patch is smaller than `rule` while having a neighbour (with phase 1's own rule, none is),
 // and the mesh is manifold: then segments never merge across patches and each mixed patch is split on its own.
 bool patches_split_alone(const SurfacePatches& patches, const SizeRule& rule) {
@@ -199,94 +121,6 @@ bool split_mixed_patches(const SurfacePatches& patches, const std::vector<Verdic
   return true;
 }
 
-// Where a segment comes from: a whole patch (`split` kNone, `index` the patch) or a part of a split patch.
-struct SegmentSource {
-  uint32_t first_facet, split, index;
-};
-
-// Numbers the whole patches and the parts of the split ones in the order of their first facets (as the labels
-// of a recombination are numbered) and lays out labels, facet order and segments.
-void assemble_segments(const SurfacePatches& patches, const std::vector<Verdict>& verdict,
-                       std::vector<detail::PatchParts>& split, std::vector<uint32_t>& labels,
-                       std::vector<uint32_t>& facet_order, std::vector<Segment>& segments) {
-  const Mesh& mesh = patches.mesh();
-  std::vector<SegmentSource> sources;
-  for (const Patch& p : patches.patches())
-    if (verdict[p.id] != Verdict::Mixed) sources.push_back({patches.facet_order()[p.first_facet], kNone, p.id});
-  for (uint32_t s = 0; s < split.size(); ++s)
-    for (const Patch& part : split[s].parts) sources.push_back({split[s].order[part.first_facet], s, part.id});
-  std::sort(sources.begin(), sources.end(),
-            [](const SegmentSource& a, const SegmentSource& b) { return a.first_facet < b.first_facet; });
-
-  std::vector<uint32_t> of_patch(patches.count(), kNone);
-  std::vector<std::vector<uint32_t>> of_part(split.size());
-  for (uint32_t s = 0; s < split.size(); ++s) of_part[s].resize(split[s].parts.size());
-  for (uint32_t id = 0; id < sources.size(); ++id)
-    (sources[id].split == kNone ? of_patch[sources[id].index] : of_part[sources[id].split][sources[id].index]) = id;
-
-  // Labels: whole patches in one pass over the facets, then the split patches' parts.
-  const int64_t n = int64_t(mesh.face_count());
-  labels.resize(n);
-  const uint32_t* label = patches.labels().data();
-#pragma omp parallel for schedule(static) if (n > 20000)
-  for (int64_t f = 0; f < n; ++f) labels[f] = of_patch[label[f]];
-  for (uint32_t s = 0; s < split.size(); ++s)
-    for (const Patch& part : split[s].parts)
-      for (uint32_t i = part.first_facet; i < part.first_facet + part.facet_count; ++i)
-        labels[split[s].order[i]] = of_part[s][part.id];
-
-  facet_order.resize(n);
-  segments.resize(sources.size());
-  uint32_t offset = 0;
-  for (uint32_t id = 0; id < sources.size(); ++id) {
-    const SegmentSource& src = sources[id];
-    Segment& seg = segments[id];
-    const uint32_t* from;
-    if (src.split == kNone) {
-      const Patch& p = patches.patch(src.index);
-      seg.shape.area = p.area;
-      seg.shape.normal = p.normal;
-      seg.shape.loops = p.loops;
-      seg.shape.facet_count = p.facet_count;
-      for (uint32_t q : p.neighbours)
-        if (of_patch[q] != kNone) seg.shape.neighbours.push_back(of_patch[q]);
-      from = patches.facets_begin(p);
-      finish_segment(seg, p.id, verdict[p.id] == Verdict::Reachable ? p.area : 0.0);
-    } else {
-      detail::PatchParts& parts = split[src.split];
-      Patch& part = parts.parts[src.index];
-      seg.shape = std::move(part);
-      for (uint32_t& q : seg.shape.neighbours) q = of_part[src.split][q];
-      from = parts.order.data() + seg.shape.first_facet;
-      finish_segment(seg, parts.patch, parts.reachable_area[src.index]);
-    }
-    seg.shape.id = id;
-    seg.shape.first_facet = offset;
-    std::copy(from, from + seg.shape.facet_count, facet_order.begin() + offset);
-    offset += seg.shape.facet_count;
-  }
-  // Neighbours across the split patches' borders, both ways. A part's outer edges come in one run, so a stamp
-  // per segment keeps each pair once from that side (long borders of tiny facets repeat a pair thousands of times).
-  std::vector<uint32_t> stamp(segments.size(), kNone);
-  for (uint32_t s = 0; s < split.size(); ++s)
-    for (const auto& [part, e] : split[s].outer) {
-      const uint32_t a = of_part[s][part];
-      const MeshEdge& edge = mesh.edges[e];
-      for (uint32_t k = 0; k < edge.face_count; ++k) {
-        const uint32_t b = labels[mesh.edge_faces[edge.first_face + k]];
-        if (b == a || stamp[b] == a) continue;
-        stamp[b] = a;
-        segments[a].shape.neighbours.push_back(b);
-        segments[b].shape.neighbours.push_back(a);
-      }
-    }
-  for (Segment& seg : segments) {
-    std::vector<uint32_t>& nb = seg.shape.neighbours;
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-  }
-}
-
 }  // namespace
 
 std::vector<uint8_t> reachable_facets(const EgiSet& egis, const SetupFilter& filter, size_t* whole) {
@@ -309,9 +143,9 @@ SetupSegmentation segment_setup(const EgiSet& egis, const SetupFilter& filter, c
 
   std::vector<detail::PatchParts> split;
   if (patches_split_alone(patches, rule) && split_mixed_patches(patches, verdict, out.reachable_, rule, split))
-    assemble_segments(patches, verdict, split, out.labels_, out.facet_order_, out.segments_);
+    detail::assemble_segments(patches, verdict, split, out.labels_, out.facet_order_, out.segments_);
   else
-    segment_across_patches(patches, out.reachable_, rule, out.labels_, out.facet_order_, out.segments_);
+    detail::segment_across_patches(patches, out.reachable_, rule, out.labels_, out.facet_order_, out.segments_);
   for (const Segment& seg : out.segments_) out.reachable_area_ += seg.reachable_area;
   return out;
 }
