@@ -99,7 +99,9 @@ void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<uint32_
   }
   for (const HalfEdge* h = begin; h != end; ++h) head[h->from] = kNone;
   std::stable_sort(loops.begin() + first_loop, loops.end(),
-                   [](const BoundaryLoop& a, const BoundaryLoop& b) { return a.vertices.front() < b.vertices.front(); });
+                   [](const BoundaryLoop& a, const BoundaryLoop& b) {
+                     return a.vertices.front() < b.vertices.front();
+                   });
 }
 
 void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uint32_t count,

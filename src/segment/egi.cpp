@@ -80,7 +80,8 @@ EgiBins::EgiBins(int rings) : rings_(rings), ring_step_(M_PI / std::max(rings, 1
   for (int r = 1; r < rings; ++r) ring_border_u_.push_back(-std::cos(r * ring_step_));
   const uint32_t ring_cells = pow2_at_least(4.0 / (1.0 - std::cos(ring_step_)), 64, 4096);
   ring_cell_scale_ = ring_cells / 2.0;
-  ring_cells_ = lookup_cells(ring_border_u_.data(), uint32_t(ring_border_u_.size()), -1.0, ring_cells, ring_cell_scale_);
+  ring_cells_ =
+      lookup_cells(ring_border_u_.data(), uint32_t(ring_border_u_.size()), -1.0, ring_cells, ring_cell_scale_);
   // Sector cells: a sector spans at least pi / sectors of pseudo-angle, so 2 x sectors cells of 4 / cells hold
   // at most one start each.
   sector_cell_first_.push_back(0);

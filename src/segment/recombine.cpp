@@ -175,7 +175,8 @@ uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t cou
     area[labels[f]] += mesh.areas[f];
     ++facets[labels[f]];
   }
-  const std::vector<uint32_t> root = merge_small(pairs_out, std::move(area), std::move(facets), rule, total_area, group);
+  const std::vector<uint32_t> root =
+      merge_small(pairs_out, std::move(area), std::move(facets), rule, total_area, group);
   // Final labels numbered in the order of their first facet, as compact_labels() numbers them; the last
   // round's graph (in final roots, summed) becomes the pairs of the final labels.
   std::vector<uint32_t> final_label(count, kNone);

@@ -114,7 +114,8 @@ bool split_mixed_patches(const SurfacePatches& patches, const std::vector<Verdic
   {
     detail::PartsScratch scratch;
 #pragma omp for schedule(dynamic, 1)
-    for (int64_t i = 0; i < n; ++i) detail::split_patch(patches, patches.patch(mixed[i]), reach, rule, scratch, split[i]);
+    for (int64_t i = 0; i < n; ++i)
+      detail::split_patch(patches, patches.patch(mixed[i]), reach, rule, scratch, split[i]);
   }
   for (const detail::PatchParts& s : split)
     if (s.small_left) return false;
