@@ -122,23 +122,31 @@ size_t attach_degenerate(const Mesh& mesh, double threshold, UnionFind& sets) {
   return degenerate;
 }
 
-// SurfacePatches::inner_neighbours: one pass over the positions (both cores) through the inverse of facet_order.
+// SurfacePatches::inner_neighbours from the manifold edges (both cores): an edge whose two facets share a patch
+// links each facet's corner slot of that edge to the other's position. Each (facet, corner) slot belongs to one
+// edge, so the threads never write the same slot; a facet listing one edge twice (a repeated corner) gets it in
+// both slots.
 std::vector<std::array<uint32_t, 3>> inner_neighbours(const Mesh& mesh, const std::vector<uint32_t>& labels,
                                                       const std::vector<uint32_t>& facet_order) {
-  const int64_t n = int64_t(facet_order.size());
+  const int64_t n = int64_t(facet_order.size()), edge_count = int64_t(mesh.edges.size());
   std::vector<uint32_t> position(n);
-  std::vector<std::array<uint32_t, 3>> inner(n);
+  std::vector<std::array<uint32_t, 3>> inner(n, {kNone, kNone, kNone});
+  auto link = [&](uint32_t f, uint32_t e, uint32_t to) {
+    for (int k = 0; k < 3; ++k)
+      if (mesh.face_edges[f][k] == e) inner[position[f]][k] = to;
+  };
 #pragma omp parallel if (n > 20000)
   {
 #pragma omp for schedule(static)
     for (int64_t i = 0; i < n; ++i) position[facet_order[i]] = uint32_t(i);
 #pragma omp for schedule(static)
-    for (int64_t i = 0; i < n; ++i) {
-      const uint32_t f = facet_order[i];
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t g = mesh.neighbour(f, k);
-        inner[i][k] = g != kNone && labels[g] == labels[f] ? position[g] : kNone;
-      }
+    for (int64_t e = 0; e < edge_count; ++e) {
+      const MeshEdge& edge = mesh.edges[e];
+      if (edge.face_count != 2) continue;
+      const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
+      if (labels[f0] != labels[f1]) continue;
+      link(f0, uint32_t(e), position[f1]);
+      link(f1, uint32_t(e), position[f0]);
     }
   }
   return inner;
