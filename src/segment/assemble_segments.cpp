@@ -45,15 +45,15 @@ Numbering number_segments(const SurfacePatches& patches, const std::vector<Verdi
   return out;
 }
 
-// Labels: the whole patches in one pass over the facets (both cores), then the split patches' parts.
+// Labels: the whole patches in one pass over the facets (both cores), then the split patches' parts. (Copied
+// from the patch labels and renumbered in place: a vector's zero-filling resize is a slow loop for 32-bit words.)
 void write_labels(const SurfacePatches& patches, const std::vector<PatchParts>& split, const Numbering& number,
                   std::vector<uint32_t>& labels) {
-  const int64_t n = int64_t(patches.mesh().face_count());
-  labels.resize(n);
-  const uint32_t* label = patches.labels().data();
+  labels = patches.labels();
+  const int64_t n = int64_t(labels.size());
   const uint32_t* of_patch = number.of_patch.data();
 #pragma omp parallel for schedule(static) if (n > 20000)
-  for (int64_t f = 0; f < n; ++f) labels[f] = of_patch[label[f]];
+  for (int64_t f = 0; f < n; ++f) labels[f] = of_patch[labels[f]];
   for (uint32_t s = 0; s < split.size(); ++s)
     for (const Patch& part : split[s].parts)
       for (uint32_t i = part.first_facet; i < part.first_facet + part.facet_count; ++i)
@@ -91,7 +91,8 @@ void assemble_segments(const SurfacePatches& patches, const std::vector<Verdict>
                        std::vector<uint32_t>& facet_order, std::vector<Segment>& segments) {
   const Numbering number = number_segments(patches, verdict, split);
   write_labels(patches, split, number, labels);
-  facet_order.resize(labels.size());
+  facet_order.clear();
+  facet_order.reserve(labels.size());
   segments.resize(number.sources.size());
   uint32_t offset = 0;
   for (uint32_t id = 0; id < number.sources.size(); ++id) {
@@ -117,7 +118,7 @@ void assemble_segments(const SurfacePatches& patches, const std::vector<Verdict>
     }
     seg.shape.id = id;
     seg.shape.first_facet = offset;
-    std::copy(from, from + seg.shape.facet_count, facet_order.begin() + offset);
+    facet_order.insert(facet_order.end(), from, from + seg.shape.facet_count);
     offset += seg.shape.facet_count;
   }
   link_across_patches(patches.mesh(), split, number, labels, segments);

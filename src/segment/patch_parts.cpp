@@ -123,7 +123,7 @@ void trace_borders(const Mesh& mesh, const uint32_t* order, const std::array<uin
   out.outer.clear();
   s.fill.resize(count);
   for (uint32_t p = 0; p < count; ++p) s.fill[p] = out.parts[p].first_facet;
-  out.order.resize(n);
+  out.order.assign(order, order + n);  // sized by a copy: cheaper than zero-filling, every entry is overwritten
   for (uint32_t i = 0; i < n; ++i) {
     const uint32_t f = order[i];
     out.order[s.fill[s.part[i]]++] = f;
