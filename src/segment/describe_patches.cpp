@@ -98,10 +98,10 @@ void chain_loops(const HalfEdge* begin, const HalfEdge* end, std::vector<uint32_
     loops.push_back(std::move(loop));
   }
   for (const HalfEdge* h = begin; h != end; ++h) head[h->from] = kNone;
-  std::stable_sort(loops.begin() + first_loop, loops.end(),
-                   [](const BoundaryLoop& a, const BoundaryLoop& b) {
-                     return a.vertices.front() < b.vertices.front();
-                   });
+  // By vertices (first vertex first): a total order, as no two loops run the same half-edges.
+  if (loops.size() - first_loop > 1)
+    std::sort(loops.begin() + first_loop, loops.end(),
+              [](const BoundaryLoop& a, const BoundaryLoop& b) { return a.vertices < b.vertices; });
 }
 
 void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uint32_t count,
