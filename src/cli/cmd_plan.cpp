@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "config_file.hpp"
 #include "rosmill/cloud/cloud_plan.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
@@ -73,7 +74,7 @@ std::string job_tools(const Job& job) {
 Tool pick_tool(const Options& o) {
   const bool numeric = !o.tool.empty() && o.tool.find(':') == std::string::npos;
   if (!numeric) return resolve_tool(o.tool, nullptr);
-  const std::string path = o.tools.empty() ? "config/tools.yaml" : o.tools;
+  const std::string path = o.tools.empty() ? default_config("tools.yaml") : o.tools;
   const ToolTable table = read_tool_table(path);
   return resolve_tool(o.tool, &table);
 }
@@ -167,7 +168,7 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("FILE", o->file, "STL, PCD or PLY file")->required();
   cmd->add_option("--strategy", o->strategy, "strategy name")->required();
   auto* tool = cmd->add_option("--tool", o->tool, "tool id in the tool table, or ball:D, flat:D, bull:D:r (mm)");
-  cmd->add_option("--tools", o->tools, "tool table (default config/tools.yaml)");
+  cmd->add_option("--tools", o->tools, "tool table (default config/tools.yaml here, else the package's)");
   cmd->add_option("--stepover", o->stepover, "mm (default: the tool's)");
   cmd->add_option("--stepdown", o->stepdown, "mm (default: the tool's)");
   cmd->add_option("--allowance", o->allowance, "stock to leave, mm");

@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "command.hpp"
+#include "config_file.hpp"
 #include "rosmill/control/controller.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
@@ -23,7 +24,7 @@ namespace rosmill::cli {
 namespace {
 
 struct SendArgs {
-  std::string program, controller, machine = "config/machine.yaml", program_dir, dialect;
+  std::string program, controller, machine, program_dir, dialect;
   size_t from_line = 1;
   bool no_limits = false, verify = false;
   double stock_top = NAN, timeout = 10.0, stall = 60.0;
@@ -41,12 +42,13 @@ std::string dialect_for(const SendArgs& a) {
 // Safety before anything is sent: limits always (unless --no-limits), LinuxCNC's interpreter on request.
 void check_program(const std::vector<std::string>& lines, const SendArgs& a) {
   if (!a.no_limits) {
-    if (!std::filesystem::exists(a.machine))
-      throw Error("--machine", "no machine file '" + a.machine + "': give --machine FILE (or --no-limits to send "
-                                                                  "without checking the machine's limits)");
+    const std::string machine = a.machine.empty() ? default_config("machine.yaml") : a.machine;
+    if (!std::filesystem::exists(machine))
+      throw Error("--machine", "no machine file '" + machine + "': give --machine FILE (or --no-limits to send "
+                                                                "without checking the machine's limits)");
     gcode::LimitCheckOptions o;
     o.stock_top = a.stock_top;
-    gcode::require_within_limits(lines, gcode::load_machine_limits(a.machine), o);
+    gcode::require_within_limits(lines, gcode::load_machine_limits(machine), o);
   }
   if (a.verify) {
     const gcode::Rs274Result r = gcode::run_rs274(lines);
@@ -142,7 +144,8 @@ CommandRegistration reg([](CLI::App& app) {
                   "linuxcnc://HOST:PORT, grbl:///dev/ttyX?baud=115200, grbl+tcp://HOST:PORT or file:///DIR")
       ->required();
   cmd->add_option("--from-line", a->from_line, "resume at this program line (restores the modal state first)");
-  cmd->add_option("--machine", a->machine, "machine limits the program must keep")->capture_default_str();
+  cmd->add_option("--machine", a->machine,
+                  "machine limits the program must keep (default config/machine.yaml here, else the package's)");
   cmd->add_flag("--no-limits", a->no_limits, "send without checking the machine's limits");
   cmd->add_option("--stock-top", a->stock_top, "stock top z for the rapid clearance check (default: highest cut)");
   cmd->add_flag("--verify", a->verify, "refuse a program LinuxCNC's interpreter (rs274) refuses, naming its line");

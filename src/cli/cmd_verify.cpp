@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "config_file.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/io/cloud_io.hpp"
@@ -35,10 +36,11 @@ MachineProgram read_program(const VerifyArgs& a) {
     if (!a.tool.empty()) throw Error("--tool", "a toolpath file names its own tools; --tool is for G-code programs");
     return program_from_job(read_toolpath_file(a.program));
   }
-  // The tool table: --tools, else config/tools.yaml when there is one (G-code calls tools by number).
-  const std::string table_path = !a.tools.empty() ? a.tools
-                                 : std::filesystem::exists("config/tools.yaml") ? "config/tools.yaml"
-                                                                                : "";
+  // The tool table: --tools, else config/tools.yaml here or the package's (G-code calls tools by number).
+  const std::string default_table = default_config("tools.yaml");
+  const std::string table_path = !a.tools.empty()                        ? a.tools
+                                 : std::filesystem::exists(default_table) ? default_table
+                                                                          : "";
   std::unique_ptr<ToolTable> table;
   if (!table_path.empty()) table = std::make_unique<ToolTable>(read_tool_table(table_path));
   return read_gcode(a.program, tool_setup(a.tool, table.get()));
@@ -132,7 +134,7 @@ CommandRegistration reg([](CLI::App& app) {
                   "G-code tools: N=CUTTER defines tool N (ball:D, flat:D, bull:D:r); CUTTER or N is the tool in the "
                   "spindle at the start (repeatable)")
       ->allow_extra_args(false);
-  cmd->add_option("--tools", a->tools, "tool table (default config/tools.yaml when present)");
+  cmd->add_option("--tools", a->tools, "tool table (default config/tools.yaml here, else the package's)");
   cmd->add_option("--units", a->units, "units of the STL and cloud files: mm, inch, m (STL default mm, clouds m)");
   cmd->add_option("--tolerance", a->tolerance, "deviation that still counts as on the design, mm")
       ->capture_default_str();

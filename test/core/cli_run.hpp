@@ -17,9 +17,9 @@ struct CliRun {
 
 // Runs `ROSMILL_CLI shell_args` through the shell (so `shell_args` may end in a redirection such as 2>&1) and
 // captures its stdout and exit status.
-inline CliRun run_rosmill_shell(const std::string& shell_args) {
+inline CliRun run_command(const std::string& command) {
   CliRun run;
-  FILE* pipe = ::popen((std::string(ROSMILL_CLI) + " " + shell_args).c_str(), "r");
+  FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return run;
   char buf[4096];
   size_t n;
@@ -27,6 +27,15 @@ inline CliRun run_rosmill_shell(const std::string& shell_args) {
   const int rc = ::pclose(pipe);
   run.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
   return run;
+}
+
+inline CliRun run_rosmill_shell(const std::string& shell_args) {
+  return run_command(std::string(ROSMILL_CLI) + " " + shell_args);
+}
+
+// `ROSMILL_CLI shell_args` run from the folder `dir`.
+inline CliRun run_rosmill_in(const std::string& dir, const std::string& shell_args) {
+  return run_command("cd '" + dir + "' && " + ROSMILL_CLI + " " + shell_args);
 }
 
 // Stdout and stderr apart.

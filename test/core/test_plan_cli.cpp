@@ -3,10 +3,12 @@
 // plan JSON, and a clear error with a failing status for each bad option.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -73,6 +75,25 @@ TEST(PlanCli, PlanJsonFields) {
     EXPECT_GT(j["estimated_seconds"].get<double>(), 0.0) << strategy;
     EXPECT_GT(j["seconds"].get<double>(), 0.0) << strategy;
   }
+}
+
+// A tool number resolves from any folder: the working folder's config/tools.yaml when it has one, else the
+// package's own table.
+TEST(PlanCli, ToolNumbersResolveFromAnyFolder) {
+  const std::string dir = ::testing::TempDir() + "rosmill_elsewhere_" + std::to_string(::getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/config");
+  const std::string args = "plan " + kBox + " --strategy raster --tool 2 --stepover 5 --json 2>&1";
+  CliRun run = run_rosmill_in(dir, args);
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_EQ(json::parse(run.out)["tool"], "6 mm ball end mill (finishing)");
+  std::ofstream(dir + "/config/tools.yaml")
+      << "tools:\n  - {id: 2, name: \"cell's 4 mm flat\", type: flat, diameter: 4, flute_length: 12, "
+         "shank_diameter: 4, spindle_rpm: 12000, feed: 800, plunge_feed: 200, stepover: 1, stepdown: 1}\n";
+  run = run_rosmill_in(dir, args);
+  ASSERT_EQ(run.status, 0) << run.out;
+  EXPECT_EQ(json::parse(run.out)["tool"], "cell's 4 mm flat");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(PlanCli, BadOptionsFailWithAClearError) {
