@@ -135,11 +135,17 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
   }
   for (Patch& p : patches) std::sort(p.neighbours.begin(), p.neighbours.end());
 
+  // Each patch's loops on its own (both cores when the borders are long; each thread lists vertices in its own
+  // head array).
   std::vector<uint32_t> group_start;
   const std::vector<HalfEdge> half = border_half_edges(mesh, labels, count, edges, group_start);
-  std::vector<uint32_t> head(mesh.vertex_count(), kNone), link;
-  for (uint32_t l = 0; l < count; ++l)
-    chain_loops(half.data() + group_start[l], half.data() + group_start[l + 1], head, link, patches[l].loops);
+#pragma omp parallel if (half.size() > 20000 && count > 1)
+  {
+    std::vector<uint32_t> head(mesh.vertex_count(), kNone), link;
+#pragma omp for schedule(dynamic, 1)
+    for (int64_t l = 0; l < int64_t(count); ++l)
+      chain_loops(half.data() + group_start[l], half.data() + group_start[l + 1], head, link, patches[l].loops);
+  }
 }
 
 }  // namespace rosmill::segment::detail
