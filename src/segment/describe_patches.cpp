@@ -135,11 +135,11 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
   }
   for (Patch& p : patches) std::sort(p.neighbours.begin(), p.neighbours.end());
 
-  // Each patch's loops on its own (both cores when the borders are long; each thread lists vertices in its own
-  // head array).
+  // Each patch's loops on its own: both cores when the borders are long and the patches many enough to share out
+  // (each thread lists vertices in a head array of its own, one entry per mesh vertex).
   std::vector<uint32_t> group_start;
   const std::vector<HalfEdge> half = border_half_edges(mesh, labels, count, edges, group_start);
-#pragma omp parallel if (half.size() > 20000 && count > 1)
+#pragma omp parallel if (half.size() > 20000 && count >= 16)
   {
     std::vector<uint32_t> head(mesh.vertex_count(), kNone), link;
 #pragma omp for schedule(dynamic, 1)
