@@ -6,52 +6,6 @@
 namespace rosmill::segment::detail {
 namespace {
 
-// Labels the connected parts of equal reachability by flooding across the patch's inner edges; parts are
-// numbered by their first position. `cross` receives 4 * i + k for each inner edge k of local facet i that
-// separates two parts (once per edge: from its lower position). Each part's facets, area and normal sum are
-// gathered on the way (a part is all reachable or all not).
-uint32_t flood_parts(const Mesh& mesh, const uint32_t* order, const std::array<uint32_t, 3>* inner, uint32_t base,
-                     PartsScratch& s) {
-  const uint32_t n = uint32_t(s.reach.size());
-  s.part.assign(n, kNone);
-  s.cross.clear();
-  s.area.clear();
-  s.facets.clear();
-  s.normal.clear();
-  uint32_t count = 0;
-  for (uint32_t seed = 0; seed < n; ++seed) {
-    if (s.part[seed] != kNone) continue;
-    s.part[seed] = count;
-    s.stack.assign(1, seed);
-    double area = 0.0;
-    uint32_t facets = 0;
-    Vec3 normal = Vec3::Zero();
-    while (!s.stack.empty()) {
-      const uint32_t i = s.stack.back();
-      s.stack.pop_back();
-      const double a = mesh.areas[order[i]];
-      area += a;
-      ++facets;
-      normal += a * mesh.normals[order[i]];
-      for (uint32_t k = 0; k < 3; ++k) {
-        if (inner[i][k] == kNone) continue;
-        const uint32_t j = inner[i][k] - base;
-        if (s.reach[j] != s.reach[i]) {
-          if (i < j) s.cross.push_back(4 * i + k);
-        } else if (s.part[j] == kNone) {
-          s.part[j] = count;
-          s.stack.push_back(j);
-        }
-      }
-    }
-    s.area.push_back(area);
-    s.facets.push_back(facets);
-    s.normal.push_back(normal);
-    ++count;
-  }
-  return count;
-}
-
 double corner_edge_length(const Mesh& mesh, uint32_t f, uint32_t k) {
   return (mesh.vertices[mesh.faces[f][k]] - mesh.vertices[mesh.faces[f][(k + 1) % 3]]).norm();
 }
@@ -160,21 +114,65 @@ void trace_borders(const Mesh& mesh, const uint32_t* order, const std::array<uin
 
 }  // namespace
 
-void split_patch(const SurfacePatches& patches, const Patch& patch, const std::vector<uint8_t>& reach,
-                 const SizeRule& rule, PartsScratch& s, PatchParts& out) {
+uint32_t flood_patch(const SurfacePatches& patches, const Patch& patch, const std::vector<uint8_t>& reach,
+                     PartsScratch& s) {
   const Mesh& mesh = patches.mesh();
   const uint32_t base = patch.first_facet, n = patch.facet_count;
   const uint32_t* order = patches.facet_order().data() + base;
   const std::array<uint32_t, 3>* inner = patches.inner_neighbours().data() + base;
-  out.patch = patch.id;
   s.reach.resize(n);
   for (uint32_t i = 0; i < n; ++i) s.reach[i] = reach[order[i]];
+  s.part.assign(n, kNone);
+  s.cross.clear();
+  s.area.clear();
+  s.facets.clear();
+  s.normal.clear();
+  s.part_reach.clear();
+  uint32_t count = 0;
+  for (uint32_t seed = 0; seed < n; ++seed) {
+    if (s.part[seed] != kNone) continue;
+    s.part[seed] = count;
+    s.stack.assign(1, seed);
+    double area = 0.0;
+    uint32_t facets = 0;
+    Vec3 normal = Vec3::Zero();
+    while (!s.stack.empty()) {
+      const uint32_t i = s.stack.back();
+      s.stack.pop_back();
+      const double a = mesh.areas[order[i]];
+      area += a;
+      ++facets;
+      normal += a * mesh.normals[order[i]];
+      for (uint32_t k = 0; k < 3; ++k) {
+        if (inner[i][k] == kNone) continue;
+        const uint32_t j = inner[i][k] - base;
+        if (s.reach[j] != s.reach[i]) {
+          if (i < j) s.cross.push_back(4 * i + k);
+        } else if (s.part[j] == kNone) {
+          s.part[j] = count;
+          s.stack.push_back(j);
+        }
+      }
+    }
+    s.area.push_back(area);
+    s.facets.push_back(facets);
+    s.normal.push_back(normal);
+    s.part_reach.push_back(s.reach[seed]);
+    ++count;
+  }
+  return count;
+}
+
+void split_patch(const SurfacePatches& patches, const Patch& patch, const std::vector<uint8_t>& reach,
+                 const SizeRule& rule, PartsScratch& s, PatchParts& out) {
+  const Mesh& mesh = patches.mesh();
+  const uint32_t base = patch.first_facet;
+  const uint32_t* order = patches.facet_order().data() + base;
+  const std::array<uint32_t, 3>* inner = patches.inner_neighbours().data() + base;
+  out.patch = patch.id;
   if (s.head.size() != mesh.vertex_count()) s.head.assign(mesh.vertex_count(), kNone);
 
-  const uint32_t count = flood_parts(mesh, order, inner, base, s);
-  s.part_reach.resize(count);
-  for (uint32_t i = 0, p = 0; i < n && p < count; ++i)
-    if (s.part[i] == p) s.part_reach[p++] = s.reach[i];  // a part's first facet comes before the next part's
+  const uint32_t count = flood_patch(patches, patch, reach, s);
   part_graph(mesh, order, inner, base, s);
   const uint32_t final_count = recombine_parts(count, rule, patches.total_area(), s);
   if (final_count < count)

@@ -40,6 +40,13 @@ struct PartsScratch {
   std::vector<uint32_t> head, link;  // head: one per mesh vertex, kNone between calls
 };
 
+// Labels the connected parts of equal reachability (`reach`: per facet, mesh order) of `patch` by flooding across
+// its inner edges: s.part per position in the patch (parts numbered by first position), and per part its facet
+// count, area, normal sum and reachability. s.cross receives 4 * i + k for each inner edge k of local facet i that
+// separates two parts (once per edge: from its lower position). Returns the number of parts.
+uint32_t flood_patch(const SurfacePatches& patches, const Patch& patch, const std::vector<uint8_t>& reach,
+                     PartsScratch& s);
+
 // Cuts `patch` by the per-facet reachability `reach` (mesh order) and recombines inside it with `rule`.
 void split_patch(const SurfacePatches& patches, const Patch& patch, const std::vector<uint8_t>& reach,
                  const SizeRule& rule, PartsScratch& scratch, PatchParts& out);

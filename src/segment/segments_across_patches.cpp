@@ -4,50 +4,34 @@
 #include <algorithm>
 
 #include "labelling.hpp"
+#include "patch_parts.hpp"
 #include "setup_steps.hpp"
 
 namespace rosmill::segment::detail {
 namespace {
 
 // Labels the connected parts of equal reachability, part by part (so without a union-find over every facet): a
-// patch that is all reachable or all not stays one part; a mixed one is flooded across its manifold edges, and
-// the edges between its parts join `edges`. Returns the number of parts.
+// patch that is all reachable or all not stays one part; a mixed one is flooded as the patch-local split floods
+// it, and the edges between its parts join `edges`. Returns the number of parts.
 uint32_t split_by_reach(const SurfacePatches& patches, const std::vector<uint8_t>& reach,
                         std::vector<uint32_t>& labels, std::vector<uint32_t>& edges) {
   const Mesh& mesh = patches.mesh();
-  labels.assign(mesh.face_count(), kNone);
-  std::vector<uint32_t> stack;
+  labels.resize(mesh.face_count());
+  PartsScratch scratch;
   uint32_t count = 0;
   for (const Patch& p : patches.patches()) {
-    const uint32_t* begin = patches.facets_begin(p);
-    const uint32_t* end = patches.facets_end(p);
+    const uint32_t* order = patches.facets_begin(p);
     bool mixed = false;
-    for (const uint32_t* f = begin; f != end && !mixed; ++f) mixed = reach[*f] != reach[*begin];
+    for (uint32_t i = 1; i < p.facet_count && !mixed; ++i) mixed = reach[order[i]] != reach[order[0]];
     if (!mixed) {
-      for (const uint32_t* f = begin; f != end; ++f) labels[*f] = count;
+      for (uint32_t i = 0; i < p.facet_count; ++i) labels[order[i]] = count;
       ++count;
       continue;
     }
-    for (const uint32_t* seed = begin; seed != end; ++seed) {
-      if (labels[*seed] != kNone) continue;
-      labels[*seed] = count;
-      stack.assign(1, *seed);
-      while (!stack.empty()) {
-        const uint32_t f = stack.back();
-        stack.pop_back();
-        for (int i = 0; i < 3; ++i) {
-          const uint32_t g = mesh.neighbour(f, i);
-          if (g == kNone || patches.label(g) != p.id) continue;
-          if (reach[g] != reach[f]) {
-            if (f < g) edges.push_back(mesh.face_edges[f][i]);
-          } else if (labels[g] == kNone) {
-            labels[g] = count;
-            stack.push_back(g);
-          }
-        }
-      }
-      ++count;
-    }
+    const uint32_t parts = flood_patch(patches, p, reach, scratch);
+    for (uint32_t i = 0; i < p.facet_count; ++i) labels[order[i]] = count + scratch.part[i];
+    for (uint32_t c : scratch.cross) edges.push_back(mesh.face_edges[order[c / 4]][c % 4]);
+    count += parts;
   }
   return count;
 }
