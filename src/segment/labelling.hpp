@@ -68,6 +68,11 @@ inline Vec3 mean_normal(const Vec3& sum, double area) {
   return len > 1e-12 * std::max(area, 1e-300) ? Vec3(sum / len) : Vec3(Vec3::Zero());
 }
 
+// Length of mesh edge e.
+inline double edge_length(const Mesh& mesh, uint32_t e) {
+  return (mesh.vertices[mesh.edges[e].a] - mesh.vertices[mesh.edges[e].b]).norm();
+}
+
 // True when facet f has an area (and so a normal).
 inline bool has_area(const Mesh& mesh, size_t f) { return mesh.areas[f] > 0.0; }
 

@@ -6,10 +6,6 @@
 namespace rosmill::segment::detail {
 namespace {
 
-double corner_edge_length(const Mesh& mesh, uint32_t f, uint32_t k) {
-  return (mesh.vertices[mesh.faces[f][k]] - mesh.vertices[mesh.faces[f][(k + 1) % 3]]).norm();
-}
-
 // The part graph: the lengths the parts share, summed per pair.
 void part_graph(const Mesh& mesh, const uint32_t* order, const std::array<uint32_t, 3>* inner, uint32_t base,
                 PartsScratch& s) {
@@ -17,7 +13,7 @@ void part_graph(const Mesh& mesh, const uint32_t* order, const std::array<uint32
   for (uint32_t c : s.cross) {
     const uint32_t i = c / 4, k = c % 4, j = inner[i][k] - base;
     const uint32_t a = s.part[i], b = s.part[j];
-    s.graph.push_back({std::min(a, b), std::max(a, b), corner_edge_length(mesh, order[i], k)});
+    s.graph.push_back({std::min(a, b), std::max(a, b), edge_length(mesh, mesh.face_edges[order[i]][k])});
   }
   sum_equal_pairs(s.graph);
 }

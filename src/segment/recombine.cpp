@@ -6,14 +6,6 @@
 #include "union_find.hpp"
 
 namespace rosmill::segment::detail {
-namespace {
-
-double edge_length(const Mesh& mesh, uint32_t e) {
-  const MeshEdge& edge = mesh.edges[e];
-  return (mesh.vertices[edge.a] - mesh.vertices[edge.b]).norm();
-}
-
-}  // namespace
 
 // Pairs come one per border edge (tens of thousands): they are summed in an open-addressing table sized to them.
 void sum_equal_pairs(std::vector<LabelPair>& pairs) {
