@@ -20,7 +20,7 @@
 #include "rosmill/cloud/cloud_plan.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/post.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/stock.hpp"
@@ -31,7 +31,8 @@ namespace rosmill::cli {
 namespace {
 
 struct Options {
-  std::string file, strategy, tool = "ball:6", tools, units, out, dialect = "linuxcnc", stock;
+  std::string file, strategy, tool = "ball:6", tools, units, out, dialect = "linuxcnc", stock, machine;
+  bool no_limits = false;
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = 0.001, angle = 0.0;
   bool json = false;
   // Cloud input (seed 004).
@@ -129,7 +130,10 @@ void run(const Options& o) {
   const std::string tool_name = seed_cloud ? job_tools(job) : params.tool.name;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.out.empty() && gcode::is_program_path(o.out)) {
-    gcode::write_program(o.out, gcode::post(job, gcode::post_options_for(o.dialect)));
+    // The same checked pipeline as `rosmill post`: limits of the machine found as `send` finds it.
+    gcode::ProgramChecks checks;
+    checks.machine = machine_to_check(o.machine, o.no_limits);
+    gcode::write_program(o.out, gcode::prepare_program(job, gcode::post_options_for(o.dialect), checks).program);
   } else if (!o.out.empty()) {
     write_toolpath_file(o.out, job);
   }
@@ -179,6 +183,9 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_flag("--json", o->json, "print one JSON object");
   cmd->add_option("-o,--out", o->out, "write toolpath.json, or a G-code program when it ends in .ngc, .nc or .gcode");
   cmd->add_option("--dialect", o->dialect, "G-code dialect for -o prog.ngc: linuxcnc or grbl")->capture_default_str();
+  cmd->add_option("--machine", o->machine,
+                  "-o prog.ngc: machine limits the program must keep (default config/machine.yaml here, else the package's)");
+  cmd->add_flag("--no-limits", o->no_limits, "-o prog.ngc: write the program without checking the machine's limits");
   cmd->add_option("--orient", o->orient, "cloud: none, ransac (fit the base plane) or lowest (fit the lowest points)");
   cmd->add_option("--origin", o->origin, "cloud: corner (program origin at the stock corner) or keep");
   cmd->add_option("--voxel", o->voxel, "cloud: voxel downsampling leaf, mm (0: off)");

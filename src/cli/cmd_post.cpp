@@ -4,10 +4,9 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "config_file.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/machine_limits.hpp"
-#include "rosmill/gcode/post.hpp"
-#include "rosmill/gcode/rs274_check.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/plan/toolpath_io.hpp"
 
 namespace rosmill::cli {
@@ -18,7 +17,7 @@ struct PostArgs {
   gcode::PostOptions options;
   std::string coolant = "flood";
   double stock_top = NAN;
-  bool verify = false;
+  bool verify = false, no_limits = false;
 };
 
 gcode::Coolant parse_coolant(const std::string& s) {
@@ -47,7 +46,12 @@ void run(const PostArgs& a) {
   o.coolant = parse_coolant(a.coolant);
   if (o.title.empty()) o.title = a.input;
   const Job job = read_toolpath_file(a.input);
-  const gcode::Program p = gcode::post(job, o);
+  gcode::ProgramChecks checks;
+  checks.machine = machine_to_check(a.machine, a.no_limits);
+  checks.limits.stock_top = a.stock_top;
+  checks.rs274 = a.verify;
+  const gcode::PreparedProgram prepared = gcode::prepare_program(job, o, checks);
+  const gcode::Program& p = prepared.program;
   nlohmann::json report{{"output", a.output}, {"dialect", p.dialect}, {"lines", p.lines.size()},
                         {"motion_blocks", p.motion_blocks()}};
   if (o.arcs) {
@@ -55,17 +59,9 @@ void run(const PostArgs& a) {
     for (const auto& tp : job) moves += tp.move_count();
     report["toolpath_moves"] = moves;
   }
-  if (!a.machine.empty()) {
-    gcode::LimitCheckOptions lo;
-    lo.stock_top = a.stock_top;
-    gcode::require_within_limits(p.lines, gcode::load_machine_limits(a.machine), lo);
-    report["machine"] = a.machine;
-  }
-  if (a.verify) {
-    const auto rep = gcode::compare_with_job(p, job, gcode::run_rs274(p.lines), o.arc_tolerance);
-    if (!rep.ok) throw Error("rs274 verification", rep.problem);
-    report["rs274"] = {{"canon_moves", rep.canon_moves}, {"max_deviation_mm", rep.max_deviation}};
-  }
+  if (checks.machine) report["machine"] = machine_file(a.machine);
+  if (prepared.rs274)
+    report["rs274"] = {{"canon_moves", prepared.rs274->canon_moves}, {"max_deviation_mm", prepared.rs274->max_deviation}};
   gcode::write_program(a.output, p);
   if (!a.map.empty()) write_map(a.map, p);
   std::printf("%s\n", report.dump().c_str());
@@ -83,7 +79,9 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_flag("--line-numbers", a->options.line_numbers, "write N words");
   cmd->add_option("--blend-tolerance", a->options.blend_tolerance, "G64 P (LinuxCNC), mm")->capture_default_str();
   cmd->add_option("--coolant", a->coolant, "flood, mist or off")->capture_default_str();
-  cmd->add_option("--machine", a->machine, "machine limits (config/machine.yaml): refuse a program that breaks one");
+  cmd->add_option("--machine", a->machine,
+                  "machine limits the program must keep (default config/machine.yaml here, else the package's)");
+  cmd->add_flag("--no-limits", a->no_limits, "write the program without checking the machine's limits");
   cmd->add_option("--stock-top", a->stock_top, "stock top z for the rapid clearance check (default: highest cut)");
   cmd->add_flag("--verify", a->verify, "run LinuxCNC's rs274 on the program and compare its moves with the toolpath");
   cmd->add_option("--map", a->map, "write the line -> (toolpath, pass, move) map as JSON");

@@ -15,10 +15,9 @@
 #include "command.hpp"
 #include "config_file.hpp"
 #include "rosmill/control/controller.hpp"
+#include "rosmill/control/program_run.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/machine_limits.hpp"
-#include "rosmill/gcode/post.hpp"
-#include "rosmill/gcode/rs274_check.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
 
 namespace rosmill::cli {
 namespace {
@@ -37,25 +36,6 @@ extern "C" void on_interrupt(int) { interrupted = true; }
 std::string dialect_for(const SendArgs& a) {
   if (!a.dialect.empty()) return gcode::find_dialect(a.dialect).name;
   return a.controller.rfind("grbl", 0) == 0 ? "grbl" : "linuxcnc";
-}
-
-// Safety before anything is sent: limits always (unless --no-limits), LinuxCNC's interpreter on request.
-void check_program(const std::vector<std::string>& lines, const SendArgs& a) {
-  if (!a.no_limits) {
-    const std::string machine = a.machine.empty() ? default_config("machine.yaml") : a.machine;
-    if (!std::filesystem::exists(machine))
-      throw Error("--machine", "no machine file '" + machine + "': give --machine FILE (or --no-limits to send "
-                                                                "without checking the machine's limits)");
-    gcode::LimitCheckOptions o;
-    o.stock_top = a.stock_top;
-    gcode::require_within_limits(lines, gcode::load_machine_limits(machine), o);
-  }
-  if (a.verify) {
-    const gcode::Rs274Result r = gcode::run_rs274(lines);
-    if (!r.ok)
-      throw Error(a.program + (r.error_line ? " line " + std::to_string(r.error_line) : ""),
-                  "LinuxCNC's interpreter (rs274) refuses the program: " + r.error);
-  }
 }
 
 // Progress: a bar redrawn in place on a terminal, a line per tenth of the program (and per state change) otherwise.
@@ -97,11 +77,15 @@ class ProgressReport {
 
 void run(const SendArgs& a) {
   const std::vector<std::string> lines = gcode::read_program_lines(a.program);
-  if (lines.empty()) throw Error(a.program, "the program is empty");
+  // Safety before anything is sent: limits always (unless --no-limits), LinuxCNC's interpreter on request.
+  gcode::ProgramChecks checks;
+  checks.machine = machine_to_check(a.machine, a.no_limits);
+  checks.limits.stock_top = a.stock_top;
+  checks.rs274 = a.verify;
+  gcode::check_program(lines, checks, a.program);
   if (a.from_line < 1 || a.from_line > lines.size())
     throw Error("--from-line", std::to_string(a.from_line) + " is outside the program (1.." +
                                    std::to_string(lines.size()) + ")");
-  check_program(lines, a);
 
   control::ControllerOptions co;
   co.dialect = dialect_for(a);

@@ -2,7 +2,6 @@
 
 #include <sys/stat.h>
 
-#include <chrono>
 #include <filesystem>
 
 #include "rosmill/control/grbl.hpp"
@@ -98,30 +97,6 @@ std::unique_ptr<Controller> open_controller(const std::string& url, const Contro
     return std::make_unique<FileController>(rest, o);
   }
   throw Error("--controller " + url, "unknown controller kind '" + scheme + "' (linuxcnc, grbl, grbl+tcp, file)");
-}
-
-ControllerStatus run_to_end(Controller& c, const std::vector<std::string>& program, const SendOptions& o,
-                            const Progress& progress, double stall_s) {
-  c.start(program, o);
-  auto last_change = std::chrono::steady_clock::now();
-  ControllerStatus prev;
-  for (;;) {
-    const ControllerStatus s = c.poll(0.05);
-    if (progress) progress(s);
-    if (s.state == RunState::Finished) return s;
-    if (s.state == RunState::Error || s.state == RunState::Alarm || s.state == RunState::Disconnected ||
-        s.state == RunState::Idle)
-      throw Error(c.describe(), (s.error.empty() ? std::string(run_state_name(s.state)) : s.error) +
-                                    "; resume with --from-line " + std::to_string(s.acknowledged_line + 1));
-    const bool moved = s.acknowledged_line != prev.acknowledged_line || s.current_line != prev.current_line ||
-                       (s.position - prev.position).norm() > 1e-6 || s.state != prev.state;
-    if (moved || s.state == RunState::Paused) last_change = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(std::chrono::steady_clock::now() - last_change).count() > stall_s)
-      throw Error(c.describe(), "no progress for " + std::to_string(stall_s) + " s at program line " +
-                                    std::to_string(s.current_line) + "; resume with --from-line " +
-                                    std::to_string(s.acknowledged_line + 1));
-    prev = s;
-  }
 }
 
 }  // namespace rosmill::control

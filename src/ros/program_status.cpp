@@ -49,6 +49,24 @@ ProgramStatusMsg to_status_msg(const control::ControllerStatus& s, uint8_t state
   return m;
 }
 
+ProgramPlacement program_placement(const ToolpathJobMsg& msg, const gcode::MachineLimits* machine) {
+  ProgramPlacement p;
+  // The program is in the setup frame (the part re-fixtured); the status shows the tool on the part as it sits.
+  Eigen::Quaterniond to_setup = Eigen::Quaterniond::Identity();
+  if (!msg.toolpaths.empty()) {
+    const auto& q = msg.toolpaths[0].setup_rotation;
+    to_setup = Eigen::Quaterniond(q.w, q.x, q.y, q.z);
+    if (to_setup.norm() < 1e-9) to_setup = Eigen::Quaterniond::Identity();
+  }
+  p.machine_to_workpiece = Eigen::Isometry3d(to_setup.normalized().conjugate()) *
+                           Eigen::Translation3d(machine ? Vec3(-machine->work_offset) : Vec3::Zero());
+  Box3 box;
+  for (const Toolpath& tp : from_job_msg(msg)) box.add(tp.bounds());
+  const Vec3 centre = 0.5 * (box.min + box.max);
+  p.anchor = to_point_msg(p.machine_to_workpiece.linear() * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
+  return p;
+}
+
 visualization_msgs::MarkerArray status_markers(const ProgramStatusMsg& status, const geometry_msgs::Point& anchor) {
   visualization_msgs::MarkerArray array;
   visualization_msgs::Marker text =

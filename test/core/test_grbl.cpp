@@ -8,6 +8,7 @@
 
 #include "grbl_sim.hpp"
 #include "rosmill/control/controller.hpp"
+#include "rosmill/control/program_run.hpp"
 #include "rosmill/control/transport.hpp"
 #include "rosmill/error.hpp"
 

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "rosmill/control/controller.hpp"
+#include "rosmill/control/program_run.hpp"
 #include "rosmill/control/linuxcnc.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/block.hpp"

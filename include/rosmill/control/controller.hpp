@@ -77,10 +77,4 @@ std::vector<std::string> resumed_rest(const std::vector<std::string>& program, s
 std::vector<std::string> resumed_program(const std::vector<std::string>& program, const SendOptions& options,
                                          const std::string& dialect);
 
-// Runs the program to its end, calling `progress` after each poll. Throws Error with the controller's message
-// and the last acknowledged line on error, alarm, lost connection or when nothing progresses for stall_s.
-using Progress = std::function<void(const ControllerStatus&)>;
-ControllerStatus run_to_end(Controller& c, const std::vector<std::string>& program, const SendOptions& options,
-                            const Progress& progress = {}, double stall_s = 60.0);
-
 }  // namespace rosmill::control

@@ -6,7 +6,9 @@
 #include <Eigen/Geometry>
 
 #include "rosmill/ProgramStatusMsg.h"
+#include "rosmill/ToolpathJobMsg.h"
 #include "rosmill/control/controller.hpp"
+#include "rosmill/gcode/machine_limits.hpp"
 
 namespace rosmill::edge {
 
@@ -18,6 +20,15 @@ const char* status_state_name(uint8_t state);
 // offset (config/machine.yaml), then back from the setup frame the program was posted in.
 ProgramStatusMsg to_status_msg(const control::ControllerStatus& status, uint8_t state,
                                const Eigen::Isometry3d& machine_to_workpiece);
+
+// Where a posted job sits for the status view: the transform from the controller's machine position (mm) to the
+// workpiece frame (minus the work offset, then back from the setup frame the job was planned in) and the anchor
+// of the status text (m, 15 mm above the job's centre).
+struct ProgramPlacement {
+  Eigen::Isometry3d machine_to_workpiece = Eigen::Isometry3d::Identity();
+  geometry_msgs::Point anchor;
+};
+ProgramPlacement program_placement(const ToolpathJobMsg& msg, const gcode::MachineLimits* machine);
 
 // Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") above `anchor` (m) and, when the
 // position is known, a SPHERE at the tool tip.

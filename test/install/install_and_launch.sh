@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# The package as a ROS user gets it: `cmake --install` into an empty prefix, then, in an environment that sees only
+# that prefix and the system's ROS, the installed tool runs, and `roslaunch rosmill bridge.launch` starts the
+# installed node with the installed configuration; SIGINT stops it within 2 s.
+# Usage: install_and_launch.sh BUILD_DIR
+set -euo pipefail
+build="$1"
+prefix="$(mktemp -d /tmp/rosmill-install.XXXXXX)"
+work="$(mktemp -d /tmp/rosmill-install-run.XXXXXX)"
+launch_pid=""
+cleanup() {
+  [ -n "$launch_pid" ] && kill -9 "$launch_pid" 2>/dev/null || true
+  rm -rf "$prefix" "$work"
+}
+trap cleanup EXIT
+fail() { echo "install test: FAILED: $*" >&2; exit 1; }
+
+cmake --install "$build" --prefix "$prefix" >"$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
+for f in bin/rosmill lib/rosmill/gcode_bridge lib/rosmill/toolpath_planner lib/rosmill/stl_loader \
+         share/rosmill/package.xml share/rosmill/launch/bridge.launch share/rosmill/launch/demo.launch \
+         share/rosmill/config/machine.yaml share/rosmill/config/tools.yaml share/rosmill/config/rosmill.rviz \
+         include/rosmill/gcode/prepare_program.hpp share/rosmill/msg/ProgramStatusMsg.msg \
+         share/rosmill/action/RunProgram.action; do
+  [ -e "$prefix/$f" ] || fail "the install has no $f"
+done
+ls "$prefix"/include/rosmill/*.h >/dev/null 2>&1 || fail "the install has no generated message headers"
+ls "$prefix"/lib/rosmill/*.a "$prefix"/lib/*.a >/dev/null 2>&1 || ls "$prefix"/lib/lib*.a >/dev/null 2>&1 \
+  || fail "the install has no libraries"
+
+# Only the install and the system's ROS are visible from here on: no devel space, no source folder.
+port=$((20000 + RANDOM % 20000))
+clean_env=(env -i HOME="$work" PATH="$prefix/bin:/usr/bin:/bin" ROS_PACKAGE_PATH="$prefix/share"
+           CMAKE_PREFIX_PATH="$prefix:/usr" PYTHONPATH="$prefix/lib/python3/dist-packages" ROS_HOME="$work/ros"
+           ROS_MASTER_URI="http://localhost:$port" ROS_HOSTNAME=localhost)
+"${clean_env[@]}" rospack find rosmill | grep -qx "$prefix/share/rosmill" || fail "rospack does not find the install"
+(cd "$work" && "${clean_env[@]}" rosmill primitive cube -o "$work/cube.stl" >/dev/null) || fail "installed rosmill"
+
+"${clean_env[@]}" roslaunch -p "$port" rosmill bridge.launch controller:="file://$work" program_dir:="$work/programs" \
+  >"$work/launch.log" 2>&1 &
+launch_pid=$!
+up=""
+for _ in $(seq 1 150); do
+  if "${clean_env[@]}" rosnode list 2>/dev/null | grep -qx /gcode_bridge &&
+     "${clean_env[@]}" rosservice list 2>/dev/null | grep -qx /gcode_bridge/start; then up=1; break; fi
+  kill -0 "$launch_pid" 2>/dev/null || break
+  sleep 0.2
+done
+[ -n "$up" ] || { cat "$work/launch.log"; fail "the installed bridge did not come up"; }
+machine=$("${clean_env[@]}" rosparam get /gcode_bridge/machine)
+[ "$machine" = "$prefix/share/rosmill/config/machine.yaml" ] || fail "machine parameter is '$machine', not the install's"
+
+node_pid=$(pgrep -f "$prefix/lib/rosmill/gcode_bridge" | head -1)
+[ -n "$node_pid" ] || fail "no gcode_bridge process from the install"
+start=$(date +%s%N)
+kill -INT "$node_pid"
+for _ in $(seq 1 100); do kill -0 "$node_pid" 2>/dev/null || break; sleep 0.05; done
+kill -0 "$node_pid" 2>/dev/null && fail "gcode_bridge still runs 5 s after SIGINT"
+ms=$(( ($(date +%s%N) - start) / 1000000 ))
+[ "$ms" -le 2000 ] || fail "gcode_bridge took $ms ms to stop after SIGINT (limit 2000)"
+kill -INT "$launch_pid"; wait "$launch_pid" 2>/dev/null || true; launch_pid=""
+echo "install test: installed into $prefix, roslaunch found it, the bridge stopped $ms ms after SIGINT"
