@@ -3,7 +3,7 @@
 #
 # Only the C++ and Python generators run (ROS_LANG_DISABLE; the only other one installed is Lisp): Lisp would cost build time for
 # nothing. Python messages are kept for rostest scripts and rosbag tooling written in Python.
-# rosbag pulls in pluginlib, which runs ament's templates with the first python3 on PATH (pitfall 1: a pyenv one
+# rosbag pulls in pluginlib, which runs ament's templates with the first python3 on PATH (a pyenv one
 # without the ROS modules): point it at the system interpreter catkin uses.
 if(PYTHON_EXECUTABLE AND NOT Python3_EXECUTABLE)
   set(Python3_EXECUTABLE ${PYTHON_EXECUTABLE} CACHE FILEPATH "python3 with the ROS modules")

@@ -1,4 +1,4 @@
-// segmenter: segments the part for machining (seed 001). On every mesh (`mesh`, from stl_loader) it runs phase 1
+// segmenter: segments the part for machining (Lefebvre & Lauwers). On every mesh (`mesh`, from stl_loader) it runs phase 1
 // (sharp-edge surface flooding and recombination, kept per mesh) and phase 2 for the current setup, and publishes
 // the SegmentationMsg latched on `segmentation` and the coloured patches on `segmentation_markers`. The
 // `set_setup` service re-runs only phase 2 for another setup.
@@ -13,7 +13,7 @@
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 #include "rosmill/ros/segmentation_msg.hpp"
-#include "rosmill/ros/setup_frame.hpp"
+#include "rosmill/segment/setup_frame.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 
 namespace rosmill::edge {

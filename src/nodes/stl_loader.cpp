@@ -1,6 +1,6 @@
 // stl_loader: reads an STL part (the `path` parameter at start-up, or the load_mesh service at any time) and
 // publishes it latched as shape_msgs/Mesh on `mesh` (metres, frame `frame_id`) and as a marker on `mesh_marker`.
-// A path "primitive:<name>" loads a seed primitive (cube, cylinder, dome, cone, cavity).
+// A path "primitive:<name>" loads a test primitive of the STL slicing paper (cube, cylinder, dome, cone, cavity).
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
 #include <visualization_msgs/Marker.h>
@@ -47,7 +47,7 @@ class StlLoader {
     options.units = parse_units(units, "units");  // checked for primitives too: a wrong request is refused whole
     options.weld.tolerance = weld_tolerance_;
     if (path.rfind(prefix, 0) == 0)
-      mesh = make_primitive(path.substr(prefix.size()));  // the seed primitives are in millimetres
+      mesh = make_primitive(path.substr(prefix.size()));  // the primitives are in millimetres
     else
       mesh = read_stl(path, options);
     if (mesh.faces.empty()) throw Error(path, "holds no triangles");

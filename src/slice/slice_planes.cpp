@@ -1,4 +1,4 @@
-// Where the slice planes go: by step, by count, by the seed's accuracy, or an explicit list.
+// Where the slice planes go: by step, by count, by the accuracy (the STL slicing paper's rule), or an explicit list.
 #include <algorithm>
 #include <cmath>
 

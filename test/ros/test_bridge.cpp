@@ -45,7 +45,7 @@ ToolpathJobMsg square_job(double depth = -1.0) {
   tp.passes.push_back(pass);
   std_msgs::Header header;
   header.frame_id = "workpiece";
-  return edge::to_job_msg({tp}, edge::named_setup("+Z"), header);
+  return edge::to_job_msg({tp}, named_setup("+Z"), header);
 }
 
 std_srvs::Trigger trigger(const std::string& name) {

@@ -21,7 +21,7 @@
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/plan/strategy.hpp"
 #include "rosmill/plan/toolpath.hpp"
-#include "rosmill/ros/setup_frame.hpp"
+#include "rosmill/segment/setup_frame.hpp"
 
 namespace rosmill::edge {
 

@@ -7,7 +7,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/plan/strategy.hpp"
-#include "rosmill/ros/setup_frame.hpp"
+#include "rosmill/segment/setup_frame.hpp"
 
 namespace rosmill::edge {
 

@@ -1,6 +1,6 @@
-// Z slicing of a mesh into closed, oriented, nested contours (seed 000: "The Slicing Process").
+// Z slicing of a mesh into closed, oriented, nested contours ("Tool Path Generation for CNC Milling based on STL Files" (Eng. & Tech. Journal 33(A) 2, 2015), "The Slicing Process").
 //
-// A plane z = h meets a triangle where an edge goes from below the plane to above it (the seed's equations 1 and 2
+// A plane z = h meets a triangle where an edge goes from below the plane to above it (the paper's equations 1 and 2
 // with the plane's normal along Z). Degenerate cases are decided by one symbolic rule, never by a tolerance: a
 // vertex lying exactly on the plane counts as above it, i.e. the section is the limit of sections at h - eps.
 // Then every triangle has 0 or 2 crossing edges, every crossing edge is crossed by all of its faces, and the
@@ -46,7 +46,7 @@ struct SliceSummary {
 std::vector<double> planes_by_step(const Mesh& mesh, double step, const std::string& where = "--step");
 // --layers: n planes evenly spaced strictly between Zmin and Zmax: Zmin + k * (Zmax - Zmin) / (n + 1).
 std::vector<double> planes_by_count(const Mesh& mesh, int n, const std::string& where = "--layers");
-// The seed's accuracy: the fewest evenly spaced planes from Zmin to Zmax whose interval is at most `accuracy`.
+// The paper's accuracy: the fewest evenly spaced planes from Zmin to Zmax whose interval is at most `accuracy`.
 std::vector<double> planes_by_accuracy(const Mesh& mesh, double accuracy, const std::string& where = "--accuracy");
 // An explicit list, sorted ascending (every value must be finite).
 std::vector<double> planes_from_list(std::vector<double> z, const std::string& where = "--z");
@@ -58,7 +58,7 @@ std::vector<SliceLayer> slice_mesh(const Mesh& mesh, const std::vector<double>& 
 
 SliceSummary summarize(const std::vector<SliceLayer>& layers);
 
-// The seed's export for other CAM tools: "x y z" per line, a blank line between contours (closed contours repeat
+// The paper's export for other CAM tools: "x y z" per line, a blank line between contours (closed contours repeat
 // their first point at the end). Throws Error when the file cannot be written.
 void write_slices_dat(const std::string& path, const std::vector<SliceLayer>& layers);
 

@@ -1,5 +1,6 @@
-// A machining setup as the ROS layer sees it: the tool axis in the workpiece frame and the rotation that turns it
-// onto +Z (planning happens with the tool pointing down the machine's Z, DESIGN.md "Frames"). No ROS headers here.
+// A machining setup: the tool axis in the workpiece frame and the rotation that turns it onto +Z. Planning happens
+// with the tool pointing down the machine's Z: for a setup the part is turned over (re-fixtured) so that the setup's
+// tool axis becomes +Z, and the toolpath of that setup is written in the turned part's frame.
 #pragma once
 #include <Eigen/Geometry>
 #include <string>
@@ -8,7 +9,7 @@
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/segment/setup_filter.hpp"
 
-namespace rosmill::edge {
+namespace rosmill {
 
 struct SetupFrame {
   std::string name;                 // "+Z", "-X", ... or "custom"
@@ -37,4 +38,4 @@ segment::SetupFilter setup_filter_of(const std::string& name, const Vec3& direct
 Mesh mesh_in_setup(const Mesh& mesh, const SetupFrame& setup);
 PointCloud cloud_in_setup(const PointCloud& cloud, const SetupFrame& setup);
 
-}  // namespace rosmill::edge
+}  // namespace rosmill
