@@ -57,7 +57,10 @@ std::vector<double> route_drops(const Surface& s, const Cutter& probe, const std
 }  // namespace
 
 Job grid_rough_on(const Surface& s, const PlanParams& params, const PlanProgress& progress, PlanReport* report) {
-  const PlanFrame f = make_frame(s, params);
+  // The paper's stock is the part's box: levels from its top, the safe height the clearance above it.
+  PlanParams box_stock = params;
+  box_stock.stock_margin = 0.0;
+  const PlanFrame f = make_frame(s, box_stock);
   const double R = f.cutter.radius(), delta = f.allowance;
   const double grid = std::isnan(params.stepover) ? 2 * R - 0.5 * delta : f.stepover;
   if (!(grid > 0)) throw Error("grid-rough", "grid size 2R - 0.5 allowance is not positive");

@@ -5,7 +5,8 @@
 // cutter grown by δ and lifted by δ; between samples it moves up first or down last (a staircase), and the
 // samples are close enough that the footprints of two neighbours cover the band swept between them: no straight
 // move comes closer than δ to the surface. Stretches where a level cuts nothing new are crossed at the safe
-// height, and samples where the surface skips (Surface::skips) are left out.
+// height, and samples where the surface skips (Surface::skips) are left out. The stock is the part's box (the
+// stock margin is not used): the safe height is the safe clearance above its top.
 #pragma once
 #include "rosmill/plan/plan_report.hpp"
 #include "rosmill/plan/plan_support.hpp"
