@@ -94,12 +94,7 @@ const PlanTemplate* PresetTable::find_template(const std::string& name) const {
 PresetTable parse_presets(const std::string& yaml_text, const std::string& name) {
   // The presets' tools are a tool table in the same file (config/tools.yaml's format).
   const ToolTable tools = parse_tool_table(yaml_text, name);
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw Error(name + ":" + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg);
-  }
+  const YAML::Node root = YAML::Load(yaml_text);  // valid YAML: the tool table's reader has checked it
   PresetTable table;
   table.source = name;
   const YAML::Node presets = root["presets"];
