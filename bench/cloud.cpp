@@ -1,5 +1,5 @@
-// Seed 004 from a 300k-point cloud to the three toolpaths (issue 6): rough (flat 10), semi (ball 5), finish
-// (ball 3) with the seed's defaults, on two clouds:
+// Muslimin et al.'s three stages from a 300k-point cloud: the presets cloud-rough (flat 10), cloud-semi (ball 5)
+// and cloud-finish (ball 3) of config/presets.yaml, planned by plan(request) on a CloudSurface, on two clouds:
 //   relief-300k  a generated 120 x 100 mm relief (waves, a boss and a pocket), 300,000 points at random plan
 //                positions, noise sigma 0.02 mm: the size of part the seed is about.
 //   rs1          ../shared/data/cloud/pcl_rs1.pcd (289,541 points, metres), prepared by fitting its base plane
@@ -20,10 +20,12 @@
 #include <tbb/global_control.h>
 
 #include "cpu_time.hpp"
-#include "rosmill/cloud/cloud_plan.hpp"
+#include "rosmill/cloud/cloud_prep.hpp"
+#include "rosmill/cloud/cloud_surface.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/heap_reuse.hpp"
+#include "rosmill/planner/plan_request.hpp"
 
 using namespace rosmill;
 
@@ -61,26 +63,29 @@ std::vector<Vec3> relief_cloud(size_t n) {
 
 struct Figures {
   double wall[5] = {}, cpu[5] = {};  // surface, rough, semi, finish, all
-  std::vector<CloudStageReport> stages;
+  std::vector<PlanReport> stages;
   size_t holes = 0;
   double spacing = 0, support = 0;
 };
 
 Figures run_once(const PointCloud& cloud) {
+  static const PresetTable presets = read_presets(ROSMILL_SOURCE_DIR "/config/presets.yaml");
   Figures f;
-  const CloudPlanOptions o;
   std::unique_ptr<CloudSurface> s;
-  CloudStageReport r[3];
   auto t = timed([&] { s = std::make_unique<CloudSurface>(cloud); });
   f.wall[0] = t.first, f.cpu[0] = t.second;
-  t = timed([&] { plan_cloud_rough(*s, o, {}, &r[0]); });
-  f.wall[1] = t.first, f.cpu[1] = t.second;
-  t = timed([&] { plan_cloud_raster(*s, o.semi, "cloud-semi", o, {}, &r[1]); });
-  f.wall[2] = t.first, f.cpu[2] = t.second;
-  t = timed([&] { plan_cloud_raster(*s, o.finish, "cloud-finish", o, {}, &r[2]); });
-  f.wall[3] = t.first, f.cpu[3] = t.second;
+  PlanningRequest r;
+  r.input.surface = s.get();
+  r.params.tolerance = NAN;  // the presets'
+  r.presets = &presets;
+  r.reports = &f.stages;
+  const char* stages[3] = {"cloud-rough", "cloud-semi", "cloud-finish"};
+  for (int k = 0; k < 3; ++k) {
+    r.strategy = stages[k];
+    t = timed([&] { plan(r); });
+    f.wall[k + 1] = t.first, f.cpu[k + 1] = t.second;
+  }
   for (int k = 0; k < 4; ++k) f.wall[4] += f.wall[k], f.cpu[4] += f.cpu[k];
-  f.stages.assign(r, r + 3);
   f.holes = s->holes().holes().size();
   f.spacing = s->mean_spacing();
   f.support = s->sampling_radius();
@@ -99,7 +104,7 @@ void bench(const char* name, const PointCloud& cloud) {
   std::printf("  %-32s %8s %8s %10s %10s %8s\n", "step", "seconds", "cpu s", "drops", "CL points", "buffer");
   for (int k = 0; k < 5; ++k) {
     if (k >= 1 && k <= 3) {
-      const CloudStageReport& r = m.stages[size_t(k - 1)];
+      const PlanReport& r = m.stages[size_t(k - 1)];
       std::printf("  %-32s %8.3f %8.3f %10zu %10zu %8zu\n", steps[k], m.wall[k], m.cpu[k], r.samples, r.cl_points,
                   r.buffer_points);
     } else {

@@ -13,7 +13,8 @@
 #include "rosmill/error.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
-#include "rosmill/plan/strategy.hpp"
+#include "rosmill/planner/plan_request.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
 #include "bundled_models.hpp"
 
 using namespace rosmill;
@@ -55,10 +56,12 @@ int main(int argc, char** argv) {
       p.stepover = s.stepover;
       p.stepdown = s.stepdown;
       p.allowance = s.allowance;
-      PlanInput in;
-      in.mesh = &mesh;
+      PlanningRequest r;
+      r.input.mesh = &mesh;
+      r.strategy = s.strategy;
+      r.params = p;
       const auto t0 = std::chrono::steady_clock::now();
-      const Job job = plan(s.strategy, in, p);
+      const Job job = plan(r);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       ToolpathStats total;
       for (const Toolpath& tp : job) {

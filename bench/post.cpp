@@ -16,7 +16,7 @@
 #include "cpu_time.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/geometry/primitives.hpp"
-#include "rosmill/plan/strategy.hpp"
+#include "rosmill/planner/plan_request.hpp"
 #include "rosmill/heap_reuse.hpp"
 
 using namespace rosmill;
@@ -94,16 +94,17 @@ void bench_arc_reduction() {
   std::printf("  %-9s %7s %12s %23s %23s\n", "primitive", "moves", "line blocks", "arcs 0.005 mm", "arcs 0.02 mm");
   for (const std::string& name : primitive_names()) {
     const Mesh mesh = make_primitive(name);
-    PlanInput in;
-    in.mesh = &mesh;
-    PlanParams params;
+    PlanningRequest r;
+    r.input.mesh = &mesh;
+    r.strategy = "contour";
+    PlanParams& params = r.params;
     params.tool.id = 1;
     params.tool.cutter = Cutter::flat(6);
     params.tool.spindle_rpm = 12000;
     params.tool.feed = 800;
     params.tool.plunge_feed = 200;
     params.stepdown = 5;
-    const Job job = plan("contour", in, params);
+    const Job job = plan(r);
     size_t moves = 0;
     for (const Toolpath& tp : job) moves += tp.move_count();
     gcode::PostOptions lines_only;

@@ -1,12 +1,13 @@
-// rosmill plan FILE --strategy NAME [--tool ID|ball:D|flat:D|bull:D:r] [--tools FILE] [--stepover ..]
-//   [--stepdown ..] [--allowance ..] [--tolerance ..] [--angle ..] [--units ..] [--json]
+// rosmill plan FILE --strategy NAME [--tool ID|ball:D|flat:D|bull:D:r] [--tools FILE] [--presets FILE]
+//   [--stepover ..] [--stepdown ..] [--allowance ..] [--tolerance ..] [--angle ..] [--units ..] [--json]
 //   [-o toolpath.json | -o prog.ngc|.nc|.gcode [--dialect linuxcnc|grbl]]
 //   cloud files: [--orient none|ransac|lowest] [--origin corner|keep] [--voxel MM] [--outliers K]
 //   [--holes bridge|skip]
-// Plans a toolpath through rosmill::plan() on a mesh (STL) or a cloud (PCD/PLY). Lengths in mm. A cloud is
-// prepared first (cloud/cloud_prep.hpp: orientation, origin at the stock corner, filters, a density and holes
-// report); the seed 004 strategies (cloud-rough, cloud-semi, cloud-finish, cloud-all) take the seed's tools and
-// tolerance unless --tool / --tolerance are given.
+// rosmill plan --list: the strategies, presets, templates and tools.
+// Plans through rosmill::plan(request) on a mesh (STL) or a cloud (PCD/PLY). Lengths in mm. A cloud is prepared
+// first (cloud/cloud_input.hpp: orientation, origin at the stock corner, filters, a density and holes report).
+// NAME is a strategy, a preset or a template (config/presets.yaml); a preset takes its own tool and tolerance
+// unless --tool / --tolerance are given.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,52 +18,61 @@
 
 #include "command.hpp"
 #include "config_file.hpp"
-#include "rosmill/cloud/cloud_plan.hpp"
+#include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/stock.hpp"
-#include "rosmill/plan/strategy.hpp"
-#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/planner/plan_request.hpp"
+#include "rosmill/planner/strategy_table.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
 
 namespace rosmill::cli {
 namespace {
 
 struct Options {
-  std::string file, strategy, tool = "ball:6", tools, units, out, dialect = "linuxcnc", stock, machine;
+  std::string file, strategy, tool = "ball:6", tools, presets, units, out, dialect = "linuxcnc", stock, machine;
   bool no_limits = false;
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = 0.001, angle = 0.0;
-  bool json = false;
-  // Cloud input (seed 004).
-  std::string orient = "none", origin = "corner", holes = "bridge";
-  double voxel = 0.0;
-  int outliers = 0;
+  bool json = false, list = false;
+  CloudInputOptions cloud;  // --orient, --origin, --voxel, --outliers, --holes
   bool tool_given = false, tolerance_given = false;
 };
 
-bool is_seed_cloud_strategy(const std::string& name) {
-  return name == "cloud-rough" || name == "cloud-semi" || name == "cloud-finish" || name == "cloud-all";
-}
-
-// The cloud in the workpiece frame: read in its units, oriented, origin at the stock corner, filtered.
+// The cloud in the workpiece frame: read in its units (scaled to mm), then the shared input step.
 PointCloud prepared_cloud(const Options& o, std::string& report) {
   CloudReadOptions ro;
   if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
-  CloudPrepOptions prep;
-  prep.units = Units::Millimetre;  // read_cloud has scaled it
-  if (o.orient == "ransac") prep.orientation = Orientation::Ransac;
-  else if (o.orient == "lowest") prep.orientation = Orientation::LowestFit;
-  else if (o.orient != "none") throw Error("--orient", "'" + o.orient + "' is not none, ransac or lowest");
-  if (o.origin != "corner" && o.origin != "keep") throw Error("--origin", "'" + o.origin + "' is not corner or keep");
-  prep.origin_at_corner = o.origin == "corner";
-  prep.voxel = o.voxel;
-  prep.outlier_neighbours = o.outliers;
   CloudPrepReport r;
-  PointCloud cloud = prepare_cloud(read_cloud(o.file, ro), prep, &r);
+  PointCloud cloud = prepare_input_cloud(read_cloud(o.file, ro).points, o.cloud, "--", &r);
   report = format_prep_report(r);
   return cloud;
+}
+
+PresetTable preset_table(const Options& o) {
+  return read_presets(o.presets.empty() ? default_config("presets.yaml") : o.presets);
+}
+
+// `rosmill plan --list`: what --strategy and --tool accept.
+void list(const Options& o) {
+  std::printf("strategies:\n");
+  for (const StrategyEntry& s : strategies()) std::printf("  %-13s %s\n", s.name.c_str(), s.description.c_str());
+  const PresetTable presets = preset_table(o);
+  std::printf("presets (%s):\n", presets.source.c_str());
+  for (const Preset& p : presets.presets)
+    std::printf("  %-13s %s [%s, %s, %s sampling]\n", p.name.c_str(), p.description.c_str(), p.strategy.c_str(),
+                p.tool.name.c_str(), sampling_name(p.sampling));
+  for (const PlanTemplate& t : presets.templates) {
+    std::string stages;
+    for (const std::string& s : t.stages) stages += (stages.empty() ? "" : " + ") + s;
+    std::printf("  %-13s %s [template: %s]\n", t.name.c_str(), t.description.c_str(), stages.c_str());
+  }
+  const std::string path = o.tools.empty() ? default_config("tools.yaml") : o.tools;
+  std::printf("tools (%s):\n", path.c_str());
+  for (const Tool& t : read_tool_table(path).tools) std::printf("  %-4d %s\n", t.id, t.name.c_str());
 }
 
 // The tools of a job, in machining order.
@@ -91,17 +101,21 @@ void run(const Options& o) {
 
   Mesh mesh;
   PointCloud cloud;
-  PlanInput input;
+  PlanningRequest request;
+  PlanInput& input = request.input;
   std::string prep_report;
-  const HolePolicy holes = parse_hole_policy(o.holes, "--holes");
-  const bool seed_cloud = is_seed_cloud_strategy(o.strategy);
-  if (seed_cloud) {
-    if (o.strategy == "cloud-all" && o.tool_given)
-      throw Error("--tool", "cloud-all runs the seed's three tools; give --tool to cloud-rough, cloud-semi or cloud-finish");
-    if (!o.tool_given) params.tool = Tool{};  // the seed's tool for the stage
-    if (!o.tolerance_given) params.tolerance = NAN;  // the seed's tolerance
+  const PresetTable presets = preset_table(o);
+  check_plan_name(o.strategy, &presets, "--strategy");
+  const PlanTemplate* tmpl = presets.find_template(o.strategy);
+  const bool preset = tmpl || presets.find(o.strategy);
+  if (preset) {
+    if (tmpl && o.tool_given)
+      throw Error("--tool", o.strategy + " runs its presets' tools; give --tool to one of its stages");
+    if (!o.tool_given) params.tool = Tool{};  // the preset's tool
+    if (!o.tolerance_given) params.tolerance = NAN;  // the preset's tolerance
   }
   if (is_cloud_path(o.file)) {
+    input.holes = cloud_hole_policy(o.cloud, "--");
     cloud = prepared_cloud(o, prep_report);
     input.cloud = &cloud;
   } else {
@@ -125,9 +139,11 @@ void run(const Options& o) {
   }
 
   const auto t0 = std::chrono::steady_clock::now();
-  const Job job = seed_cloud && input.cloud ? plan_cloud_strategy(o.strategy, cloud, params, holes)
-                                            : plan(o.strategy, input, params);
-  const std::string tool_name = seed_cloud ? job_tools(job) : params.tool.name;
+  request.strategy = o.strategy;
+  request.params = params;
+  request.presets = &presets;
+  const Job job = plan(request);
+  const std::string tool_name = preset ? job_tools(job) : params.tool.name;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.out.empty() && gcode::is_program_path(o.out)) {
     // The same checked pipeline as `rosmill post`: limits of the machine found as `send` finds it.
@@ -169,8 +185,10 @@ void run(const Options& o) {
 CommandRegistration reg([](CLI::App& app) {
   auto* cmd = app.add_subcommand("plan", "plan a toolpath (raster, waterline, rough, ...) on an STL or a cloud");
   auto o = std::make_shared<Options>();
-  cmd->add_option("FILE", o->file, "STL, PCD or PLY file")->required();
-  cmd->add_option("--strategy", o->strategy, "strategy name")->required();
+  cmd->add_option("FILE", o->file, "STL, PCD or PLY file");
+  cmd->add_option("--strategy", o->strategy, "strategy, preset or template name (--list names them)");
+  cmd->add_flag("--list", o->list, "list the strategies, presets, templates and tools, and exit");
+  cmd->add_option("--presets", o->presets, "preset table (default config/presets.yaml here, else the package's)");
   auto* tool = cmd->add_option("--tool", o->tool, "tool id in the tool table, or ball:D, flat:D, bull:D:r (mm)");
   cmd->add_option("--tools", o->tools, "tool table (default config/tools.yaml here, else the package's)");
   cmd->add_option("--stepover", o->stepover, "mm (default: the tool's)");
@@ -186,12 +204,15 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--machine", o->machine,
                   "-o prog.ngc: machine limits the program must keep (default config/machine.yaml here, else the package's)");
   cmd->add_flag("--no-limits", o->no_limits, "-o prog.ngc: write the program without checking the machine's limits");
-  cmd->add_option("--orient", o->orient, "cloud: none, ransac (fit the base plane) or lowest (fit the lowest points)");
-  cmd->add_option("--origin", o->origin, "cloud: corner (program origin at the stock corner) or keep");
-  cmd->add_option("--voxel", o->voxel, "cloud: voxel downsampling leaf, mm (0: off)");
-  cmd->add_option("--outliers", o->outliers, "cloud: statistical outlier removal over K neighbours (0: off)");
-  cmd->add_option("--holes", o->holes, "cloud: bridge holes at the highest neighbour, or skip them");
+  cmd->add_option("--orient", o->cloud.orient, "cloud: none, ransac (fit the base plane) or lowest (fit the lowest points)");
+  cmd->add_option("--origin", o->cloud.origin, "cloud: corner (program origin at the stock corner) or keep");
+  cmd->add_option("--voxel", o->cloud.voxel, "cloud: voxel downsampling leaf, mm (0: off)");
+  cmd->add_option("--outliers", o->cloud.outliers, "cloud: statistical outlier removal over K neighbours (0: off)");
+  cmd->add_option("--holes", o->cloud.holes, "cloud: bridge holes at the highest neighbour, or skip them");
   cmd->callback([o, cmd, tool, tolerance] {
+    if (o->list) return list(*o);
+    if (o->file.empty()) throw Error("plan", "FILE is required (or --list)");
+    if (o->strategy.empty()) throw Error("--strategy", "is required (rosmill plan --list names the strategies)");
     // NaN means "the default" inside PlanParams: a NaN typed on the command line must not pass as that.
     for (const char* name : {"--stepover", "--stepdown", "--allowance", "--tolerance", "--angle"})
       if (cmd->count(name) && !std::isfinite(cmd->get_option(name)->as<double>()))

@@ -14,7 +14,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
-#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/verify/deviation_image.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"

@@ -10,7 +10,7 @@
 
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/plan/plan_support.hpp"
+#include "rosmill/cloud/cloud_sweep.hpp"
 
 namespace rosmill {
 namespace {
@@ -27,16 +27,6 @@ double corner_radius(const Cutter& c) {
   return c.type == CutterType::FlatEnd ? 0.0 : c.type == CutterType::BallEnd ? R : std::clamp(c.corner_radius, 0.0, R);
 }
 
-// The strategies of the engine (raster, waterline, rough) run on a cloud through this Surface; the sink
-// allowed between points is the plan's tolerance.
-const bool kFactoryRegistered = [] {
-  cloud_surface_factory() = [](const PointCloud& cloud, const PlanParams& params) -> std::unique_ptr<Surface> {
-    CloudSurfaceOptions o;
-    if (params.tolerance > 0) o.max_sink = params.tolerance;
-    return std::make_unique<CloudSurface>(cloud, o);
-  };
-  return true;
-}();
 
 }  // namespace
 
@@ -45,7 +35,6 @@ CloudSurface::CloudSurface(const PointCloud& cloud, const CloudSurfaceOptions& o
 CloudSurface::CloudSurface(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) { build(points, options); }
 
 void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) {
-  (void)kFactoryRegistered;
   if (points.empty()) throw Error("cloud surface", "the cloud has no points");
   if (!(options.max_sink > 0) || !std::isfinite(options.max_sink))
     throw Error("cloud surface", "the sink allowed between points must be a positive number of mm");
@@ -61,6 +50,7 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   grid_ = CloudGrid(points, cell);
   spacing_ = rosmill::mean_spacing(grid_);
   max_sink_ = options.max_sink;
+  hole_policy_ = options.holes;
   const double hole_cell = options.hole_cell > 0 ? options.hole_cell : auto_hole_cell(grid_);
   if (options.detect_holes && spacing_ > 0) holes_ = HoleMap(points, hole_cell);
   if (!std::isnan(options.sampling_radius)) {
@@ -68,6 +58,14 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   } else if (spacing_ > 0) {
     sampling_radius_ = rosmill::sampling_radius(grid_, options.detect_holes ? holes_.grid() : CloudGrid(points, hole_cell));
   }
+}
+
+SweepHit CloudSurface::sweep(const Cutter& cutter, const Vec3& a, const Vec3& b, double floor) const {
+  return sweep_depth(*this, cutter, a, b, floor);
+}
+
+bool CloudSurface::skips(double x, double y, double radius) const {
+  return hole_policy_ == HolePolicy::Skip && holes_.any() && holes_.disc_touches_hole(x, y, radius);
 }
 
 double CloudSurface::support_radius(const Cutter& cutter) const {

@@ -1,6 +1,8 @@
-// toolpath_planner: plans 3-axis toolpaths with rosmill::plan() from the mesh (`mesh` topic, from stl_loader) or
-// from a scan (`cloud_topic` PointCloud2, brought into the workpiece frame with tf2, waiting at most tf_timeout for
-// the transform). Publishes the job latched on `toolpath` (ToolpathJobMsg) and its view on `toolpath_markers`;
+// toolpath_planner: plans 3-axis toolpaths with rosmill::plan(request) from the mesh (`mesh` topic, from
+// stl_loader) or from a scan (`cloud_topic` PointCloud2, brought into the workpiece frame with tf2, waiting at most
+// tf_timeout for the transform, then prepared by the same input step as `rosmill plan`: parameters orient, origin,
+// voxel, outliers, holes, named after its options; origin defaults to keep, the frame tf gave). Strategies, presets
+// and templates by name (`presets`: the preset table, default presets.yaml next to the tool table). Publishes the job latched on `toolpath` (ToolpathJobMsg) and its view on `toolpath_markers`;
 // replans on the `plan` service and the `plan_toolpath` action (several items, per-item results, progress
 // feedback, cancel) for another setup, strategy or tool. An input it rejects (no points, no transform, a broken
 // mesh) is logged and its reason is what a later plan request for that source is answered with.
@@ -16,9 +18,13 @@
 #include <memory>
 #include <mutex>
 
+#include <filesystem>
+
 #include "rosmill/Plan.h"
 #include "rosmill/PlanToolpathAction.h"
+#include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/planner/plan_request.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/finish_goal.hpp"
 #include "rosmill/ros/markers.hpp"
@@ -48,6 +54,28 @@ struct PlanOutcome {
   PlanStatisticsMsg statistics;
 };
 
+// The cloud input step's options, as parameters named after the command line's.
+CloudInputOptions cloud_input_param(const ::ros::NodeHandle& pnh) {
+  CloudInputOptions o;
+  o.orient = string_param(pnh, "orient", o.orient);
+  o.origin = string_param(pnh, "origin", "keep");  // the cloud is already in the workpiece frame (tf)
+  o.voxel = double_param(pnh, "voxel", o.voxel, 0.0, 1000.0);
+  o.outliers = int_param(pnh, "outliers", o.outliers, 0, 1000);
+  o.holes = string_param(pnh, "holes", o.holes);
+  const std::string prefix = pnh.resolveName("") + "/";
+  cloud_prep_options(o, prefix);  // refuses a bad value at start-up
+  cloud_hole_policy(o, prefix);
+  return o;
+}
+
+// The preset table: the `presets` parameter, else presets.yaml next to the tool table (config/).
+PresetTable presets_param(const ::ros::NodeHandle& pnh) {
+  std::string path = string_param(pnh, "presets", "");
+  if (path.empty())
+    path = (std::filesystem::path(string_param(pnh, "tool_table", "")).parent_path() / "presets.yaml").string();
+  return read_presets(path);
+}
+
 // The latest accepted input of one kind, or why the latest one was rejected.
 template <typename T>
 struct Input {
@@ -65,6 +93,9 @@ class ToolpathPlanner {
         tool_id_(int_param(pnh, "tool_id", 1, 1, 9999)),
         tools_(tool_table_param(pnh, "tool_table")),
         defaults_(plan_defaults_param(pnh)),
+        presets_(presets_param(pnh)),
+        cloud_input_(cloud_input_param(pnh)),
+        option_prefix_(pnh.resolveName("") + "/"),
         tf_timeout_(double_param(pnh, "tf_timeout", 1.0, 0.0, 30.0)),
         rapid_feed_(double_param(pnh, "rapid_feed", 5000.0, 1.0, 1e6)),
         plan_on_input_(bool_param(pnh, "plan_on_input", true)),
@@ -83,10 +114,8 @@ class ToolpathPlanner {
   }
 
  private:
-  static void require_strategy(const std::string& name, const std::string& where) {
-    for (const StrategyEntry& s : strategies())
-      if (s.name == name) return;
-    throw Error(where, "unknown strategy '" + name + "' (rosmill plan --list names them)");
+  void require_strategy(const std::string& name, const std::string& where) const {
+    check_plan_name(name, &presets_, where);
   }
 
   void on_mesh(const shape_msgs::Mesh::ConstPtr& msg) {
@@ -104,8 +133,11 @@ class ToolpathPlanner {
   void on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
     try {
       const std::string where = "cloud in frame '" + msg->header.frame_id + "'";
-      auto cloud = std::make_shared<const PointCloud>(from_cloud_msg(*msg, to_workpiece(msg->header), where));
-      if (cloud->points.empty()) throw Error(where, "has no finite points");
+      const PointCloud raw = from_cloud_msg(*msg, to_workpiece(msg->header), where);
+      if (raw.points.empty()) throw Error(where, "has no finite points");
+      CloudPrepReport report;
+      auto cloud = std::make_shared<const PointCloud>(prepare_input_cloud(raw.points, cloud_input_, option_prefix_, &report));
+      ROS_DEBUG("toolpath_planner: cloud prepared:\n%s", format_prep_report(report).c_str());
       accept(cloud_, cloud, "cloud");
       ROS_INFO("toolpath_planner: cloud of %zu points in %s", cloud->points.size(), frame_id_.c_str());
       if (plan_on_input_) plan_and_publish("cloud");
@@ -173,10 +205,16 @@ class ToolpathPlanner {
     out.setup = resolve_setup(item.setup, from_direction_msg(item.direction));
     const std::string strategy = !item.strategy.empty() ? item.strategy : (mesh ? strategy_ : cloud_strategy_);
     const Tool& tool = tools_.get(item.tool_id == 0 ? tool_id_ : item.tool_id);
-    const PlanParams params = from_plan_parameters(item.parameters, tool, defaults_);
+    PlanningRequest request;
+    request.strategy = strategy;
+    request.params = from_plan_parameters(item.parameters, tool, defaults_);
+    request.progress = progress;
+    request.presets = &presets_;
+    // A template runs its presets' own tools (one per stage).
+    if (presets_.find_template(strategy)) request.params.tool = Tool{};
 
     const ::ros::WallTime t0 = ::ros::WallTime::now();
-    PlanInput input;
+    PlanInput& input = request.input;
     Mesh mesh_in_frame;
     PointCloud cloud_in_frame;
     if (mesh) {
@@ -185,8 +223,9 @@ class ToolpathPlanner {
     } else {
       cloud_in_frame = cloud_in_setup(*cloud, out.setup);
       input.cloud = &cloud_in_frame;
+      input.holes = cloud_hole_policy(cloud_input_, option_prefix_);
     }
-    out.job = plan(strategy, input, params, progress);
+    out.job = plan(request);
     std_msgs::Header header;
     header.frame_id = frame_id_;
     header.stamp = ::ros::Time::now();
@@ -298,6 +337,9 @@ class ToolpathPlanner {
   int tool_id_;
   ToolTable tools_;
   PlanParams defaults_;
+  PresetTable presets_;
+  CloudInputOptions cloud_input_;
+  std::string option_prefix_;
   double tf_timeout_, rapid_feed_;
   bool plan_on_input_;
   tf2_ros::Buffer tf_buffer_;

@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
+#include <Eigen/Geometry>
 #include <tbb/parallel_for.h>
 
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/plan/mesh_surface.hpp"
 
 namespace rosmill {
 
@@ -65,11 +66,15 @@ void MoveWriter::retract() {
   at_safe_ = true;
 }
 
-void MoveWriter::enter(const Vec3& p) {
+void MoveWriter::enter(const Vec3& p, double free_z) {
   retract();
   if ((pos_.head<2>() - p.head<2>()).norm() > 0) {
     pos_ = Vec3(p.x(), p.y(), f_.safe_z);
     tp_.passes.back().moves.push_back({pos_, MoveType::Rapid, 0.0});
+  }
+  if (free_z < pos_.z() && free_z > p.z()) {
+    pos_ = Vec3(p.x(), p.y(), free_z);
+    tp_.passes.back().moves.push_back({pos_, MoveType::Feed, tp_.tool.feed});
   }
   plunge_to(p);
 }
@@ -78,6 +83,11 @@ void MoveWriter::plunge_to(const Vec3& p) {
   pos_ = p;
   tp_.passes.back().moves.push_back({p, MoveType::Plunge, tp_.tool.plunge_feed});
   at_safe_ = false;
+}
+
+void MoveWriter::cut_to(const Vec3& p) {
+  if (!at_safe_ && p.head<2>() == pos_.head<2>() && p.z() < pos_.z()) return plunge_to(p);
+  feed(p);
 }
 
 void MoveWriter::feed(const Vec3& p) {
@@ -154,6 +164,23 @@ void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, c
   }
 }
 
+void drop_collinear(std::vector<Vec3>& pts) {
+  if (pts.size() < 3) return;
+  size_t w = 1;
+  for (size_t i = 1; i + 1 < pts.size(); ++i) {
+    const Vec3& a = pts[w - 1];
+    const Vec3& b = pts[i];
+    const Vec3& c = pts[i + 1];
+    const Vec3 ac = c - a;
+    const double len2 = ac.squaredNorm();
+    const bool on_line = len2 > 0 && (b - a).cross(ac).squaredNorm() / len2 < 1e-18 && (b - a).dot(ac) >= 0 &&
+                         (b - a).dot(ac) <= len2;
+    if (!on_line) pts[w++] = b;
+  }
+  pts[w++] = pts.back();
+  pts.resize(w);
+}
+
 std::vector<ScanLine> scan_lines(const Vec2& lo, const Vec2& hi, double angle_deg, double spacing,
                                  const Region& region) {
   const double a = angle_deg * M_PI / 180.0;
@@ -227,24 +254,23 @@ void parallel_blocks(size_t n, const PlanProgress& progress, double from, double
   }
 }
 
-CloudSurfaceFactory& cloud_surface_factory() {
-  static CloudSurfaceFactory factory;
-  return factory;
+void check_query_count(const std::string& strategy, double queries, const Box3& part) {
+  constexpr double kMaxQueries = 2e8;
+  if (queries <= kMaxQueries) return;
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "would need about %.3g drop-cutter queries (more than %.0g) over a part of %.0f x %.0f mm: check the "
+                "cloud's units (or the mesh's), or raise the stepover or the tolerance",
+                queries, kMaxQueries, part.size().x(), part.size().y());
+  throw Error(strategy, text);
 }
 
-StrategyFunction on_surface(SurfaceStrategy strategy) {
-  return [strategy](const PlanInput& input, const PlanParams& params, const PlanProgress& progress) {
-    if (input.mesh) {
-      const MeshSurface surface(*input.mesh);
-      return strategy(surface, params, progress);
-    }
-    if (input.cloud) {
-      if (!cloud_surface_factory()) throw Error("plan", "no point-cloud surface is available in this build");
-      const std::unique_ptr<Surface> surface = cloud_surface_factory()(*input.cloud, params);
-      return strategy(*surface, params, progress);
-    }
-    throw Error("plan", "nothing to plan on");
-  };
+const char* sampling_name(Sampling s) { return s == Sampling::StepError ? "step-error" : "chord"; }
+
+Sampling parse_sampling(const std::string& text, const std::string& where) {
+  if (text == "chord") return Sampling::Chord;
+  if (text == "step-error") return Sampling::StepError;
+  throw Error(where, "unknown sampling '" + text + "' (chord or step-error)");
 }
 
 }  // namespace rosmill

@@ -5,35 +5,56 @@
 
 #include <Eigen/Geometry>
 
-namespace rosmill {
+#include "rosmill/plan/step_error.hpp"
 
-void drop_collinear(std::vector<Vec3>& pts) {
-  if (pts.size() < 3) return;
-  size_t w = 1;
-  for (size_t i = 1; i + 1 < pts.size(); ++i) {
-    const Vec3& a = pts[w - 1];
-    const Vec3& b = pts[i];
-    const Vec3& c = pts[i + 1];
-    const Vec3 ac = c - a;
-    const double len2 = ac.squaredNorm();
-    const bool on_line = len2 > 0 && (b - a).cross(ac).squaredNorm() / len2 < 1e-18 && (b - a).dot(ac) >= 0 &&
-                         (b - a).dot(ac) <= len2;
-    if (!on_line) pts[w++] = b;
-  }
-  pts[w++] = pts.back();
-  pts.resize(w);
-}
+namespace rosmill {
 
 namespace {
 
-// A link may stay down only when it keeps the axis inside the region (checked every `step`).
-bool link_inside(const Region& region, const Vec2& a, const Vec2& b, double step) {
-  if (region.empty()) return true;
+// A link may stay down only when it keeps the axis inside the region and the footprint off skipped ground
+// (checked every `step`).
+bool link_allowed(const Surface& surface, const Region& region, double reach, const Vec2& a, const Vec2& b,
+                  double step) {
   const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
-  for (int k = 1; k < n; ++k)
-    if (!inside_region(region, a + (b - a) * (double(k) / n))) return false;
+  for (int k = 1; k < n; ++k) {
+    const Vec2 p = a + (b - a) * (double(k) / n);
+    if (!region.empty() && !inside_region(region, p)) return false;
+    if (surface.skips(p.x(), p.y(), reach)) return false;
+  }
   return true;
 }
+
+// The stretches of a piece where the surface does not skip the footprint, probed every `step`; a stretch runs
+// between two probes that are not skipped. Counts the probes left out.
+std::vector<std::pair<Vec2, Vec2>> unskipped(const Surface& surface, const std::pair<Vec2, Vec2>& piece,
+                                             double reach, double step, size_t& skipped) {
+  const Vec2 a = piece.first, b = piece.second;
+  const size_t n = std::max<size_t>(1, size_t(std::ceil((b - a).norm() / step)));
+  std::vector<std::pair<Vec2, Vec2>> out;
+  bool open = false;
+  Vec2 first, last;
+  for (size_t k = 0; k <= n; ++k) {
+    const Vec2 p = a + (b - a) * (double(k) / double(n));
+    const bool skip = surface.skips(p.x(), p.y(), reach);
+    skipped += skip;
+    if (!skip) {
+      if (!open) first = p;
+      last = p, open = true;
+    }
+    if (open && (skip || k == n)) {
+      if (last != first) out.emplace_back(first, last);
+      open = false;
+    }
+  }
+  return out;
+}
+
+// One sampled line: its stretches' CL points, and what the sampling did.
+struct SampledLine {
+  std::vector<std::vector<Vec3>> stretches;
+  StepErrorCounts counts;
+  size_t skipped = 0;
+};
 
 }  // namespace
 
@@ -43,17 +64,27 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
   const double reach = f.cutter.radius() + f.allowance;
   const Vec2 lo = f.part.min.head<2>() - Vec2::Constant(reach), hi = f.part.max.head<2>() + Vec2::Constant(reach);
   const std::vector<ScanLine> lines = scan_lines(lo, hi, params.angle_deg, f.stepover, options.boundary);
-  const double step = std::min(0.25 * f.cutter.radius(), 1.0);
+  const bool step_error = params.sampling == Sampling::StepError;
+  const double step = step_error ? step_error_spacing(f) : std::min(0.25 * f.cutter.radius(), 1.0);
+  if (step_error) check_query_count("raster", double(lines.size()) * (hi - lo).norm() / step, f.part);
+  // One stretch a-b sampled by the plan's policy into CL points.
+  auto sample = [&](const Vec2& a, const Vec2& b, std::vector<Vec3>& pts, StepErrorCounts& counts) {
+    if (step_error)
+      sample_step_error(surface, f, a, b, pts, counts);
+    else
+      sample_segment(surface, f, a, b, step, pts);
+    drop_collinear(pts);
+  };
 
   // Sample every piece of every line on both cores.
-  std::vector<std::vector<std::vector<Vec3>>> cl(lines.size());
+  std::vector<SampledLine> cl(lines.size());
   parallel_blocks(lines.size(), progress, 0.0, 0.9, [&](size_t i) {
-    for (const auto& piece : lines[i].pieces) {
-      std::vector<Vec3> pts;
-      sample_segment(surface, f, piece.first, piece.second, step, pts);
-      drop_collinear(pts);
-      cl[i].push_back(std::move(pts));
-    }
+    for (const auto& piece : lines[i].pieces)
+      for (const auto& stretch : unskipped(surface, piece, reach, step, cl[i].skipped)) {
+        std::vector<Vec3> pts;
+        sample(stretch.first, stretch.second, pts, cl[i].counts);
+        cl[i].stretches.push_back(std::move(pts));
+      }
   });
 
   Toolpath tp;
@@ -61,8 +92,10 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
   tp.tool = params.tool;
   MoveWriter w(tp, f);
   w.begin_pass("raster " + std::to_string(params.angle_deg) + " deg");
+  StepErrorCounts links;
   bool reverse = false;
-  for (auto& line : cl) {
+  for (SampledLine& sampled : cl) {
+    auto& line = sampled.stretches;
     if (line.empty()) continue;
     if (reverse) {
       std::reverse(line.begin(), line.end());
@@ -72,11 +105,10 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
       const Vec3& start = pts.front();
       const double gap = (start.head<2>() - w.position().head<2>()).norm();
       if (!w.at_safe() && options.zigzag && gap <= 1.5 * f.stepover + 1e-9 &&
-          link_inside(options.boundary, w.position().head<2>(), start.head<2>(), step)) {
+          link_allowed(surface, options.boundary, reach, w.position().head<2>(), start.head<2>(), step)) {
         // Zigzag link along the surface to the next line's start.
         std::vector<Vec3> link;
-        sample_segment(surface, f, w.position().head<2>(), start.head<2>(), step, link);
-        drop_collinear(link);
+        sample(w.position().head<2>(), start.head<2>(), link, links);
         for (const Vec3& p : link) w.feed(p);
       } else {
         w.enter(start);
@@ -88,6 +120,21 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
   }
   w.retract();
   check_cancel(progress, 1.0);
+  if (options.report) {
+    PlanReport& r = *options.report;
+    r = PlanReport{};
+    r.strategy = tp.strategy;
+    r.lines = lines.size();
+    r.sample_step = step;
+    r.cl_points = tp.move_count();
+    for (const SampledLine& l : cl) {
+      r.samples += l.counts.samples;
+      r.buffer_points += l.counts.buffers;
+      r.checked_points += l.counts.checked;
+      r.skipped_samples += l.skipped;
+    }
+    r.samples += links.samples, r.buffer_points += links.buffers, r.checked_points += links.checked;
+  }
   return {tp};
 }
 

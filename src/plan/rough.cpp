@@ -177,9 +177,4 @@ Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanP
   return rough_on(surface, params, RoughOptions{}, progress);
 }
 
-Job plan_rough(const PlanInput& input, const PlanParams& params, const PlanProgress& progress) {
-  if (params.stock_mesh) check_stock_mesh(*params.stock_mesh, input.mesh);
-  return on_surface(rough_strategy)(input, params, progress);
-}
-
 }  // namespace rosmill

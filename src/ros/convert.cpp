@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
 
 namespace rosmill::edge {
 

@@ -11,7 +11,7 @@
 
 #include "cli_run.hpp"
 
-#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 
 using nlohmann::json;
 using namespace rosmill;

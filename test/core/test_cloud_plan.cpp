@@ -1,4 +1,5 @@
-// The seed 004 plan (cloud_plan.hpp): rough, semi-finish and finish toolpaths straight from clouds.
+// Muslimin et al.'s plan straight from clouds: the presets cloud-rough, cloud-semi, cloud-finish and the template
+// cloud-all (config/presets.yaml) through plan(request) on a CloudSurface.
 //  - rapids only at or above the toolpath's clearance height (issue 7's rule; the machine limits refuse others);
 //  - no cutter position puts the cutter into a point of the cloud (brute force over every point under it);
 //  - the finish's cutter locations lie within the sampling bound of the mesh drop-cutter on the same (x, y);
@@ -8,12 +9,15 @@
 
 #include <fstream>
 
-#include "rosmill/cloud/cloud_plan.hpp"
+#include "rosmill/cloud/cloud_prep.hpp"
+#include "rosmill/cloud/cloud_surface.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
+#include "rosmill/planner/plan_request.hpp"
+#include "plan_names.hpp"
 #include "test_cloud_support.hpp"
 
 using namespace rosmill;
@@ -27,12 +31,41 @@ PointCloud cloud_of(std::vector<Vec3> pts) {
   return c;
 }
 
-// Quicker than the seed's finish (0.3 mm) for the brute-force checks; the tools and tolerance are the seed's.
-CloudPlanOptions quick_options() {
-  CloudPlanOptions o;
-  o.semi.stepover = 2.5;
-  o.finish.stepover = 1.0;
+// The package's presets with the semi-finish and finish stepovers changed.
+PresetTable presets_with(double semi_stepover, double finish_stepover) {
+  PresetTable t = test::package_presets();
+  for (Preset& p : t.presets) {
+    if (p.name == "cloud-semi") p.stepover = semi_stepover;
+    if (p.name == "cloud-finish") p.stepover = finish_stepover;
+  }
+  return t;
+}
+
+// Quicker than the paper's finish (0.3 mm) for the brute-force checks; the tools and tolerance are the paper's.
+PresetTable quick_presets() { return presets_with(2.5, 1.0); }
+
+constexpr double kTolerance = 0.01;  // the presets' t
+
+// The surface a plan at tolerance t builds (the sink allowed between points is t).
+CloudSurfaceOptions surface_options(double t = kTolerance, HolePolicy holes = HolePolicy::Bridge, double hole_cell = 0) {
+  CloudSurfaceOptions o;
+  o.max_sink = t;
+  o.holes = holes;
+  o.hole_cell = hole_cell;
   return o;
+}
+
+// A preset or template on a surface, the presets' tools and tolerance.
+Job plan_on(const Surface& s, const std::string& name, const PresetTable& presets,
+            std::vector<PlanReport>* reports = nullptr, const PlanProgress& progress = {}) {
+  PlanningRequest r;
+  r.input.surface = &s;
+  r.strategy = name;
+  r.params.tolerance = NAN;
+  r.presets = &presets;
+  r.reports = reports;
+  r.progress = progress;
+  return plan(r);
 }
 
 // Every rapid ends at or above clearance_z, and one that moves sideways also starts there. Returns the number
@@ -75,7 +108,12 @@ TEST(CloudPlan, NoRapidBelowTheClearanceHeightInAnyStrategy) {
       PlanParams q = p;
       if (std::string(strategy) == "cloud-finish") q.stepover = 1.0;  // quick
       if (std::string(strategy) == "cloud-all") q.tolerance = 0.05;
-      const Job job = plan_cloud_strategy(strategy, cloud, q, HolePolicy::Bridge);
+      PlanningRequest r;
+      r.input.cloud = &cloud;
+      r.strategy = strategy;
+      r.params = q;
+      r.presets = &test::package_presets();
+      const Job job = plan(r);
       ASSERT_EQ(job.size(), std::string(strategy) == "cloud-all" ? 3u : 1u) << strategy;
       for (const Toolpath& tp : job) {
         const size_t descents = expect_rapids_above_clearance(tp);
@@ -94,7 +132,7 @@ TEST(CloudPlan, NoCutterPositionGoesIntoAPoint) {
   // three points inside each, against every point under the cutter (brute force, no grid). The ends of the
   // rough's moves keep the allowance delta from every point; the ball stages' cutter locations are exact drops
   // (no point inside), their moves at most the tolerance t in (the check of every move, cloud_sweep.hpp).
-  const CloudPlanOptions o = quick_options();
+  const PresetTable presets = quick_presets();
   std::vector<PointCloud> clouds;
   {
     cloudtest::Sampling s = cloudtest::sample_mesh(make_primitive("dome"), 1.5);
@@ -103,12 +141,12 @@ TEST(CloudPlan, NoCutterPositionGoesIntoAPoint) {
   }
   clouds.push_back(cloud_of(cloudtest::sample_mesh(read_stl(ROSMILL_TEST_DATA "/failedinpycam.stl"), 1.5).pts));
   for (const PointCloud& cloud : clouds) {
-    const CloudSurface s(cloud, cloud_surface_options(o));
+    const CloudSurface s(cloud, surface_options());
     const cloudtest::SortedPoints brute(cloud.points);
-    std::vector<CloudStageReport> reports;
-    const Job job = plan_cloud_all(s, o, {}, &reports);
+    std::vector<PlanReport> reports;
+    const Job job = plan_on(s, "cloud-all", presets, &reports);
     ASSERT_EQ(job.size(), 3u);
-    const CloudStage* stages[3] = {&o.rough, &o.semi, &o.finish};
+    const Preset* stages[3] = {presets.find("cloud-rough"), presets.find("cloud-semi"), presets.find("cloud-finish")};
     for (size_t k = 0; k < 3; ++k) {
       const Toolpath& tp = job[k];
       const double delta = stages[k]->allowance;
@@ -119,15 +157,15 @@ TEST(CloudPlan, NoCutterPositionGoesIntoAPoint) {
         ++checked;
       }
       for (const Vec3& at : cloudtest::cut_positions(tp, 4))
-        ASSERT_LE(brute.penetration(c, at), (k == 0 ? -delta : o.tolerance - delta) + 1e-9)
+        ASSERT_LE(brute.penetration(c, at), (k == 0 ? -delta : kTolerance - delta) + 1e-9)
             << tp.strategy << " inside a move at " << at.transpose();
       EXPECT_GT(checked, k == 0 ? 5u : 300u) << tp.strategy;
       EXPECT_EQ(reports[k].cl_points, tp.move_count()) << tp.strategy;
       EXPECT_GT(reports[k].samples, 400u) << tp.strategy;
     }
     // Every level down to the floor, d apart.
-    const double height = s.bounds().size().z() - o.rough.allowance;
-    EXPECT_EQ(reports[0].levels, size_t(std::ceil(height / o.depth_of_cut - 1e-9)));
+    const double height = s.bounds().size().z() - stages[0]->allowance;
+    EXPECT_EQ(reports[0].levels, size_t(std::ceil(height / stages[0]->stepdown - 1e-9)));
   }
 }
 
@@ -139,6 +177,35 @@ bool at_step(const ToolpathPass& pass, size_t i, const Vec3& before) {
   const Move& m = pass.moves[i];
   if (m.to.head<2>() == before.head<2>()) return true;
   return i + 1 < pass.moves.size() && pass.moves[i + 1].to.head<2>() == m.to.head<2>();
+}
+
+
+// A raw cloud (any units, NaNs allowed) in; the prepared cloud, the holes of its surface, the job of a preset or
+// template (`tolerance` NaN: the presets') and its reports out.
+struct CloudJob {
+  PointCloud cloud;
+  CloudPrepReport prep;
+  std::vector<PlanReport> stages;
+  std::vector<Hole> holes;
+  Job job;
+};
+
+CloudJob plan_scan(const std::vector<Vec3>& raw, const CloudPrepOptions& prep, const PresetTable& presets,
+                   double tolerance = NAN, const PlanProgress& progress = {}) {
+  CloudJob cj;
+  cj.cloud = prepare_cloud(raw, prep, &cj.prep);
+  const CloudSurface s(cj.cloud, surface_options(std::isnan(tolerance) ? kTolerance : tolerance, HolePolicy::Bridge,
+                                                 cj.prep.hole_cell));
+  cj.holes = s.holes().holes();
+  PlanningRequest r;
+  r.input.surface = &s;
+  r.strategy = "cloud-all";
+  r.params.tolerance = tolerance;
+  r.presets = &presets;
+  r.reports = &cj.stages;
+  r.progress = progress;
+  cj.job = plan(r);
+  return cj;
 }
 
 }  // namespace
@@ -156,12 +223,11 @@ TEST(CloudPlan, FinishWithinTheSamplingBoundOfTheMeshDropCutter) {
     cloudtest::Sampling sm = cloudtest::sample_mesh(mesh, 0.6);
     const double eta = cloudtest::add_noise(sm.pts, 0.02);
     const PointCloud cloud = cloud_of(sm.pts);
-    CloudPlanOptions o = quick_options();
-    o.finish.stepover = 3.0;
-    const CloudSurface s(cloud, cloud_surface_options(o));
+    const PresetTable presets = presets_with(2.5, 3.0);
+    const CloudSurface s(cloud, surface_options());
     const MeshSurface ref(mesh);
-    const Toolpath tp = plan_cloud_raster(s, o.finish, "cloud-finish", o);
-    const Cutter& c = o.finish.tool.cutter;
+    const Toolpath tp = plan_on(s, "cloud-finish", presets).at(0);
+    const Cutter& c = presets.find("cloud-finish")->tool.cutter;
     size_t compared = 0, steps = 0, floor = 0;
     Vec3 before = tp.start;
     for (const ToolpathPass& pass : tp.passes)
@@ -193,10 +259,10 @@ TEST(CloudPlan, FinishWithinTheSamplingBoundOfTheMeshDropCutter) {
 
 TEST(CloudPlan, ProgressIsReportedAndCancelStopsThePlan) {
   const PointCloud cloud = cloud_of(cloudtest::sample_mesh(make_primitive("dome"), 2.0).pts);
-  const CloudPlanOptions o = quick_options();
-  const CloudSurface s(cloud, cloud_surface_options(o));
+  const PresetTable presets = quick_presets();
+  const CloudSurface s(cloud, surface_options());
   std::vector<double> seen;
-  const Job job = plan_cloud_all(s, o, [&](double f) { seen.push_back(f); return true; });
+  const Job job = plan_on(s, "cloud-all", presets, nullptr, [&](double f) { seen.push_back(f); return true; });
   ASSERT_EQ(job.size(), 3u);
   ASSERT_GT(seen.size(), 20u);
   for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1] - 1e-12);
@@ -204,7 +270,7 @@ TEST(CloudPlan, ProgressIsReportedAndCancelStopsThePlan) {
   // Stop once past a third: the plan throws "cancelled" and no call comes after the one that said stop.
   size_t calls = 0, stop_call = 0;
   try {
-    plan_cloud_all(s, o, [&](double f) {
+    plan_on(s, "cloud-all", presets, nullptr, [&](double f) {
       ++calls;
       if (f > 0.35 && !stop_call) stop_call = calls;
       return !stop_call;
@@ -215,10 +281,10 @@ TEST(CloudPlan, ProgressIsReportedAndCancelStopsThePlan) {
   }
   EXPECT_GT(stop_call, 0u);
   EXPECT_EQ(calls, stop_call);
-  // The API for a node cancels the same way during any stage, and plans all three otherwise.
+  // A raw cloud prepared and planned cancels the same way during any stage, and plans all three otherwise.
   CloudPrepOptions prep;
-  EXPECT_THROW(plan_cloud_job(cloud.points, prep, o, [](double f) { return f < 0.5; }), Error);
-  const CloudJob cj = plan_cloud_job(cloud.points, prep, o);
+  EXPECT_THROW(plan_scan(cloud.points, prep, presets, NAN, [](double f) { return f < 0.5; }), Error);
+  const CloudJob cj = plan_scan(cloud.points, prep, presets);
   ASSERT_EQ(cj.job.size(), 3u);
   ASSERT_EQ(cj.stages.size(), 3u);
   EXPECT_EQ(cj.job[0].strategy, "cloud-rough");
@@ -260,19 +326,15 @@ void expect_complete(const CloudJob& cj, const std::string& name) {
   EXPECT_GT(cj.stages[0].levels, 1u) << name;
 }
 
-CloudPlanOptions scan_options() {
-  CloudPlanOptions o;
-  o.semi.stepover = 4.0;
-  o.finish.stepover = 3.0;  // the seed's 0.3 mm takes seconds on these scans (bench_cloud measures it)
-  return o;
-}
+// The finish's 0.3 mm takes seconds on these scans (bench_cloud measures it).
+PresetTable scan_presets() { return presets_with(4.0, 3.0); }
 
 }  // namespace
 
 TEST(CloudPlan, RealScansGiveCompleteRoughSemiAndFinish) {
   for (const char* file : {"snp_part_scan.ply", "snp_blending_part_scan.ply"}) {
     const PointCloud raw = read_cloud(std::string(ROSMILL_TEST_DATA "/") + file);  // metres
-    const CloudJob cj = plan_cloud_job(raw.points, CloudPrepOptions{}, scan_options());
+    const CloudJob cj = plan_scan(raw.points, CloudPrepOptions{}, scan_presets());
     EXPECT_EQ(cj.prep.points_out, raw.points.size()) << file;
     EXPECT_GT(cj.cloud.bbox.size().x(), 100.0) << file << ": read in metres, planned in mm";
     expect_complete(cj, file);
@@ -283,10 +345,7 @@ TEST(CloudPlan, NoetherRawMeshScanFromSharedData) {
   const std::string path = ROSMILL_SHARED_DATA "/cloud/noether_raw_mesh.ply";
   if (!std::ifstream(path)) GTEST_SKIP() << path << " is absent (shared data not mounted): not checked";
   const PointCloud raw = read_cloud(path);
-  CloudPlanOptions o = scan_options();
-  o.semi.stepover = 8.0;
-  o.finish.stepover = 6.0;
-  const CloudJob cj = plan_cloud_job(raw.points, CloudPrepOptions{}, o);
+  const CloudJob cj = plan_scan(raw.points, CloudPrepOptions{}, presets_with(8.0, 6.0));
   expect_complete(cj, "noether_raw_mesh.ply");
   EXPECT_FALSE(cj.holes.empty());  // its open middle is reported and bridged
 }
@@ -296,11 +355,7 @@ TEST(CloudPlan, OrganisedCloudWithNaNsBreaksNothing) {
   const PointCloud raw = read_cloud(ROSMILL_TEST_DATA "/pcl_table_scene_mug_stereo_textured.pcd", {}, &info);
   CloudPrepOptions prep;
   prep.voxel = 5.0;  // the table scene is 1.4 m across: a coarse cloud keeps the test quick
-  CloudPlanOptions o = scan_options();
-  o.semi.stepover = 15.0;
-  o.finish.stepover = 15.0;
-  o.tolerance = 0.1;
-  const CloudJob cj = plan_cloud_job(raw.points, prep, o);
+  const CloudJob cj = plan_scan(raw.points, prep, presets_with(15.0, 15.0), 0.1);
   EXPECT_EQ(cj.prep.dropped_nonfinite, 0u);  // read_cloud drops them already (test_cloud_io counts them)
   EXPECT_LT(cj.prep.after_voxel, raw.points.size());
   ASSERT_EQ(cj.job.size(), 3u);
@@ -328,28 +383,32 @@ TEST(CloudPlan, HolesAreBridgedOrSkippedNeverPlungedInto) {
         pts.push_back(Vec3(x, y, x >= 4 && x <= 16 && y >= 5 && y <= 35 ? 14.0 : 4.0));
   pts.push_back(Vec3(0, 0, 0));  // the floor
   const PointCloud cloud = cloud_of(pts);
-  CloudPlanOptions o = quick_options();
-  const CloudSurface s(cloud, cloud_surface_options(o));
+  const PresetTable presets = quick_presets();
+  const CloudSurface s(cloud, surface_options());
   ASSERT_EQ(s.holes().holes().size(), 1u);
   const Hole& hole = s.holes().holes()[0];
   EXPECT_NEAR(hole.lid_z, 4.0, 1e-9);
   // Bridge: the finish crosses the hole on its lid: cutter locations on it, moves within the tolerance t.
-  CloudStageReport r;
-  const Toolpath bridged = plan_cloud_raster(s, o.finish, "cloud-finish", o, {}, &r);
-  EXPECT_EQ(r.skipped_samples, 0u);
+  std::vector<PlanReport> reports;
+  const Toolpath bridged = plan_on(s, "cloud-finish", presets, &reports).at(0);
+  EXPECT_EQ(reports.at(0).skipped_samples, 0u);
+  // Over the lid: positions whose axis is over the hole's cells (hole.box), which the lid covers. (The missing
+  // data reaches a little past those coarse cells; a cutter whose axis is out there hangs over a gap no lid
+  // covers and may sink into it.)
   size_t over = 0;
   for (const Vec3& p : cloudtest::cut_positions(bridged, 2))
-    if (p.x() > 27 && p.x() < 33 && p.y() > 17 && p.y() < 23) {
-      ASSERT_GE(p.z(), 4.0 - o.tolerance - 1e-9) << p.transpose();  // moves stay within t of the surface
+    if (p.x() > hole.box.min.x() && p.x() < hole.box.max.x() && p.y() > hole.box.min.y() && p.y() < hole.box.max.y()) {
+      ASSERT_GE(p.z(), 4.0 - kTolerance - 1e-9) << p.transpose();  // moves stay within t of the surface
       ++over;
     }
   EXPECT_GT(over, 10u);
   // Skip: no cutting position has the cutter's footprint over the hole; the samples left out are reported.
-  o.holes = HolePolicy::Skip;
-  for (int stage = 0; stage < 2; ++stage) {
-    const Toolpath tp = stage == 0 ? plan_cloud_rough(s, o, {}, &r) : plan_cloud_raster(s, o.finish, "cloud-finish", o, {}, &r);
-    EXPECT_GT(r.skipped_samples, 0u) << tp.strategy;
-    const double reach = (stage == 0 ? o.rough : o.finish).tool.cutter.radius();
+  const CloudSurface skipping(cloud, surface_options(kTolerance, HolePolicy::Skip));
+  for (const char* stage : {"cloud-rough", "cloud-finish"}) {
+    reports.clear();
+    const Toolpath tp = plan_on(skipping, stage, presets, &reports).at(0);
+    EXPECT_GT(reports.at(0).skipped_samples, 0u) << tp.strategy;
+    const double reach = presets.find(stage)->tool.cutter.radius();
     size_t cutting = 0;
     for (const Vec3& p : cloudtest::cut_positions(tp, 1)) {
       if (p.z() >= tp.safe_z - 1e-9) continue;

@@ -1,4 +1,4 @@
-// Cloud preparation (cloud_prep.hpp, the seed's step 1) and the seed's interpolation (cloud_interpolation.hpp):
+// Cloud preparation (cloud_prep.hpp, the seed's step 1) and the step-error interpolation (plan/step_error.hpp):
 // orientation by a given transform and by fitting the base plane, origin at the stock corner, units, NaN/inf
 // dropped, voxel downsampling and outlier removal counted, holes reported; step errors and buffer points.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "rosmill/cloud/cloud_interpolation.hpp"
+#include "rosmill/plan/step_error.hpp"
 #include "rosmill/cloud/cloud_prep.hpp"
 #include "rosmill/error.hpp"
 

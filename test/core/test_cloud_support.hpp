@@ -12,7 +12,7 @@
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
-#include "rosmill/plan/toolpath.hpp"
+#include "rosmill/toolpath/toolpath.hpp"
 
 namespace cloudtest {
 

@@ -12,7 +12,7 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
-#include "rosmill/plan/strategy.hpp"
+#include "rosmill/planner/plan_request.hpp"
 #include "test_cloud_support.hpp"
 
 using namespace rosmill;
@@ -321,7 +321,7 @@ TEST(CloudSurface, RealModelCloudsWithinTheSamplingBoundOfTheMeshDropCutter) {
 }
 
 TEST(CloudSurface, EngineStrategiesRunOnACloud) {
-  // raster, waterline and rough through the Surface seam on a sampled dome: each gives cutting moves, and no
+  // raster, waterline, rough and grid-rough through the Surface seam on a sampled dome: each gives cutting moves, and no
   // cutter location puts the cutter into a point.
   const Mesh dome = make_primitive("dome");
   PointCloud cloud;
@@ -333,10 +333,12 @@ TEST(CloudSurface, EngineStrategiesRunOnACloud) {
   p.tool.stepover = 4;
   p.tool.stepdown = 10;
   p.tolerance = 0.05;
-  PlanInput in;
-  in.cloud = &cloud;
-  for (const char* strategy : {"raster", "waterline", "rough"}) {
-    const Job job = plan(strategy, in, p);
+  PlanningRequest r;
+  r.input.cloud = &cloud;
+  r.params = p;
+  for (const char* strategy : {"raster", "waterline", "rough", "grid-rough"}) {
+    r.strategy = strategy;
+    const Job job = plan(r);
     ASSERT_EQ(job.size(), 1u) << strategy;
     const std::vector<Vec3> cl = cloudtest::feed_locations(job[0]);
     EXPECT_GT(cl.size(), 50u) << strategy;

@@ -16,7 +16,7 @@
 
 #include "rosmill/cutter/reference_drop.hpp"
 #include "rosmill/geometry/mesh.hpp"
-#include "rosmill/plan/toolpath.hpp"
+#include "rosmill/toolpath/toolpath.hpp"
 
 namespace rosmill::test {
 

@@ -13,6 +13,7 @@
 #include "rosmill/plan/raster.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 #include "rosmill/slice/slicer.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
 #include "test_plan_check.hpp"
 
 using namespace rosmill;

@@ -17,10 +17,25 @@
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/plan/rough.hpp"
 #include "rosmill/plan/stock.hpp"
+#include "rosmill/planner/plan_request.hpp"
 #include "rosmill/slice/slicer.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
 #include "test_plan_check.hpp"
 
 using namespace rosmill;
+
+namespace {
+
+// The strategy table's rough on the part (it checks the stock mesh).
+Job plan_rough(const Mesh& part, const PlanParams& p) {
+  PlanningRequest r;
+  r.input.mesh = &part;
+  r.strategy = "rough";
+  r.params = p;
+  return plan(r);
+}
+
+}  // namespace
 using namespace rosmill::test;
 
 namespace {
@@ -115,9 +130,9 @@ void compare_with_box(const std::string& name, const Mesh& part, const Mesh& sto
   p.stepover = stepover;
   p.stepdown = stepdown;
   p.allowance = allowance;
-  const Job box = plan("rough", PlanInput{&part, nullptr}, p);
+  const Job box = plan_rough(part, p);
   p.stock_mesh = &stock;
-  const Job mesh_stock = plan("rough", PlanInput{&part, nullptr}, p);
+  const Job mesh_stock = plan_rough(part, p);
   const size_t n_box = cutting_moves(box.at(0)), n_stock = cutting_moves(mesh_stock.at(0));
   std::printf("  %s: %zu cutting moves from the box, %zu from the stock mesh\n", name.c_str(), n_box, n_stock);
   EXPECT_LT(n_stock, n_box);
@@ -155,7 +170,7 @@ TEST(PlanRoughStock, RefusesOpenOrTooSmallStock) {
   ASSERT_FALSE(open.closed());
   p.stock_mesh = &open;
   try {
-    plan("rough", PlanInput{&part, nullptr}, p);
+    plan_rough(part, p);
     ADD_FAILURE() << "an open stock was accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("not closed"), std::string::npos) << e.what();
@@ -175,7 +190,7 @@ TEST(PlanRoughStock, RefusesOpenOrTooSmallStock) {
   for (const Mesh* stock : {&low, &scaled_down, &split}) {
     p.stock_mesh = stock;
     try {
-      plan("rough", PlanInput{&part, nullptr}, p);
+      plan_rough(part, p);
       ADD_FAILURE() << "a stock that does not hold the part was accepted";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("does not contain the part"), std::string::npos) << e.what();

@@ -13,7 +13,7 @@
 #include "rosmill/gcode/block.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
-#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 #include "test_post_jobs.hpp"
 
 using namespace rosmill;

@@ -3,7 +3,7 @@
 #pragma once
 #include <cmath>
 
-#include "rosmill/plan/strategy.hpp"
+#include "rosmill/toolpath/job.hpp"
 
 namespace rosmill::test {
 

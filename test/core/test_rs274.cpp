@@ -1,9 +1,10 @@
 // LinuxCNC's own interpreter (rs274 -g) judges the programs: accepted without error, and its canonical moves are
 // the toolpath's moves within the output precision. Runs over synthetic jobs in every dialect and option, and
-// over every planning strategy in strategies() on every seed primitive (the test grows as strategies land).
+// over every strategy, preset and template (plan_names.hpp) on every seed primitive.
 #include <gtest/gtest.h>
 
 #include "rosmill/control/controller.hpp"
+#include "plan_names.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/block.hpp"
 #include "rosmill/geometry/primitives.hpp"
@@ -81,15 +82,12 @@ TEST(Rs274Verify, BrokenProgramIsReportedWithTheBlock) {
 
 TEST(Rs274Verify, EveryStrategyOnEverySeedPrimitive) {
   size_t verified = 0;
-  for (const StrategyEntry& s : strategies()) {
+  for (const test::PlanName& s : test::plan_names()) {
     for (const std::string& name : primitive_names()) {
       const Mesh mesh = make_primitive(name);
       PointCloud cloud;
       cloud.points = mesh.vertices;
       cloud.recompute_bbox();
-      PlanInput in;
-      if (!s.needs_cloud) in.mesh = &mesh;
-      if (!s.needs_mesh) in.cloud = &cloud;
       PlanParams params;
       // Contour machining offsets by a flat end mill's radius; the other strategies take a ball.
       params.tool.cutter = s.name == "contour" ? Cutter::flat(6) : Cutter::ball(6);
@@ -98,7 +96,7 @@ TEST(Rs274Verify, EveryStrategyOnEverySeedPrimitive) {
       params.tolerance = 0.05;
       Job job;
       try {
-        job = plan(s.name, in, params);
+        job = test::plan_named(s, mesh, cloud, params);
       } catch (const Error& e) {
         ADD_FAILURE() << s.name << " on " << name << ": " << e.what();
         continue;
@@ -111,8 +109,7 @@ TEST(Rs274Verify, EveryStrategyOnEverySeedPrimitive) {
       }
     }
   }
-  if (strategies().empty()) GTEST_SKIP() << "no strategy in strategies() yet; the synthetic jobs above stand in";
-  EXPECT_EQ(verified, 2 * strategies().size() * primitive_names().size());
+  EXPECT_EQ(verified, 2 * test::plan_names().size() * primitive_names().size());
 }
 
 namespace {

@@ -1,11 +1,12 @@
-// Every strategy in strategies() on every bundled STL model of test/data (the inch models read as inches, so
-// scaled to mm), posted for LinuxCNC with arcs and for GRBL with lines: LinuxCNC's own interpreter (rs274 -g)
+// Every strategy, preset and template (plan_names.hpp) on every bundled STL model of test/data (the inch models
+// read as inches, so scaled to mm), posted for LinuxCNC with arcs and for GRBL with lines: LinuxCNC's own interpreter (rs274 -g)
 // accepts each program and its canonical moves are the toolpath's within the output precision, and each program
 // keeps the bundled machine's limits (config/machine.yaml). Coarse on purpose to stay quick: a 6 mm ball (flat
 // for contour) at 6 mm stepover, 10 mm step-down, 0.1 mm tolerance; the cloud strategies take the model's
 // vertices as their cloud. One test per model, so ctest runs them side by side.
 #include <gtest/gtest.h>
 
+#include "plan_names.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
@@ -47,10 +48,7 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
   cloud.recompute_bbox();
   const MachineLimits machine = load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml");
   size_t verified = 0;
-  for (const StrategyEntry& s : strategies()) {
-    PlanInput in;
-    if (!s.needs_cloud) in.mesh = &mesh;
-    if (!s.needs_mesh) in.cloud = &cloud;
+  for (const test::PlanName& s : test::plan_names()) {
     PlanParams params;
     params.tool.id = 1;
     params.tool.cutter = s.name == "contour" ? Cutter::flat(6) : Cutter::ball(6);
@@ -60,7 +58,7 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
     const std::string what = s.name + " on " + model.file;
     Job job;
     try {
-      job = plan(s.name, in, params);
+      job = test::plan_named(s, mesh, cloud, params);
     } catch (const Error& e) {
       ADD_FAILURE() << what << ": " << e.what();
       continue;
@@ -82,7 +80,7 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
       ++verified;
     }
   }
-  EXPECT_EQ(verified, 2 * strategies().size());
+  EXPECT_EQ(verified, 2 * test::plan_names().size());
 }
 
 INSTANTIATE_TEST_SUITE_P(BundledModels, EveryStrategyOnModel, ::testing::ValuesIn(small_models()), model_name);

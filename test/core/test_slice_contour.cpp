@@ -6,8 +6,8 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
-#include "rosmill/plan/strategy.hpp"
-#include "rosmill/slice/contour_toolpath.hpp"
+#include "rosmill/planner/plan_request.hpp"
+#include "rosmill/plan/contour_toolpath.hpp"
 
 using namespace rosmill;
 
@@ -145,20 +145,22 @@ TEST(SliceContour, ClimbAndConventionalRunOppositeWays) {
 
 TEST(SliceContour, StrategyTableRunsContour) {
   const Mesh m = make_primitive("dome");
-  PlanInput in;
-  in.mesh = &m;
-  PlanParams p;
+  PlanningRequest r;
+  r.input.mesh = &m;
+  r.strategy = "contour";
+  PlanParams& p = r.params;
   p.tool = flat_tool(6);
   p.stepdown = 10;
-  const Job job = plan("contour", in, p);
+  const Job job = plan(r);
   ASSERT_EQ(job.size(), 1u);
   EXPECT_EQ(job[0].passes.size(), 5u);  // 40, 30, 20, 10, 0
   expect_one_radius_from_sections(m, job[0], 3.0, p.tolerance);
   p.tool.cutter = Cutter::ball(6);
-  EXPECT_THROW(plan("contour", in, p), Error);
+  EXPECT_THROW(plan(r), Error);
   p.tool.cutter = Cutter::flat(6);
   bool asked = false;
-  EXPECT_THROW(plan("contour", in, p, [&](double) { return asked = true, false; }), Error);
+  r.progress = [&](double) { return asked = true, false; };
+  EXPECT_THROW(plan(r), Error);
   EXPECT_TRUE(asked);
 }
 

@@ -10,7 +10,7 @@
 #include "cli_run.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
-#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/verify/deviation_map.hpp"
 #include "test_verify_programs.hpp"
 

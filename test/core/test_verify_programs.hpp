@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "rosmill/plan/toolpath.hpp"
+#include "rosmill/toolpath/toolpath.hpp"
 #include "rosmill/verify/verify.hpp"
 
 namespace verify_test {

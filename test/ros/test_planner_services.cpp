@@ -9,6 +9,7 @@
 #include "rosmill/Plan.h"
 #include "rosmill/PlanToolpathAction.h"
 #include "rosmill/geometry/primitives.hpp"
+#include "rosmill/planner/strategy_table.hpp"
 #include "rosmill/ros/convert.hpp"
 
 #include <atomic>

@@ -33,6 +33,7 @@ struct CloudSurfaceOptions {
   bool detect_holes = true;
   double sampling_radius = NAN;  // ρ (mm); NaN: estimated (rosmill::sampling_radius); 0: the bare formula always
   double max_sink = 0.01;        // s (mm): how far a cutter may sink between points on level ground
+  HolePolicy holes = HolePolicy::Bridge;  // Skip: skips() is true where a footprint reaches a hole
 };
 
 class CloudSurface : public Surface {
@@ -45,6 +46,10 @@ class CloudSurface : public Surface {
   Drop drop(const Cutter& cutter, double x, double y) const override;
   // Both cores (TBB); each query allocates nothing.
   void drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const override;
+  // Exact against the points themselves (cloud_sweep.hpp).
+  SweepHit sweep(const Cutter& cutter, const Vec3& a, const Vec3& b, double floor) const override;
+  // HolePolicy::Skip: the footprint reaches a hole. Bridge: never (the lids carry the cutter).
+  bool skips(double x, double y, double radius) const override;
 
   size_t size() const { return grid_.size(); }
   double mean_spacing() const { return spacing_; }
@@ -68,6 +73,7 @@ class CloudSurface : public Surface {
   double spacing_ = 0.0;
   double sampling_radius_ = 0.0;
   double max_sink_ = 0.01;
+  HolePolicy hole_policy_ = HolePolicy::Bridge;
 };
 
 }  // namespace rosmill

@@ -8,10 +8,6 @@
 
 namespace rosmill {
 
-struct SweepHit {
-  double depth = 0.0;  // mm the deepest point goes into the cutter (<= 0: clear)
-  double at = 0.0;     // where along the move that point is deepest (0 at a, 1 at b)
-};
 
 // The cutter moving with its tip from a to b, against the points themselves (the support discs of sparse regions
 // are the drop's conservative margin; here the data is checked: a ball's depth is then in closed form). Points

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rosmill/gcode/dialect.hpp"
-#include "rosmill/plan/strategy.hpp"
+#include "rosmill/toolpath/job.hpp"
 
 namespace rosmill::gcode {
 

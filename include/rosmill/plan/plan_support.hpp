@@ -1,14 +1,15 @@
 // What the surface strategies (raster, waterline, rough) share: the heights of safe moves, a move writer that
-// keeps rapids at the safe height, adaptive drop-cutter sampling along a segment, parallel scan lines, and the
-// adapter that runs a Surface strategy on a mesh (MeshSurface) or a cloud.
+// keeps rapids at the safe height, adaptive drop-cutter sampling along a segment, parallel scan lines, progress
+// and cancellation, and the guard against plans of absurd size.
 #pragma once
 #include <functional>
-#include <memory>
+#include <string>
 #include <vector>
 
+#include "rosmill/plan/plan_params.hpp"
 #include "rosmill/plan/region.hpp"
-#include "rosmill/plan/strategy.hpp"
 #include "rosmill/plan/surface.hpp"
+#include "rosmill/toolpath/job.hpp"
 
 namespace rosmill {
 
@@ -34,11 +35,14 @@ class MoveWriter {
  public:
   MoveWriter(Toolpath& tp, const PlanFrame& f);
   void begin_pass(const std::string& name);
-  // Retract to safe_z (if not there), rapid above p, plunge to p at the plunge feed.
-  void enter(const Vec3& p);
+  // Retract to safe_z (if not there), rapid above p, plunge to p at the plunge feed. With `free_z` between p and
+  // safe_z (air a previous level cleared), the descent to it goes at the cutting feed.
+  void enter(const Vec3& p, double free_z = NAN);
   // Plunge vertically down to height z (air above cleared stock) without a retract.
   void plunge_to(const Vec3& p);
   void feed(const Vec3& p);
+  // A cutting move that goes in at the plunge feed when it descends vertically, else feed().
+  void cut_to(const Vec3& p);
   void retract();
   bool at_safe() const { return at_safe_; }
   const Vec3& position() const { return pos_; }
@@ -62,6 +66,9 @@ constexpr double kMinSampleStep = 0.01;
 void sample_segment(const Surface& surface, const PlanFrame& f, const Vec2& a, const Vec2& b, double step,
                     std::vector<Vec3>& out);
 
+// Drops points that lie on the straight line of their neighbours (within 1e-9 mm): same path, fewer moves.
+void drop_collinear(std::vector<Vec3>& points);
+
 // Parallel lines at `angle_deg` spaced `spacing` apart, clipped to a rectangle and (when not empty) a region;
 // each line gives the [start, end] pieces inside, ordered along the direction.
 struct ScanLine {
@@ -75,15 +82,8 @@ void parallel_blocks(size_t n, const PlanProgress& progress, double from, double
                      const std::function<void(size_t)>& f);
 void check_cancel(const PlanProgress& progress, double fraction);
 
-// A strategy written against a Surface, and the adapter that gives it one for a mesh or a cloud input.
-using SurfaceStrategy = std::function<Job(const Surface&, const PlanParams&, const PlanProgress&)>;
-StrategyFunction on_surface(SurfaceStrategy strategy);
+// Refuses a plan of more than about 2e8 drop-cutter queries (minutes of work at a million a second), naming the
+// part's size: a cloud read in the wrong units would otherwise run for hours.
+void check_query_count(const std::string& strategy, double queries, const Box3& part);
 
-}  // namespace rosmill
-
-namespace rosmill {
-// The cloud Surface's maker, set by the cloud area (e.g. from its strategy-table entry or at start-up); until
-// then a Surface strategy refuses a cloud input with a clear error.
-using CloudSurfaceFactory = std::function<std::unique_ptr<Surface>(const PointCloud&, const PlanParams&)>;
-CloudSurfaceFactory& cloud_surface_factory();
 }  // namespace rosmill

@@ -18,8 +18,5 @@ struct RoughOptions {
 Job rough_on(const Surface& surface, const PlanParams& params, const RoughOptions& options,
              const PlanProgress& progress = {});
 Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
-// The strategy table's entry: checks a stock mesh (closed, holding the part when the input is a mesh), then
-// runs rough_strategy on the input's surface.
-Job plan_rough(const PlanInput& input, const PlanParams& params, const PlanProgress& progress);
 
 }  // namespace rosmill

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "rosmill/geometry/mesh.hpp"
-#include "rosmill/slice/contour_toolpath.hpp"
+#include "rosmill/geometry/polygon_offset.hpp"
 
 namespace rosmill {
 

@@ -1,5 +1,8 @@
-// The seam between geometry and planning (../DESIGN): "where does this cutter touch down at (x, y)?".
-// A mesh answers from its triangles, a point cloud from its points; every strategy is written against this.
+// The seam between geometry and planning: "where does this cutter touch down at (x, y)?". A mesh answers from its
+// triangles, a point cloud from its points; every strategy is written against this. Two optional queries let a
+// surface answer better than sampling its drops: how deep it reaches into a cutter moving in a straight line (the
+// check of the paths between cutter locations in Muslimin et al., "Direct NC Toolpath Generation from 3D Point
+// Cloud Datasets"), and where the input asks for no cut at all (missing data a cloud's hole policy skips).
 #pragma once
 #include <cstddef>
 
@@ -13,6 +16,12 @@ struct Drop {
   bool touched = false; // false: nothing lies under the cutter's footprint (z is then the surface's floor)
 };
 
+// How deep the surface reaches into a cutter that moves with its tip from a to b.
+struct SweepHit {
+  double depth = 0.0;  // mm the deepest part goes into the cutter (<= 0: clear)
+  double at = 0.0;     // where along the move that is (0 at a, 1 at b)
+};
+
 class Surface {
  public:
   virtual ~Surface() = default;
@@ -22,6 +31,13 @@ class Surface {
   virtual Drop drop(const Cutter& cutter, double x, double y) const = 0;
   // Batch form: z for n points; the default loops over drop(). Implementations parallelise.
   virtual void drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const;
+  // The deepest the surface goes into the cutter along the straight move from tip a to tip b when deeper than
+  // `floor`, else {floor, 0}. The default compares the drop with the tip's height every R/16 (0.01 to 0.05 mm)
+  // along the move, which is what a mesh answers; a cloud answers exactly from its points.
+  virtual SweepHit sweep(const Cutter& cutter, const Vec3& a, const Vec3& b, double floor) const;
+  // True when a cutter footprint of `radius` at (x, y) reaches where the input says not to cut (a cloud's holes
+  // under the Skip policy); strategies leave such positions out. The default: nowhere.
+  virtual bool skips(double x, double y, double radius) const;
 };
 
 }  // namespace rosmill

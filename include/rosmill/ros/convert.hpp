@@ -19,8 +19,9 @@
 #include "rosmill/ToolpathMsg.h"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
-#include "rosmill/plan/strategy.hpp"
-#include "rosmill/plan/toolpath.hpp"
+#include "rosmill/plan/plan_params.hpp"
+#include "rosmill/toolpath/job.hpp"
+#include "rosmill/toolpath/toolpath.hpp"
 #include "rosmill/segment/setup_frame.hpp"
 
 namespace rosmill::edge {

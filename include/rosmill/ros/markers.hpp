@@ -6,7 +6,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "rosmill/geometry/mesh.hpp"
-#include "rosmill/plan/strategy.hpp"
+#include "rosmill/toolpath/job.hpp"
 #include "rosmill/segment/setup_frame.hpp"
 
 namespace rosmill::edge {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "rosmill/cutter/tool_table.hpp"
-#include "rosmill/plan/strategy.hpp"
+#include "rosmill/plan/plan_params.hpp"
 
 namespace rosmill::edge {
 

@@ -7,7 +7,7 @@
 
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/types.hpp"
-#include "rosmill/plan/toolpath.hpp"
+#include "rosmill/toolpath/toolpath.hpp"
 
 namespace rosmill::verify {
 

@@ -1,4 +1,4 @@
-// The core toolpath: what every strategy produces and what the post-processor, the verifier and the ROS layer
+// The toolpath: what every planning strategy produces and what the post-processor, the verifier and the ROS layer
 // consume. Positions are cutter locations (the tool tip) in millimetres in the workpiece frame (G54).
 #pragma once
 #include <string>
@@ -38,14 +38,5 @@ struct Toolpath {
   size_t move_count() const;
   Box3 bounds() const;
 };
-
-// Figures of a toolpath: lengths in mm, time in seconds at the moves' feeds (rapids at `rapid_feed`).
-struct ToolpathStats {
-  size_t moves = 0;
-  double cutting_length = 0.0;
-  double rapid_length = 0.0;
-  double estimated_seconds = 0.0;
-};
-ToolpathStats toolpath_stats(const Toolpath& tp, double rapid_feed = 5000.0);
 
 }  // namespace rosmill

@@ -1,4 +1,4 @@
-#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 
 #include <cmath>
 #include <fstream>

@@ -1,0 +1,40 @@
+// What every planning strategy is given besides the surface: the tool, stepover, step-down, allowance,
+// tolerance and heights, and the progress callback through which a long plan reports and is cancelled.
+#pragma once
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "rosmill/cutter/cutter.hpp"
+#include "rosmill/geometry/mesh.hpp"
+
+namespace rosmill {
+
+// How a line is sampled into cutter locations (raster.hpp): chord refinement to the tolerance, or the step-error
+// interpolation with the swept-move check of Muslimin et al., "Direct NC Toolpath Generation from 3D Point Cloud
+// Datasets" (step_error.hpp).
+enum class Sampling { Chord, StepError };
+const char* sampling_name(Sampling s);
+// "chord" or "step-error"; throws Error naming `where` otherwise.
+Sampling parse_sampling(const std::string& text, const std::string& where);
+
+// Parameters; NaN means "the tool's default" (stepover, stepdown) or the strategy's default.
+struct PlanParams {
+  Tool tool;
+  double stepover = NAN;
+  double stepdown = NAN;
+  double allowance = 0.0;    // stock to leave on every surface (mm)
+  double tolerance = 0.001;  // chord / gouge tolerance (mm)
+  double angle_deg = 0.0;    // raster direction in the XY plane
+  double stock_margin = 5.0; // box stock: the part's bounding box grown by this (mm)
+  // Roughing from a stock mesh instead of the box (closed, containing the part, same frame and units; not owned;
+  // see plan/stock.hpp). Its bounding box then gives the levels' top and the safe height.
+  const Mesh* stock_mesh = nullptr;
+  double safe_clearance = 5.0; // safe_z above the stock top (mm)
+  Sampling sampling = Sampling::Chord;
+};
+
+// Progress in [0, 1]; return false to cancel (the strategy then throws Error("plan", "cancelled")).
+using PlanProgress = std::function<bool(double fraction)>;
+
+}  // namespace rosmill
