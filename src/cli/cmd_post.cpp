@@ -7,7 +7,7 @@
 #include "config_file.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
-#include "rosmill/plan/toolpath_io.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 
 namespace rosmill::cli {
 namespace {
