@@ -6,7 +6,8 @@
 #include <fstream>
 
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
+#include "rosmill/gcode/lexer.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "test_post_jobs.hpp"
@@ -148,17 +149,18 @@ TEST(ModalScan, StateBeforeALineIsWhatTheControllerHas) {
   EXPECT_DOUBLE_EQ(s.feed, 800);
   EXPECT_NEAR(s.position.head<2>().norm(), 23.0, 1e-3);
   EXPECT_TRUE(s.known[0] && s.known[1] && s.known[2]);
-  EXPECT_THROW(parse_block("G1 X(unclosed", "line 3"), Error);
-  EXPECT_THROW(parse_block("G1 X", "line 3"), Error);
-  const Block b = parse_block("n20 g1 x-1.5 ( comment X9 ) y2 ; z7", "l");
+  EXPECT_THROW(lex_line("G1 X(unclosed", Place{"", 3}), Error);
+  EXPECT_THROW(lex_line("G1 X", Place{"", 3}), Error);
+  const Block b = lex_line("n20 g1 x-1.5 ( comment X9 ) y2 ; z7", Place{});
   EXPECT_DOUBLE_EQ(b.get('X'), -1.5);
   EXPECT_TRUE(std::isnan(b.get('Z')));
   EXPECT_DOUBLE_EQ(b.get('N'), 20);
   // Packed words (as GRBL senders strip spaces): "0X9" is G0 then X9, not a hexadecimal number.
-  const Block packed = parse_block("G0X9Y-.5Z1.", "l");
-  EXPECT_DOUBLE_EQ(packed.get('G'), 0);
+  const Block packed = lex_line("G0X9Y-.5Z1.", Place{});
+  ASSERT_EQ(packed.g_count, 1);
+  EXPECT_EQ(packed.g[0], 0);
   EXPECT_DOUBLE_EQ(packed.get('X'), 9);
   EXPECT_DOUBLE_EQ(packed.get('Y'), -0.5);
   EXPECT_DOUBLE_EQ(packed.get('Z'), 1);
-  EXPECT_THROW(parse_block("G1 Xinf", "l"), Error);
+  EXPECT_THROW(lex_line("G1 Xinf", Place{}), Error);
 }

@@ -17,7 +17,7 @@
 #include "rosmill/control/controller.hpp"
 #include "rosmill/control/linuxcnc.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "test_post_jobs.hpp"
 

@@ -5,7 +5,8 @@
 
 #include "rosmill/control/controller.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
+#include "rosmill/gcode/lexer.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 #include "test_post_jobs.hpp"
@@ -52,11 +53,12 @@ TEST(Rs274Verify, ArcsAreReadAsArcsWithTheirCentres) {
   ASSERT_TRUE(r.ok) << r.error;
   size_t arcs = 0;
   for (const CanonMove& m : r.moves)
-    if (m.kind == CanonMove::Arc) {
+    if (m.is_arc()) {
       ++arcs;
       EXPECT_NEAR(m.centre.norm(), 0.0, 1e-3);
-      EXPECT_NEAR(m.end.head<2>().norm(), 28.0, 1e-3);
-      EXPECT_EQ(m.rotation, 1);  // the contours run counter-clockwise
+      EXPECT_NEAR(m.to.head<2>().norm(), 28.0, 1e-3);
+      EXPECT_EQ(m.shape, MoveShape::ArcCCW);  // the contours run counter-clockwise
+      EXPECT_EQ(m.turns, 1);
     }
   EXPECT_GE(arcs, 2u);
 }
@@ -122,7 +124,7 @@ namespace {
 std::vector<CanonMove> moves_from(const std::vector<std::string>& lines, const Rs274Result& r, size_t first_line) {
   size_t skip = 0;
   for (size_t i = 0; i + 1 < first_line; ++i) {
-    const Block b = parse_block(lines[i], "line");
+    const Block b = lex_line(lines[i], Place{});
     skip += b.has('X') || b.has('Y') || b.has('Z');
   }
   return std::vector<CanonMove>(r.moves.begin() + static_cast<std::ptrdiff_t>(std::min(skip, r.moves.size())), r.moves.end());
@@ -152,12 +154,13 @@ TEST(Rs274Verify, AResumedProgramMovesAsTheOriginalFromItsLine) {
       ASSERT_EQ(got.size(), expected.size()) << dialect << " from line " << line;
       for (size_t k = 0; k < got.size(); ++k) {
         const std::string at = std::string(dialect) + " from line " + std::to_string(line) + ", move " + std::to_string(k);
-        ASSERT_EQ(got[k].kind, expected[k].kind) << at;
-        EXPECT_LT((got[k].end - expected[k].end).cwiseAbs().maxCoeff(), 1e-4) << at;
+        ASSERT_EQ(got[k].rapid, expected[k].rapid) << at;
+        ASSERT_EQ(got[k].shape, expected[k].shape) << at;
+        EXPECT_LT((got[k].to - expected[k].to).cwiseAbs().maxCoeff(), 1e-4) << at;
         EXPECT_NEAR(got[k].feed, expected[k].feed, 1e-6) << at;
-        if (got[k].kind == CanonMove::Arc) {
+        if (got[k].is_arc()) {
           EXPECT_LT((got[k].centre - expected[k].centre).cwiseAbs().maxCoeff(), 1e-4) << at;
-          EXPECT_EQ(got[k].rotation, expected[k].rotation) << at;
+          EXPECT_EQ(got[k].turns, expected[k].turns) << at;
         }
       }
       // The preamble ends where the original was before the line, with the same modal state.
