@@ -61,7 +61,8 @@ Interpreter::Interpreter(std::string file) : file_(std::move(file)) { place_.fil
 const Block& Interpreter::lex(std::string_view line, size_t number) {
   place_.line = number;
   moved_ = false;
-  block_ = lex_line(line, code_, place_);
+  code_of(line, code_, place_);
+  read_words(code_, place_, block_);
   return block_;
 }
 

@@ -86,13 +86,15 @@ void add_word(Block& b, char letter, double v, const Place& where) {
 
 }  // namespace
 
-Block read_words(std::string_view code, const Place& where) {
-  Block b;
+void read_words(std::string_view code, const Place& where, Block& b) {
+  b.g_count = b.m_count = 0;
+  b.present = 0;
+  b.block_delete = b.percent = false;
   size_t i = 0;
   if (!code.empty() && code[0] == '%') {
     if (code.size() > 1) throw Error(where.str(), not_a_word('%'));
     b.percent = true;
-    return b;
+    return;
   }
   if (!code.empty() && code[0] == '/') {
     b.block_delete = true;
@@ -107,6 +109,11 @@ Block read_words(std::string_view code, const Place& where) {
     ++i;
     add_word(b, letter, read_number(code, i, letter, where), where);
   }
+}
+
+Block read_words(std::string_view code, const Place& where) {
+  Block b;
+  read_words(code, where, b);
   return b;
 }
 

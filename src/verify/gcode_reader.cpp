@@ -36,18 +36,24 @@ bool simulated_g(int g) {
   }
 }
 
-void refuse_m(int m, const std::string& where) {
+// Why an M code the simulation does not know is refused.
+[[noreturn]] void refuse_m(int m, const gcode::Place& place) {
+  const std::string where = place.str();
   if (m == 98 || m == 99) throw Error(where, "M" + std::to_string(m) + " (subroutines) is not supported");
   if (m >= 70 && m <= 73)
     throw Error(where, "M" + std::to_string(m) + " (saved modal state) is not supported by the verifier");
-  const bool known = (m >= 0 && m <= 9) || m == 30 || m == 60 || (m >= 48 && m <= 53) || (m >= 62 && m <= 68) ||
-                     (m >= 100 && m <= 199);
-  if (!known) throw Error(where, "M" + std::to_string(m) + " is not known to the verifier");
+  throw Error(where, "M" + std::to_string(m) + " is not known to the verifier");
+}
+
+// M codes that do not move the tool or that the simulation follows (M2, M30, M6).
+bool simulated_m(int m) {
+  return (m >= 0 && m <= 9) || m == 30 || m == 60 || (m >= 48 && m <= 53) || (m >= 62 && m <= 68) ||
+         (m >= 100 && m <= 199);
 }
 
 // What the simulation cannot follow is refused before the block runs, naming the line.
-void refuse_unsimulated(const Block& b, const std::string& where) {
-  if (b.block_delete) throw Error(where, "block delete '/' is not supported");
+void refuse_unsimulated(const Block& b, const gcode::Place& where) {
+  if (b.block_delete) throw Error(where.str(), "block delete '/' is not supported");
   static constexpr uint32_t kKnown = [] {
     uint32_t bits = 0;
     for (char c : std::string_view("FGHIJKMNPRSTXYZ")) bits |= 1u << (c - 'A');
@@ -55,11 +61,12 @@ void refuse_unsimulated(const Block& b, const std::string& where) {
   }();
   if (const uint32_t other = b.present & ~kKnown)
     for (int k = 0; k < 26; ++k)
-      if (other >> k & 1u) throw Error(where, refused_letter(static_cast<char>('A' + k)));
+      if (other >> k & 1u) throw Error(where.str(), refused_letter(static_cast<char>('A' + k)));
   for (int k = 0; k < b.g_count; ++k)
     if (!simulated_g(b.g[k]))
-      throw Error(where, gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
-  for (int k = 0; k < b.m_count; ++k) refuse_m(b.m[k], where);
+      throw Error(where.str(), gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
+  for (int k = 0; k < b.m_count; ++k)
+    if (!simulated_m(b.m[k])) refuse_m(b.m[k], where);
 }
 
 // The one reader's canonical moves, with the tools of the setup, into the simulator's program.
@@ -82,7 +89,7 @@ class Reader {
   bool line(std::string_view raw, uint32_t number) {
     const Block& b = reader_.lex(raw, number);
     if (!b.percent && !b.empty()) {
-      refuse_unsimulated(b, reader_.where());
+      refuse_unsimulated(b, reader_.place());
       tool_words(b);
     }
     reader_.execute();
@@ -121,19 +128,23 @@ class Reader {
   }
 
   // A move is swept once all three axes are known, the first one from its own target.
-  void add(CanonMove m) {
-    if (m.is_arc() && m.turns != 1) throw Error(reader_.where(), "arcs of several turns (P) are not supported");
-    if (!m.to_known()) return;  // still somewhere unknown: nothing to sweep yet
+  void add(const CanonMove& move) {
+    if (move.is_arc() && move.turns != 1) throw Error(reader_.where(), "arcs of several turns (P) are not supported");
+    if (!move.to_known()) return;  // still somewhere unknown: nothing to sweep yet
     if (current_ < 0)
       throw Error(reader_.where(), "a move before any tool change (T.. M6) and no tool given for the one in the "
                                    "spindle at the start (--tool)");
-    if (!m.from_known()) m.from = m.to;
-    else if (!m.is_arc() && (m.to - m.from).squaredNorm() == 0.0) return;  // a zero-length line: the cutter stays
+    // A zero-length line leaves the cutter where it is.
+    if (move.from_known() && !move.is_arc() && (move.to - move.from).squaredNorm() == 0.0) return;
     if (program_.moves.size() >= kMaxProgramMoves)
       throw Error(reader_.where(), "the program has more than " + std::to_string(kMaxProgramMoves) +
                                        " moves, more than the verifier holds: verify it in parts");
+    CanonMove& m = program_.moves.emplace_back(move);
+    if (!m.from_known()) {  // the first swept move starts at its own target
+      m.from = m.to;
+      m.known_from = m.known_to;
+    }
     m.tool = static_cast<uint16_t>(current_);
-    program_.moves.push_back(m);
   }
 
   const ToolSetup& tools_;

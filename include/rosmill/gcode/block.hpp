@@ -21,10 +21,12 @@ struct Place {
 
 struct Block {
   static constexpr int kMaxCodes = 8;
-  int g[kMaxCodes] = {};  // G numbers times ten, so that G codes with a decimal compare exactly (G91.1 -> 911)
-  int m[kMaxCodes] = {};  // M numbers
+  // Only the first g_count, m_count codes and the `present` letters' values are set (a block is made for every
+  // line read: nothing else is cleared).
+  int g[kMaxCodes];       // G numbers times ten, so that G codes with a decimal compare exactly (G91.1 -> 911)
+  int m[kMaxCodes];       // M numbers
   int g_count = 0, m_count = 0;
-  double value[26] = {};  // the other words (line number N included), by letter
+  double value[26];       // the other words (line number N included), by letter
   uint32_t present = 0;   // bit per letter of `value`
   bool block_delete = false;  // the line starts with '/': skipped when the operator's block-delete switch is on
   bool percent = false;       // a '%' line, which demarcates the program in a file

@@ -20,7 +20,8 @@ namespace rosmill::gcode {
 void code_of(std::string_view line, std::string& code, const Place& where);
 std::string code_of(std::string_view line, const Place& where);
 
-// The words of a line's code (what code_of gives).
+// The words of a line's code (what code_of gives), into `block` (a reader reuses one) or a new block.
+void read_words(std::string_view code, const Place& where, Block& block);
 Block read_words(std::string_view code, const Place& where);
 
 // Both steps; `code` is scratch space that a caller reading many lines reuses.
