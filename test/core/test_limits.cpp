@@ -97,6 +97,9 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
       {program({"G92 X0 Y0", "G1 Z-1 F100"}), 5, "unchecked move"},
       {program({"G10 L2 P1 Z-500", "G1 Z-1 F100"}), 5, "unchecked move"},
       {program({"G55", "G1 Z-1 F100"}), 5, "work offset"},
+      // An arc by radius and a full circle (end = start) are swept as the controller sweeps them.
+      {program({"G0 X245 Y0", "G1 Z-1 F100", "G3 X245 Y20 R10"}), 7, "envelope x max"},
+      {program({"G0 X245 Y0", "G1 Z-1 F100", "G3 X245 Y0 I5 J0"}), 7, "envelope x max"},
       // Violations come by line: the feed on line 5 before the envelope on line 7.
       {program({"G1 Z-1 F5000", "X5", "G0 Z10 X400"}), 5, "max feed"},
   };
@@ -125,6 +128,23 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
   o.stock_top = 5;
   EXPECT_FALSE(check_limits(program({"G1 Z-1 F100", "X5", "G0 Z6"}), m, o).empty());
   EXPECT_TRUE(check_limits(program({"G1 Z-1 F100", "X5", "G0 Z7"}), m, o).empty());
+}
+
+TEST(MachineLimits, WhatTheCheckCannotFollowIsRefusedWithTheLine) {
+  const MachineLimits m = machine();
+  auto error_of = [&](std::initializer_list<std::string> body) {
+    try {
+      check_limits(program(body), m);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_of({"G1 Z-1 F100", "G18 G2 X10 Z-1 I5 K0"}), "line 6: arcs outside the XY plane (G17) are not followed");
+  EXPECT_EQ(error_of({"G93 G1 Z-1 F2"}), "line 5: inverse-time feed (G93) is not followed");
+  EXPECT_EQ(error_of({"G1 Z-1 F100", "G2 X10 Y0 I3"}).rfind("line 6: radius to the end of the arc differs", 0), 0u);
+  EXPECT_EQ(error_of({"G1 Z-1 F100 (open"}), "line 5: comment not closed with ')'");
+  EXPECT_EQ(error_of({"G81 X0 Y0 Z-1 R1"}).rfind("line 5: G81 is not followed", 0), 0u);
 }
 
 TEST(ModalScan, StateBeforeALineIsWhatTheControllerHas) {
