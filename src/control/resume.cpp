@@ -36,8 +36,8 @@ std::vector<std::string> resume_preamble(const std::vector<std::string>& program
   const double safe = std::isnan(o.safe_z) ? highest : o.safe_z;
   const double unit = s.metric ? 1.0 : 1.0 / 25.4;  // positions are scanned in mm; write them in program units
   pre.push_back("(rosmill resume at line " + std::to_string(o.from_line) + ")");
-  pre.push_back(std::string(s.metric ? "G21" : "G20") + " G" + std::to_string(s.plane) + " G" +
-                std::to_string(s.work_offset) + " G90 G94");
+  pre.push_back(std::string(s.metric ? "G21" : "G20") + " G" + std::to_string(s.plane) + " " +
+                gcode::work_offset_code(s.work_offset) + " G90 G94");
   if (s.tool > 0) {
     if (dialect == "linuxcnc") {
       pre.push_back("T" + std::to_string(s.tool) + " M6");

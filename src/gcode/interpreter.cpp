@@ -249,6 +249,10 @@ void Interpreter::program_end() {
   state_.motion = 1;
 }
 
+std::string work_offset_code(int work_offset) {
+  return g_name(work_offset < 100 ? work_offset * 10 : work_offset);
+}
+
 ModalState state_before(const std::vector<std::string>& lines, size_t count) {
   Interpreter reader;
   for (size_t i = 0; i < count && i < lines.size(); ++i) reader.read(lines[i], i + 1);

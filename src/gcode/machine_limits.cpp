@@ -110,7 +110,7 @@ void refuse_unfollowed(const Interpreter& reader, int offset_before, Add&& add) 
   }
   const ModalState& s = reader.state();
   if (s.work_offset != 54 && s.work_offset != offset_before)
-    add("work offset", "G" + std::to_string(s.work_offset) + " selected; the machine file gives G54's origin only");
+    add("work offset", work_offset_code(s.work_offset) + " selected; the machine file gives G54's origin only");
   if (s.feed_mode == 93) throw Error(reader.where(), "inverse-time feed (G93) is not followed");
   if (reader.moved() && reader.move().is_arc() && reader.move().plane != Plane::XY)
     throw Error(reader.where(), "arcs outside the XY plane (G17) are not followed");

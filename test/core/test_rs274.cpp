@@ -3,6 +3,8 @@
 // over every planning strategy in strategies() on every seed primitive (the test grows as strategies land).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "rosmill/control/controller.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/interpreter.hpp"
@@ -178,5 +180,34 @@ TEST(Rs274Verify, AResumedProgramMovesAsTheOriginalFromItsLine) {
       ++resumes;
     }
     EXPECT_GE(resumes, 8u);
+  }
+}
+
+TEST(Rs274Verify, AResumeRestoresInchesOtherPlanesAndWorkOffsets) {
+  // A hand-written program in inches, in G59.1, with XZ arcs: from every line after the first move, the resumed
+  // program's moves are the original's (rs274 prints program coordinates, so the offset's values do not matter).
+  const std::vector<std::string> p = {"G20 G90 G59.1", "T1 M6", "G0 X0 Y0 Z1", "S1000 M3", "G1 Z0 F10",
+                                      "G18 G2 X1 Z0 I0.5 K0", "G3 X2 Z0 R0.5", "G1 Y0.5", "G17 G0 Z1", "M5", "M30"};
+  const Rs274Result whole = run_rs274(p);
+  ASSERT_TRUE(whole.ok) << whole.error;
+  for (size_t line = 4; line <= p.size(); ++line) {
+    control::SendOptions so;
+    so.from_line = line;
+    const std::vector<std::string> resumed = control::resumed_program(p, so, "linuxcnc");
+    const size_t preamble = resumed.size() - (p.size() - line + 1);
+    EXPECT_NE(std::find(resumed.begin(), resumed.end(), "G20 G" + std::to_string(state_before(p, line - 1).plane) +
+                                                            " G59.1 G90 G94"),
+              resumed.end())
+        << line;
+    const Rs274Result r = run_rs274(resumed);
+    ASSERT_TRUE(r.ok) << "from line " << line << ": " << r.error;
+    const std::vector<CanonMove> expected = moves_from(p, whole, line), got = moves_from(resumed, r, preamble + 1);
+    ASSERT_EQ(got.size(), expected.size()) << line;
+    for (size_t k = 0; k < got.size(); ++k) {
+      EXPECT_EQ(got[k].shape, expected[k].shape) << line << ", move " << k;
+      EXPECT_EQ(got[k].plane, expected[k].plane) << line << ", move " << k;
+      EXPECT_LT((got[k].to - expected[k].to).cwiseAbs().maxCoeff(), 1e-4) << line << ", move " << k;
+      EXPECT_LT((got[k].centre - expected[k].centre).cwiseAbs().maxCoeff(), 1e-4) << line << ", move " << k;
+    }
   }
 }

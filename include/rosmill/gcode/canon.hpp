@@ -26,7 +26,7 @@ struct CanonMove {
   MoveShape shape = MoveShape::Line;
   bool rapid = false;          // G0 (STRAIGHT_TRAVERSE); feeds and arcs are not
   Plane plane = Plane::XY;     // arcs
-  uint8_t turns = 1;           // arcs: full turns plus one (P)
+  uint8_t turns = 1;           // arcs: P, the number of turns (1: the arc alone; each more adds a full circle)
   // The axes (bit 0 x, 1 y, 2 z) whose position the reader knows: a program does not say where the machine is
   // before it, so an axis is unknown until the program first gives it absolutely.
   uint8_t known_from = 7, known_to = 7;

@@ -4,7 +4,8 @@
 // centre or radius, helical, G90.1/G91.1), units, distance modes, feed, spindle, coolant, tool selection and
 // change, length offsets and work offsets. What moves the machine where the reader cannot follow it (G10, G28,
 // G30, G53, G92) makes no canonical move and leaves the axes it touches unknown; consumers that must not pass
-// such a block look at the block's G codes. Canned cycles and other motion modes are refused.
+// such a block look at the block's G codes. Canned cycles and other motion modes are refused. A block-delete
+// line runs as with the operator's switch off; a consumer that must know looks at Block::block_delete.
 #pragma once
 #include <string>
 #include <string_view>
@@ -20,7 +21,7 @@ struct ModalState {
   bool absolute = true;       // G90 / G91
   bool absolute_arc = false;  // G90.1 / G91.1 (I J K absolute or from the start)
   int plane = 17;             // 17, 18, 19
-  int work_offset = 54;       // 54..59
+  int work_offset = 54;       // 54..59; 591..593 for G59.1..G59.3
   int feed_mode = 94;         // 93 inverse time, 94 per minute, 95 per revolution
   int motion = -1;            // 0, 1, 2, 3; -1 before any motion word and after G80
   double feed = 0.0;          // mm/min (the F word in the program's units)
@@ -74,6 +75,9 @@ class Interpreter {
   bool moved_ = false, percent_open_ = false, blocks_read_ = false;
   int motion_word_ = -1, non_modal_ = -1;  // the block's codes of the motion group and of group 0 (times ten)
 };
+
+// The G code of a ModalState::work_offset: "G54", "G59.1".
+std::string work_offset_code(int work_offset);
 
 // The modal state after lines [0, line_count) of a program.
 ModalState state_before(const std::vector<std::string>& lines, size_t line_count);
