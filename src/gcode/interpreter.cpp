@@ -11,7 +11,7 @@ namespace rosmill::gcode {
 namespace {
 
 constexpr int kGroups = 16;
-constexpr int kNonModal = 0, kMotion = 1;
+constexpr int kNonModal = 0, kMotion = 1, kLength = 8;
 
 // The modal group of a G code (times ten) in RS274/NGC (NIST version 3, table 4, with LinuxCNC's additions);
 // -1 for no G code of the language.
@@ -28,7 +28,7 @@ int modal_group(int g) {
     case 930: case 940: case 950: return 5;
     case 200: case 210: return 6;
     case 400: case 410: case 411: case 420: case 421: return 7;
-    case 430: case 431: case 432: case 490: return 8;
+    case 430: case 431: case 432: case 490: return kLength;
     case 980: case 990: return 10;
     case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593: return 12;
     case 610: case 611: case 640: return 13;
@@ -87,7 +87,7 @@ void Interpreter::execute() {
   machine_words();
   non_modal_codes();
   motion();
-  if (block_.has_m(2) || block_.has_m(30)) program_end();
+  if (block_.m_count && (block_.has_m(2) || block_.has_m(30))) program_end();
 }
 
 void Interpreter::modal_codes() {
@@ -102,6 +102,7 @@ void Interpreter::modal_codes() {
   }
   motion_word_ = seen[kMotion];
   non_modal_ = seen[kNonModal];
+  length_word_ = seen[kLength];
   if (motion_word_ >= 0 && !followed_motion(motion_word_))
     throw Error(where(), g_name(motion_word_) + " is not followed by the reader (threading, probing, canned cycles)");
   for (int k = 0; k < block_.g_count; ++k) {
@@ -139,9 +140,11 @@ void Interpreter::machine_words() {
     }
   }
   // The length offset after the tool change (table 8): G43 without H takes the tool just loaded.
-  if (block_.has_g(430) || block_.has_g(431) || block_.has_g(432))
+  if (length_word_ == 490) {
+    state_.length_offset = -1;
+  } else if (length_word_ >= 0) {
     state_.length_offset = block_.has('H') ? static_cast<int>(std::lround(block_.get('H'))) : state_.tool;
-  if (block_.has_g(490)) state_.length_offset = -1;
+  }
 }
 
 void Interpreter::non_modal_codes() {
@@ -183,7 +186,10 @@ void Interpreter::motion() {
     return;
   }
   CanonMove& m = move_;
-  m = CanonMove{};
+  m.shape = MoveShape::Line;  // the fields an arc sets, back to a line's
+  m.plane = Plane::XY;
+  m.turns = 1;
+  m.centre = Vec2::Zero();
   m.from = state_.position;
   m.known_from = static_cast<uint8_t>(state_.known[0] | state_.known[1] << 1 | state_.known[2] << 2);
   const double unit = state_.metric ? 1.0 : 25.4;

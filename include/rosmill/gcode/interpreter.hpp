@@ -73,7 +73,8 @@ class Interpreter {
   ModalState state_;
   CanonMove move_;
   bool moved_ = false, percent_open_ = false, blocks_read_ = false;
-  int motion_word_ = -1, non_modal_ = -1;  // the block's codes of the motion group and of group 0 (times ten)
+  // The block's codes (times ten) of the motion group, of group 0 and of the tool length group; -1: none.
+  int motion_word_ = -1, non_modal_ = -1, length_word_ = -1;
 };
 
 // The G code of a ModalState::work_offset: "G54", "G59.1".
