@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/lexer.hpp"
 
 namespace rosmill::control {
 namespace {
@@ -15,17 +16,9 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// GRBL's receive buffer holds the line without comments: strip them (and spaces) to save room.
-std::string compact(const std::string& line) {
-  std::string out;
-  int depth = 0;
-  for (char c : line) {
-    if (c == ';' && depth == 0) break;
-    if (c == '(') ++depth;
-    else if (c == ')') --depth;
-    else if (depth == 0 && c != ' ' && c != '\t' && c != '\r') out.push_back(c);
-  }
-  return out;
+// GRBL's receive buffer holds the line's code: the reader's first step (comments and spaces out) saves room.
+std::string compact(const std::string& line, const std::string& where) {
+  return gcode::code_of(line, gcode::Place{where, 0});
 }
 
 }  // namespace
@@ -69,12 +62,12 @@ void GrblController::start(const std::vector<std::string>& program, const SendOp
   error_line_ = 0;
   ran_after_error_ = 0;
   for (const std::string& pre : resume_preamble(program, o, opt_.dialect.empty() ? "grbl" : opt_.dialect)) {
-    const std::string text = compact(pre);
+    const std::string text = compact(pre, describe_ + " resume preamble");
     if (!text.empty()) queue_.push_back({text, 0});
   }
   const std::vector<std::string> rest = resumed_rest(program, o.from_line);
   for (size_t i = o.from_line; i <= program.size(); ++i) {
-    const std::string text = compact(rest[i - o.from_line]);
+    const std::string text = compact(rest[i - o.from_line], describe_ + " line " + std::to_string(i));
     if (text.empty() || text == "%") continue;  // nothing for GRBL to answer
     if (text.size() + 1 > opt_.rx_buffer)
       throw Error(describe_ + " line " + std::to_string(i), "longer than GRBL's receive buffer: " + text);

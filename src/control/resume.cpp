@@ -2,7 +2,7 @@
 
 #include "rosmill/control/controller.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/number_format.hpp"
 
 namespace rosmill::control {
@@ -23,22 +23,21 @@ std::vector<std::string> resume_preamble(const std::vector<std::string>& program
                                    std::to_string(program.size()) + ")");
   std::vector<std::string> pre;
   if (o.from_line == 1) return pre;
-  const gcode::ModalState s = gcode::state_before(program, o.from_line - 1);
-  // The highest point the program reached before: a height known to clear the part (unless given).
-  double safe = o.safe_z;
-  if (std::isnan(safe)) {
-    gcode::ModalState scan;
-    safe = -INFINITY;
-    for (size_t i = 0; i + 1 < o.from_line; ++i) {
-      const std::string where = "line " + std::to_string(i + 1);
-      const auto bm = gcode::apply_block(scan, gcode::parse_block(program[i], where), where);
-      if (bm.moved && bm.to_known[2]) safe = std::max(safe, bm.to.z());
-    }
+  // The modal state before the line, and the highest point the program reached before it: a height known to
+  // clear the part (unless given).
+  gcode::Interpreter reader;
+  double highest = -INFINITY;
+  for (size_t i = 0; i + 1 < o.from_line; ++i) {
+    reader.read(program[i], i + 1);
+    if (reader.moved() && (reader.move().known_to & 4)) highest = std::max(highest, reader.move().to.z());
   }
+  const gcode::ModalState& s = reader.state();
+  if (s.feed_mode == 93) throw Error("--from-line", "a resume in inverse-time feed (G93) is not supported");
+  const double safe = std::isnan(o.safe_z) ? highest : o.safe_z;
   const double unit = s.metric ? 1.0 : 1.0 / 25.4;  // positions are scanned in mm; write them in program units
   pre.push_back("(rosmill resume at line " + std::to_string(o.from_line) + ")");
-  pre.push_back(std::string(s.metric ? "G21" : "G20") + " G" + std::to_string(s.plane) + " G" +
-                std::to_string(s.work_offset) + " G90 G94");
+  pre.push_back(std::string(s.metric ? "G21" : "G20") + " G" + std::to_string(s.plane) + " " +
+                gcode::work_offset_code(s.work_offset) + " G90 G94");
   if (s.tool > 0) {
     if (dialect == "linuxcnc") {
       pre.push_back("T" + std::to_string(s.tool) + " M6");
@@ -77,21 +76,21 @@ std::vector<std::string> resumed_rest(const std::vector<std::string>& program, s
   if (from_line == 1) return rest;
   // The preamble's own moves leave the controller in G0 or G1: the first line that moves needs the program's
   // motion word again if it relies on the modal one (later lines then find the program's mode in force).
-  gcode::ModalState s = gcode::state_before(program, from_line - 1);
-  const int motion = s.motion;
+  gcode::Interpreter reader;
+  for (size_t i = 0; i + 1 < from_line; ++i) reader.read(program[i], i + 1);
+  const int motion = reader.state().motion;
   for (size_t i = 0; i < rest.size(); ++i) {
-    const std::string where = "line " + std::to_string(from_line + i);
-    const gcode::Block b = gcode::parse_block(rest[i], where);
-    if (!gcode::apply_block(s, b, where).moved) continue;
+    const gcode::Block& b = reader.read(rest[i], from_line + i);
+    if (!reader.moved()) continue;
     bool motion_word = false;
-    for (int g : b.g_codes()) motion_word |= g == 0 || g == 10 || g == 20 || g == 30;
+    for (int k = 0; k < b.g_count; ++k) motion_word |= b.g[k] == 0 || b.g[k] == 10 || b.g[k] == 20 || b.g[k] == 30;
     if (motion_word || motion < 0) break;
+    // The motion word goes after the line number, if any (a line number comes first in a line).
     const std::string word = "G" + std::to_string(motion) + " ";
     std::string& line = rest[i];
     const size_t first = line.find_first_not_of(' ');
-    const bool numbered = first != std::string::npos && (line[first] == 'N' || line[first] == 'n');
-    const size_t at = numbered ? line.find(' ', first) : first;  // after the line number, if any
-    line.insert(at == std::string::npos ? line.size() : (numbered ? at + 1 : at), word);
+    const size_t at = b.has('N') ? line.find(' ', first) : first;
+    line.insert(at == std::string::npos ? line.size() : (b.has('N') ? at + 1 : at), word);
     break;
   }
   return rest;

@@ -7,7 +7,8 @@
 #include <sstream>
 
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/gcode/interpreter.hpp"
 
 namespace rosmill::gcode {
 namespace {
@@ -83,86 +84,99 @@ MachineLimits load_machine_limits(const std::string& path) {
 
 std::string LimitViolation::message() const { return limit + ": " + detail + ": " + text; }
 
+namespace {
+
+// One line as the checker saw it: its move (if it moved) and the feed and spindle in force after it.
+struct Step {
+  size_t line;
+  bool moved;
+  CanonMove move;
+  double feed, rpm;
+  int spindle;
+};
+
+// What the checker cannot follow is refused rather than passed unchecked: moves to stored or machine positions,
+// offset changes, and work offsets other than the one the machine file gives. Feeds it cannot check and arcs
+// outside the XY plane stop the check.
+template <class Add>
+void refuse_unfollowed(const Interpreter& reader, int offset_before, Add&& add) {
+  const Block& block = reader.block();
+  for (int k = 0; k < block.g_count; ++k) {
+    const int g = block.g[k];
+    if (g == 280 || g == 300 || g == 530)
+      add("unchecked move", g_name(g) + " goes to a stored or machine position the checker cannot follow");
+    if (g == 100 || g == 920 || g == 921 || g == 922 || g == 923)
+      add("unchecked move", g_name(g) + " changes an offset; later positions could not be checked");
+  }
+  const ModalState& s = reader.state();
+  if (s.work_offset != 54 && s.work_offset != offset_before)
+    add("work offset", work_offset_code(s.work_offset) + " selected; the machine file gives G54's origin only");
+  if (s.feed_mode == 93) throw Error(reader.where(), "inverse-time feed (G93) is not followed");
+  if (reader.moved() && reader.move().is_arc() && reader.move().plane != Plane::XY)
+    throw Error(reader.where(), "arcs outside the XY plane (G17) are not followed");
+}
+
+// The extent of a move along each axis the controller knows: its end points, and for an arc the quadrant points
+// it sweeps through.
+void move_extent(const CanonMove& m, double lo[3], double hi[3], bool any[3]) {
+  for (int a = 0; a < 3; ++a) {
+    const bool to = m.known_to >> a & 1, from = m.known_from >> a & 1;
+    lo[a] = INFINITY;
+    hi[a] = -INFINITY;
+    if (to) lo[a] = hi[a] = m.to[a];
+    if (from) {
+      lo[a] = std::min(lo[a], m.from[a]);
+      hi[a] = std::max(hi[a], m.from[a]);
+    }
+    any[a] = to || from;
+  }
+  if (!m.is_arc()) return;
+  Vec2 min, max;
+  move_xy_bounds(m, min, max);
+  for (int k = 0; k < 2; ++k) {
+    lo[k] = std::min(lo[k], min[k]);
+    hi[k] = std::max(hi[k], max[k]);
+  }
+}
+
+}  // namespace
+
 std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, const MachineLimits& lim,
                                          const LimitCheckOptions& o) {
   std::vector<LimitViolation> out;
-  // First pass: the moves, and the stock top when it is not given.
-  struct Step {
-    size_t line;
-    BlockMotion motion;
-    double feed, rpm;
-    int spindle;
-  };
-  std::vector<Step> steps;
-  ModalState s;
-  double top = -INFINITY;
   auto add = [&](size_t line, std::string limit, std::string detail) {
     out.push_back({line + 1, std::move(limit), std::move(detail), lines[line]});
   };
-  int offset_before = s.work_offset;
+  // First pass: the moves, and the stock top when it is not given.
+  std::vector<Step> steps;
+  Interpreter reader;
+  double top = -INFINITY;
   for (size_t i = 0; i < lines.size(); ++i) {
-    const std::string where = "line " + std::to_string(i + 1);
-    const Block block = parse_block(lines[i], where);
-    const BlockMotion bm = apply_block(s, block, where);
-    // What the checker cannot follow is refused rather than passed unchecked: moves to stored or machine
-    // positions, offset changes, and work offsets other than the one the machine file gives.
-    for (int g : block.g_codes()) {
-      if (g == 280 || g == 300 || g == 530)
-        add(i, "unchecked move", "G" + fmt(g / 10.0) + " goes to a stored or machine position the checker cannot follow");
-      if (g == 100 || g == 920 || g == 921 || g == 922 || g == 923)
-        add(i, "unchecked move", "G" + fmt(g / 10.0) + " changes an offset; later positions could not be checked");
-    }
-    if (s.work_offset != 54 && s.work_offset != offset_before)
-      add(i, "work offset", "G" + std::to_string(s.work_offset) + " selected; the machine file gives G54's origin only");
-    offset_before = s.work_offset;
-    steps.push_back({i, bm, s.feed, s.spindle_rpm, s.spindle});
+    const int offset_before = reader.state().work_offset;
+    reader.read(lines[i], i + 1);
+    refuse_unfollowed(reader, offset_before, [&](std::string limit, std::string detail) {
+      add(i, std::move(limit), std::move(detail));
+    });
+    const ModalState& s = reader.state();
+    steps.push_back({i, reader.moved(), reader.move(), s.feed, s.spindle_rpm, s.spindle});
     // Cutting moves across the part (not plunges or feed retracts) run inside the stock.
-    if (bm.moved && bm.motion != 0 && bm.to_known[2] && (bm.to.x() != bm.from.x() || bm.to.y() != bm.from.y()))
-      top = std::max(top, bm.to.z());
+    const CanonMove& m = reader.move();
+    if (reader.moved() && !m.rapid && (m.known_to & 4) && (m.to.x() != m.from.x() || m.to.y() != m.from.y()))
+      top = std::max(top, m.to.z());
   }
   const double stock_top = std::isnan(o.stock_top) ? top : o.stock_top;
   const double rapid_floor = stock_top + lim.clearance_over_stock;
   static const char* axis = "xyz";
   for (const Step& st : steps) {
-    const BlockMotion& bm = st.motion;
+    const CanonMove& m = st.move;
     if (st.rpm > lim.max_spindle_rpm && st.spindle != 5)
       add(st.line, "max spindle speed", "S" + fmt(st.rpm) + " rpm over " + fmt(lim.max_spindle_rpm));
-    if (!bm.moved) continue;
-    if (bm.motion != 0 && st.feed > lim.max_feed)
+    if (!st.moved) continue;
+    if (!m.rapid && st.feed > lim.max_feed)
       add(st.line, "max feed", "F" + fmt(st.feed) + " mm/min over " + fmt(lim.max_feed));
-    // The extent of the move along each axis the controller knows: its end points, and for an arc the
-    // quadrant points it sweeps through.
     double lo[3], hi[3];
     bool any[3];
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = INFINITY;
-      hi[a] = -INFINITY;
-      if (bm.to_known[a]) lo[a] = hi[a] = bm.to[a];
-      if (bm.from_known[a]) {
-        lo[a] = std::min(lo[a], bm.from[a]);
-        hi[a] = std::max(hi[a], bm.from[a]);
-      }
-      any[a] = bm.to_known[a] || bm.from_known[a];
-    }
-    const bool from_known = bm.from_known[0] && bm.from_known[1];
-    if ((bm.motion == 2 || bm.motion == 3) && from_known) {
-      const Vec2 a = bm.from.head<2>() - bm.centre, b = bm.to.head<2>() - bm.centre;
-      const double r = b.norm();
-      auto along = [&](const Vec2& v) {  // angle from the start in the arc's direction, in [0, 2pi)
-        double t = std::atan2(a.x() * v.y() - a.y() * v.x(), a.dot(v));
-        if (bm.motion == 2) t = -t;
-        return t < 0 ? t + 2 * M_PI : t;
-      };
-      const Vec2 dirs[4] = {Vec2(1, 0), Vec2(0, 1), Vec2(-1, 0), Vec2(0, -1)};
-      for (const Vec2& d : dirs)
-        if (along(d) <= along(b)) {
-          const Vec2 p = bm.centre + r * d;
-          for (int k = 0; k < 2; ++k) {
-            lo[k] = std::min(lo[k], p[k]);
-            hi[k] = std::max(hi[k], p[k]);
-          }
-        }
-    }
+    move_extent(m, lo, hi, any);
     for (int a = 0; a < 3; ++a) {
       if (!any[a]) continue;
       const double mlo = lo[a] + lim.work_offset[a], mhi = hi[a] + lim.work_offset[a];
@@ -176,10 +190,10 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
     if (any[2] && lo[2] + lim.work_offset.z() < lim.table_z - 1e-9)
       add(st.line, "table", "tool tip at machine z " + fmt(lo[2] + lim.work_offset.z()) + " below the table top " +
                                 fmt(lim.table_z));
-    if (bm.motion == 0 && std::isfinite(stock_top) && bm.to_known[2]) {
+    if (m.rapid && std::isfinite(stock_top) && (m.known_to & 4)) {
       // A rapid ends above the clearance; one that travels sideways must also start there.
-      const bool sideways = bm.to.x() != bm.from.x() || bm.to.y() != bm.from.y();
-      const double low = sideways && bm.from_known[2] ? std::min(bm.from.z(), bm.to.z()) : bm.to.z();
+      const bool sideways = m.to.x() != m.from.x() || m.to.y() != m.from.y();
+      const double low = sideways && (m.known_from & 4) ? std::min(m.from.z(), m.to.z()) : m.to.z();
       if (low < rapid_floor - 1e-9)
         add(st.line, "rapid clearance", "rapid at z " + fmt(low) + " below the stock top " + fmt(stock_top) + " + " +
                                             fmt(lim.clearance_over_stock) + " mm clearance");

@@ -9,12 +9,15 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/arc_fit.hpp"
+#include "rosmill/gcode/interpreter.hpp"
+#include "rosmill/gcode/lexer.hpp"
 #include "rosmill/gcode/number_format.hpp"
 
 extern char** environ;
@@ -31,20 +34,20 @@ std::string slurp(const fs::path& p) {
   return s.str();
 }
 
-// Tool numbers the program selects (T words outside comments), for rs274's tool table.
+// The words of a program line, or nothing when the reader refuses it (rs274 then names the line itself).
+std::optional<Block> words_of(const std::string& line) {
+  try {
+    return lex_line(line, Place{});
+  } catch (const Error&) {
+    return std::nullopt;
+  }
+}
+
+// Tool numbers the program selects (its T words), for rs274's tool table.
 std::set<int> tools_used(const std::vector<std::string>& lines) {
   std::set<int> tools;
-  for (const std::string& l : lines) {
-    int depth = 0;
-    for (size_t i = 0; i < l.size(); ++i) {
-      const char c = l[i];
-      if (c == '(') ++depth;
-      if (c == ')') --depth;
-      if (c == ';') break;
-      if (depth == 0 && (c == 'T' || c == 't') && i + 1 < l.size() && std::isdigit(static_cast<unsigned char>(l[i + 1])))
-        tools.insert(std::atoi(l.c_str() + i + 1));
-    }
-  }
+  for (const std::string& l : lines)
+    if (const auto b = words_of(l); b && b->has('T') && b->get('T') >= 0) tools.insert(static_cast<int>(b->get('T')));
   return tools;
 }
 
@@ -63,20 +66,10 @@ std::vector<double> arguments(const std::string& line, size_t open) {
   return v;
 }
 
-// The line without comments (what the interpreter reads).
-std::string code_of(const std::string& line) {
-  std::string code;
-  int depth = 0;
-  for (char ch : line) {
-    if (ch == ';' && depth == 0) break;
-    if (ch == '(') ++depth;
-    else if (ch == ')') --depth;
-    else if (depth == 0) code.push_back(ch);
-  }
-  return code;
+bool moves_axes(const std::string& line) {
+  const auto b = words_of(line);
+  return b && b->has_axis();
 }
-
-bool moves_axes(const std::string& line) { return code_of(line).find_first_of("XYZxyz") != std::string::npos; }
 
 std::string trimmed(const std::string& s) {
   const size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
@@ -122,14 +115,17 @@ class TempDir {
 std::vector<CanonMove> parse_canon(const std::string& text) {
   std::vector<CanonMove> moves;
   double feed = 0.0, scale = 1.0;
+  Plane plane = Plane::XY;
+  Vec3 at = Vec3::Zero();
+  uint8_t known = 0;
   std::istringstream in(text);
   std::string line;
-  int n = 0;
+  uint32_t n = 0;
   while (std::getline(in, line)) {
     ++n;
-    size_t at;
-    if ((at = line.find("SET_FEED_RATE(")) != std::string::npos) {
-      auto a = arguments(line, line.find('(', at));
+    size_t at_call;
+    if ((at_call = line.find("SET_FEED_RATE(")) != std::string::npos) {
+      auto a = arguments(line, line.find('(', at_call));
       if (!a.empty()) feed = a[0] * scale;
       continue;
     }
@@ -139,28 +135,40 @@ std::vector<CanonMove> parse_canon(const std::string& text) {
               : line.find("CANON_UNITS_CM") != std::string::npos ? 10.0 : 1.0;
       continue;
     }
-    CanonMove m;
-    m.canon_line = n;
-    if ((at = line.find("STRAIGHT_TRAVERSE(")) != std::string::npos) {
-      m.kind = CanonMove::Traverse;
-    } else if ((at = line.find("STRAIGHT_FEED(")) != std::string::npos) {
-      m.kind = CanonMove::Feed;
-    } else if ((at = line.find("ARC_FEED(")) != std::string::npos) {
-      m.kind = CanonMove::Arc;
-    } else {
+    if (line.find("SELECT_PLANE(") != std::string::npos) {
+      plane = line.find("CANON_PLANE_XZ") != std::string::npos   ? Plane::ZX
+              : line.find("CANON_PLANE_YZ") != std::string::npos ? Plane::YZ : Plane::XY;
       continue;
     }
-    const auto a = arguments(line, line.find('(', at));
-    if (m.kind == CanonMove::Arc) {
+    CanonMove m;
+    m.source = n;
+    if ((at_call = line.find("STRAIGHT_TRAVERSE(")) != std::string::npos) {
+      m.rapid = true;
+    } else if ((at_call = line.find("STRAIGHT_FEED(")) == std::string::npos &&
+               (at_call = line.find("ARC_FEED(")) == std::string::npos) {
+      continue;
+    }
+    const auto a = arguments(line, line.find('(', at_call));
+    if (line.compare(at_call, 9, "ARC_FEED(") == 0) {
       if (a.size() < 6) throw Error("rs274 output line " + std::to_string(n), "ARC_FEED with too few arguments");
-      m.end = Vec3(a[0], a[1], a[5]) * scale;
+      // ARC_FEED(first end, second end, first centre, second centre, rotation, axis end, ...) in the plane's axes.
+      const PlaneAxes ax = plane_axes(plane);
+      m.to[ax.first] = a[0] * scale;
+      m.to[ax.second] = a[1] * scale;
+      m.to[ax.normal] = a[5] * scale;
       m.centre = Vec2(a[2], a[3]) * scale;
-      m.rotation = static_cast<int>(a[4]);
+      m.shape = a[4] < 0 ? MoveShape::ArcCW : MoveShape::ArcCCW;
+      m.turns = static_cast<uint8_t>(std::abs(a[4]));
+      m.plane = plane;
     } else {
       if (a.size() < 3) throw Error("rs274 output line " + std::to_string(n), "move with too few arguments");
-      m.end = Vec3(a[0], a[1], a[2]) * scale;
+      m.to = Vec3(a[0], a[1], a[2]) * scale;
     }
-    m.feed = m.kind == CanonMove::Traverse ? 0.0 : feed;
+    m.from = at;
+    m.known_from = known;
+    at = m.to;
+    known = 7;
+    m.feed = m.rapid ? 0.0f : static_cast<float>(feed);
     moves.push_back(m);
   }
   return moves;
@@ -249,7 +257,7 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
   }
   // Written numbers are rounded to the program's decimals; rs274 prints four decimals.
   const double precision = 0.5 / static_cast<double>(decimal_scale(program.decimals)) + 0.5e-4 + 1e-9;
-  // Every line that moves the machine yields one canonical move: find them by their origin or their axis words.
+  // Every line that moves the machine yields one canonical move, in rs274's output as in the reader's.
   size_t c = 0;
   Vec3 at = Vec3::Constant(NAN);
   auto fail = [&](size_t line, const std::string& what) {
@@ -263,28 +271,29 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
     for (int q = 0; q < p; ++q) i += job[t].passes[q].moves.size();
     return i + static_cast<size_t>(k);
   };
+  Interpreter reader;
   for (size_t i = 0; i < program.lines.size(); ++i) {
-    const std::string& l = program.lines[i];
+    reader.read(program.lines[i], i + 1);
     const LineOrigin& o = program.origin[i];
-    if (!moves_axes(l)) continue;
+    if (!reader.moved()) continue;
     if (c >= rs.moves.size()) return fail(i, "rs274 produced no move for this line");
     const CanonMove& m = rs.moves[c++];
     if (o.first_move >= 0) {
       const auto& moves = job[o.toolpath].passes[o.pass].moves;
       const Move& last = moves[o.last_move];
-      const double dev = (m.end - last.to).cwiseAbs().maxCoeff();
+      const double dev = (m.to - last.to).cwiseAbs().maxCoeff();
       rep.max_deviation = std::max(rep.max_deviation, dev);
       if (dev > precision) return fail(i, "ends " + std::to_string(dev) + " mm from the toolpath point (" + where(o) + ")");
       const bool rapid = last.type == MoveType::Rapid;
-      if (rapid != (m.kind == CanonMove::Traverse)) return fail(i, "rapid/feed kind differs from " + where(o));
+      if (rapid != m.rapid) return fail(i, "rapid/feed kind differs from " + where(o));
       if (!rapid && std::abs(m.feed - last.feed) > 0.05 + 1e-9)
         return fail(i, "feed " + std::to_string(m.feed) + " differs from the toolpath's " + std::to_string(last.feed));
-      if (m.kind == CanonMove::Arc) {
+      if (m.is_arc()) {
         if (!std::isfinite(at.x())) return fail(i, "arc from an unknown position");
         for (int k = o.first_move; k < o.last_move; ++k) {
-          const double d = distance_to_arc(moves[k].to.head<2>(), at.head<2>(), m.end.head<2>(), m.centre, m.rotation < 0);
+          const double d = distance_to_arc(moves[k].to.head<2>(), at.head<2>(), m.to.head<2>(), m.centre, m.clockwise());
           rep.max_deviation = std::max(rep.max_deviation, d);
-          if (d > arc_tolerance + 2 * precision || std::abs(moves[k].to.z() - m.end.z()) > precision)
+          if (d > arc_tolerance + 2 * precision || std::abs(moves[k].to.z() - m.to.z()) > precision)
             return fail(i, "the arc passes " + std::to_string(d) + " mm from toolpath move " + std::to_string(k));
         }
       } else if (o.first_move != o.last_move) {
@@ -292,7 +301,7 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
       }
       for (int k = o.first_move; k <= o.last_move; ++k) done[o.toolpath][flat_index(o.toolpath, o.pass, k)] = true;
     }
-    at = m.end;
+    at = m.to;
   }
   if (c != rs.moves.size()) {
     rep.problem = "rs274 produced " + std::to_string(rs.moves.size() - c) + " more moves than the program has motion lines";

@@ -1,116 +1,79 @@
 #include "rosmill/verify/gcode_reader.hpp"
 
 #include <algorithm>
-#include <cctype>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <string_view>
 
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/interpreter.hpp"
 
 namespace rosmill::verify {
 namespace {
 
-// Where a line is, spelled out only for an error message ("file:line").
-struct Place {
-  const std::string& name;
-  uint32_t line = 0;
-  std::string str() const { return name + ":" + std::to_string(line); }
-};
+using gcode::Block;
 
-// One block (line) of words after comments and spaces are removed.
-struct Block {
-  static constexpr int kMaxCodes = 8;
-  int g[kMaxCodes], m[kMaxCodes];  // G numbers times ten (G90.1 -> 901); M numbers
-  int ng = 0, nm = 0;
-  double value[26] = {};           // the other words, by letter
-  uint32_t has = 0;                // bit per letter
-  bool has_word(char c) const { return has >> (c - 'A') & 1u; }
-  double word(char c) const { return value[c - 'A']; }
-  bool has_axis() const { return has_word('X') || has_word('Y') || has_word('Z'); }
-};
-
-// Comments out, spaces out, letters up: RS274 ignores spaces anywhere, even inside numbers ("X 1 0" is X10).
-void strip_comments(std::string_view raw, std::string& out, const Place& where) {
-  out.clear();
-  bool in_paren = false;
-  for (char c : raw) {
-    if (in_paren) {
-      if (c == ')') in_paren = false;
-      continue;
-    }
-    if (c == '(') { in_paren = true; continue; }
-    if (c == ';') break;
-    if (c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f') continue;
-    out.push_back(c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c);
-  }
-  if (in_paren) throw Error(where.str(), "comment not closed with ')'");
-}
-
-// An RS274 number: optional sign, digits, optional point and digits (no exponent: "G0X5" is G0 X5).
-double parse_number(std::string_view text, size_t& i, const Place& where, char letter) {
-  bool negative = false;
-  if (i < text.size() && (text[i] == '+' || text[i] == '-')) negative = text[i++] == '-';
-  const size_t start = i;
-  size_t digits = 0;
-  while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  if (i < text.size() && text[i] == '.') {
-    ++i;
-    while (i < text.size() && std::isdigit(static_cast<unsigned char>(text[i]))) ++i, ++digits;
-  }
-  if (digits == 0) throw Error(where.str(), std::string("word ") + letter + " has no number");
-  double v = 0;
-  std::from_chars(text.data() + start, text.data() + i, v);
-  return negative ? -v : v;
-}
-
-// Why a letter other than the ones the reader knows (F G H I J K M N P R S T X Y Z) is refused.
+// Why a letter other than the ones the verifier knows (F G H I J K M N P R S T X Y Z) is refused.
 std::string refused_letter(char letter) {
   const std::string l(1, letter);
   if (letter == 'A' || letter == 'B' || letter == 'C' || letter == 'U' || letter == 'V' || letter == 'W')
     return "axis " + l + " is not supported (the verifier simulates 3-axis X Y Z programs)";
-  if (letter == 'O') return "O-words (subroutines) are not supported";
   if (letter == 'D') return "D (cutter radius compensation) is not supported";
   return "word " + l + " is not supported by the verifier";
 }
 
-Block parse_block(std::string_view text, const Place& where) {
-  Block b;
-  size_t i = 0;
-  if (!text.empty() && text[0] == '/') throw Error(where.str(), "block delete '/' is not supported");
-  while (i < text.size()) {
-    const char letter = text[i];
-    if (letter < 'A' || letter > 'Z')
-      throw Error(where.str(), std::string("unexpected '") + letter + "' (parameters and expressions are not supported)");
-    if (std::string_view("FGHIJKMNPRSTXYZ").find(letter) == std::string_view::npos)
-      throw Error(where.str(), refused_letter(letter));
-    ++i;
-    const double v = parse_number(text, i, where, letter);
-    if (letter == 'G' || letter == 'M') {
-      int& n = letter == 'G' ? b.ng : b.nm;
-      if (n == Block::kMaxCodes) throw Error(where.str(), std::string("more than 8 ") + letter + " words in one line");
-      (letter == 'G' ? b.g : b.m)[n++] = static_cast<int>(std::lround(letter == 'G' ? v * 10 : v));
-      continue;
-    }
-    if (b.has_word(letter) && letter != 'N') throw Error(where.str(), std::string("word ") + letter + " appears twice");
-    b.has |= 1u << (letter - 'A');
-    b.value[letter - 'A'] = v;
+// The G codes the simulation follows or that do not move the tool: motion G0-G3 and G80, the XY plane, units,
+// distance modes, dwell, comp off, tool length (positions are tool tips), G54, path control, feed and spindle
+// modes, canned-cycle return. Anything else would change the motion in a way the simulation does not model.
+bool simulated_g(int g) {
+  switch (g) {
+    case 0: case 10: case 20: case 30: case 800: case 170: case 200: case 210: case 900: case 910: case 901: case 911:
+    case 40: case 400: case 490: case 430: case 540: case 610: case 611: case 640: case 930: case 940: case 950:
+    case 960: case 970: case 980: case 990:
+      return true;
+    default:
+      return false;
   }
-  return b;
 }
 
-std::string gname(int g10) {
-  std::string s = "G" + std::to_string(g10 / 10);
-  if (g10 % 10) s += "." + std::to_string(g10 % 10);
-  return s;
+// Why an M code the simulation does not know is refused.
+[[noreturn]] void refuse_m(int m, const gcode::Place& place) {
+  const std::string where = place.str();
+  if (m == 98 || m == 99) throw Error(where, "M" + std::to_string(m) + " (subroutines) is not supported");
+  if (m >= 70 && m <= 73)
+    throw Error(where, "M" + std::to_string(m) + " (saved modal state) is not supported by the verifier");
+  throw Error(where, "M" + std::to_string(m) + " is not known to the verifier");
 }
 
-// The interpreter's modal state while reading.
+// M codes that do not move the tool or that the simulation follows (M2, M30, M6).
+bool simulated_m(int m) {
+  return (m >= 0 && m <= 9) || m == 30 || m == 60 || (m >= 48 && m <= 53) || (m >= 62 && m <= 68) ||
+         (m >= 100 && m <= 199);
+}
+
+// What the simulation cannot follow is refused before the block runs, naming the line.
+void refuse_unsimulated(const Block& b, const gcode::Place& where) {
+  if (b.block_delete) throw Error(where.str(), "block delete '/' is not supported");
+  static constexpr uint32_t kKnown = [] {
+    uint32_t bits = 0;
+    for (char c : std::string_view("FGHIJKMNPRSTXYZ")) bits |= 1u << (c - 'A');
+    return bits;
+  }();
+  if (const uint32_t other = b.present & ~kKnown)
+    for (int k = 0; k < 26; ++k)
+      if (other >> k & 1u) throw Error(where.str(), refused_letter(static_cast<char>('A' + k)));
+  for (int k = 0; k < b.g_count; ++k)
+    if (!simulated_g(b.g[k]))
+      throw Error(where.str(), gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
+  for (int k = 0; k < b.m_count; ++k)
+    if (!simulated_m(b.m[k])) refuse_m(b.m[k], where);
+}
+
+// The one reader's canonical moves, with the tools of the setup, into the simulator's program.
 class Reader {
  public:
   Reader(const std::string& name, const ToolSetup& tools, size_t expected_moves)
-      : name_(name), tools_(tools) {
+      : tools_(tools), reader_(name) {
     program_.moves.reserve(std::min(expected_moves, kMaxProgramMoves));
     if (tools.loaded) {
       program_.tools.push_back(*tools.loaded);
@@ -124,30 +87,15 @@ class Reader {
 
   // Reads one line; false once the program has ended (M2, M30 or a closing '%').
   bool line(std::string_view raw, uint32_t number) {
-    place_.line = number;
-    strip_comments(raw, text_, place_);
-    if (text_.empty()) return true;
-    if (text_[0] == '%') {
-      if (percent_ || number_ > 0) return false;  // the closing '%'
-      percent_ = true;
-      return true;
+    const Block& b = reader_.lex(raw, number);
+    if (!b.percent && !b.empty()) {
+      refuse_unsimulated(b, reader_.place());
+      tool_words(b);
     }
-    ++number_;
-    const Block b = parse_block(text_, place_);
-    int motion = -1;
-    for (int k = 0; k < b.ng; ++k) modal_g(b.g[k], motion);
-    if (b.has_word('T')) select(b.word('T'));
-    bool end = false;
-    for (int k = 0; k < b.nm; ++k) end |= modal_m(b.m[k]);
-    if (b.has_word('K')) throw Error(where(), "K is not supported in the XY plane (G17)");
-    if (motion >= 0) motion_ = motion == 800 ? -1 : motion;
-    if (b.has_axis()) {
-      if (motion_ < 0) throw Error(where(), "axis words without a motion mode (G0, G1, G2 or G3)");
-      move(b, number);
-    } else if (motion == 20 || motion == 30) {
-      throw Error(where(), gname(motion) + " without an end point");
-    }
-    return !end;
+    reader_.execute();
+    if (b.has_m(6)) current_ = tool_index(reader_.state().tool, reader_.where());
+    if (reader_.moved()) add(reader_.move());
+    return !reader_.state().ended;
   }
 
   MachineProgram finish() {
@@ -156,52 +104,16 @@ class Reader {
   }
 
  private:
-  void modal_g(int g, int& motion) {
-    switch (g) {
-      case 0: case 10: case 20: case 30: case 800:
-        if (motion >= 0) throw Error(where(), gname(motion) + " and " + gname(g) + " in one line");
-        motion = g;
-        return;
-      case 170: return;
-      case 200: scale_ = 25.4; return;
-      case 210: scale_ = 1.0; return;
-      case 900: absolute_ = true; return;
-      case 910: absolute_ = false; return;
-      case 901: absolute_arc_ = true; return;
-      case 911: absolute_arc_ = false; return;
-      case 40: return;  // dwell: P is a time, no axis words
-      case 400: case 490: case 430: case 540: case 610: case 611: case 640: case 930: case 940: case 950: case 960:
-      case 970: case 980: case 990:
-        // No motion: comp off, tool length (positions are tool tips), G54, path control, feed and spindle modes,
-        // canned-cycle return (canned cycles themselves are refused).
-        return;
-      default:
-        throw Error(where(), gname(g) + " is not supported by the verifier (it would change the motion)");
+  void tool_words(const Block& b) {
+    if (b.has('T')) {
+      const double t = b.get('T');
+      const long n = std::lround(t);
+      if (t != n || n < 0) throw Error(reader_.where(), "bad tool number T" + std::to_string(t));
+      if (!tools_.tools.count(static_cast<int>(n)))
+        throw Error(reader_.where(), "tool T" + std::to_string(n) + " is not in the tool table");
     }
-  }
-
-  // Returns true for a program end (M2, M30).
-  bool modal_m(int m) {
-    if (m == 98 || m == 99) throw Error(where(), "M" + std::to_string(m) + " (subroutines) is not supported");
-    if (m >= 70 && m <= 73)
-      throw Error(where(), "M" + std::to_string(m) + " (saved modal state) is not supported by the verifier");
-    if (m == 6) {
-      if (selected_ < 0) throw Error(where(), "M6 without a T word before it");
-      current_ = tool_index(selected_, where());
-      return false;
-    }
-    const bool known = (m >= 0 && m <= 9) || m == 30 || m == 60 || (m >= 48 && m <= 53) || (m >= 62 && m <= 68) ||
-                       (m >= 100 && m <= 199);
-    if (!known) throw Error(where(), "M" + std::to_string(m) + " is not known to the verifier");
-    return m == 2 || m == 30;
-  }
-
-  void select(double t) {
-    const long n = std::lround(t);
-    if (t != n || n < 0) throw Error(where(), "bad tool number T" + std::to_string(t));
-    if (!tools_.tools.count(static_cast<int>(n)))
-      throw Error(where(), "tool T" + std::to_string(n) + " is not in the tool table");
-    selected_ = static_cast<int>(n);
+    if (b.has_m(6) && !b.has('T') && reader_.state().selected_tool < 0)
+      throw Error(reader_.where(), "M6 without a T word before it");
   }
 
   int tool_index(int number, const std::string& where) {
@@ -215,89 +127,30 @@ class Reader {
     return static_cast<int>(program_.tools.size() - 1);
   }
 
-  double axis(const Block& b, char c, int k) {
-    if (!b.has_word(c)) return pos_[k];
-    const double v = b.word(c) * scale_;
-    if (absolute_) {
-      known_ |= 1 << k;
-      return v;
-    }
-    return pos_[k] + v;  // relative to an unknown position stays unknown
-  }
-
-  void move(const Block& b, uint32_t number) {
-    const bool started = known_ == 7;
-    const Vec3 to(axis(b, 'X', 0), axis(b, 'Y', 1), axis(b, 'Z', 2));
-    const bool arc = motion_ == 20 || motion_ == 30;
-    if (arc && !started) throw Error(where(), "an arc cannot be the first move (its start is unknown)");
-    if (arc && b.has_word('P') && std::lround(b.word('P')) != 1)
-      throw Error(where(), "arcs of several turns (P) are not supported");
-    if (known_ != 7) {  // still somewhere unknown: nothing to sweep yet
-      pos_ = to;
-      return;
-    }
+  // A move is swept once all three axes are known, the first one from its own target.
+  void add(const CanonMove& move) {
+    if (move.is_arc() && move.turns != 1) throw Error(reader_.where(), "arcs of several turns (P) are not supported");
+    if (!move.to_known()) return;  // still somewhere unknown: nothing to sweep yet
     if (current_ < 0)
-      throw Error(where(), "a move before any tool change (T.. M6) and no tool given for the one in the spindle at "
-                          "the start (--tool)");
-    SimMove m;
-    m.from = started ? pos_ : to;
-    m.to = to;
-    m.tool = static_cast<uint16_t>(current_);
-    m.source = number;
-    m.rapid = motion_ == 0;
-    if (arc) {
-      m.shape = motion_ == 20 ? MoveShape::ArcCW : MoveShape::ArcCCW;
-      m.centre = arc_centre(b, m);
-    } else if (started && (m.to - m.from).squaredNorm() == 0.0) {
-      return;  // a zero-length line leaves the cutter where it is
-    }
+      throw Error(reader_.where(), "a move before any tool change (T.. M6) and no tool given for the one in the "
+                                   "spindle at the start (--tool)");
+    // A zero-length line leaves the cutter where it is.
+    if (move.from_known() && !move.is_arc() && (move.to - move.from).squaredNorm() == 0.0) return;
     if (program_.moves.size() >= kMaxProgramMoves)
-      throw Error(where(), "the program has more than " + std::to_string(kMaxProgramMoves) +
-                              " moves, more than the verifier holds: verify it in parts");
-    pos_ = to;
-    program_.moves.push_back(m);
-  }
-
-  Vec2 arc_centre(const Block& b, const SimMove& m) const {
-    const Vec2 a = m.from.head<2>(), e = m.to.head<2>();
-    Vec2 c;
-    if (b.has_word('R')) {
-      if (b.has_word('I') || b.has_word('J')) throw Error(where(), "arc with both R and I/J");
-      const double r = b.word('R') * scale_;
-      const Vec2 chord = e - a;
-      const double len = chord.norm();
-      if (len == 0.0) throw Error(where(), "a full circle cannot be given with R");
-      if (len > 2 * std::abs(r) + 1e-6) throw Error(where(), "arc radius R is smaller than half the chord");
-      const double h = std::sqrt(std::max(0.0, r * r - 0.25 * len * len));
-      const Vec2 right(chord.y() / len, -chord.x() / len);
-      // G2 with R > 0 (arc up to half a turn) has its centre right of the chord; R < 0 or G3 flip the side.
-      const double side = (m.shape == MoveShape::ArcCW ? 1.0 : -1.0) * (r > 0 ? 1.0 : -1.0);
-      c = 0.5 * (a + e) + side * h * right;
-    } else {
-      if (!b.has_word('I') && !b.has_word('J')) throw Error(where(), "arc without I/J or R");
-      const Vec2 ij(b.word('I') * scale_, b.word('J') * scale_);
-      c = absolute_arc_ ? ij : Vec2(a + ij);
-      const double r0 = (a - c).norm(), r1 = (e - c).norm();
-      if (r0 == 0.0) throw Error(where(), "arc of zero radius");
-      if (std::abs(r0 - r1) > 0.01 + 1e-3 * r0)
-        throw Error(where(), "radius to the end of the arc differs from the radius to its start by " +
-                                std::to_string(std::abs(r0 - r1)) + " mm");
+      throw Error(reader_.where(), "the program has more than " + std::to_string(kMaxProgramMoves) +
+                                       " moves, more than the verifier holds: verify it in parts");
+    CanonMove& m = program_.moves.emplace_back(move);
+    if (!m.from_known()) {  // the first swept move starts at its own target
+      m.from = m.to;
+      m.known_from = m.known_to;
     }
-    return c;
+    m.tool = static_cast<uint16_t>(current_);
   }
 
-  std::string where() const { return place_.str(); }
-
-  std::string name_, text_;
-  Place place_{name_};
   const ToolSetup& tools_;
+  gcode::Interpreter reader_;
   MachineProgram program_;
-  Vec3 pos_ = Vec3::Zero();
-  int known_ = 0;  // bit per axis X, Y, Z once its position is known
-  bool absolute_ = true, absolute_arc_ = false, percent_ = false;
-  double scale_ = 1.0;
-  int motion_ = -1, selected_ = -1, current_ = -1;
-  uint32_t number_ = 0;  // blocks read
+  int current_ = -1;
 };
 
 }  // namespace

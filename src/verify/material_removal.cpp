@@ -31,7 +31,7 @@ using namespace sweep;
 
 // A piece of a move swept as one: a line (or a chord of a helix), or a level XY arc.
 struct Piece {
-  const SimMove* move = nullptr;
+  const CanonMove* move = nullptr;
   bool arc = false;
   LineFrame line;
   bool pruned = false;  // swept only where it can hold its chain's lowest point
@@ -47,7 +47,7 @@ bool lead_of(const LineFrame& f, const CutterProfile& cp, Lead& lead) {
   return false;
 }
 
-Piece line_piece(const SimMove& m, const Vec3& from, const Vec3& to, const CutterProfile& cp, bool prune) {
+Piece line_piece(const CanonMove& m, const Vec3& from, const Vec3& to, const CutterProfile& cp, bool prune) {
   Piece p;
   p.move = &m;
   p.line = line_frame(from, to);
@@ -70,15 +70,15 @@ double joint_margin(const Piece& p, const Piece& next, double R) {
 // and at most kMaxChords of them however large the arc (the error then stays below 1e-6 of its radius).
 constexpr int kMaxChords = 4096;
 
-int chord_count(const SimMove& m, double tolerance) {
+int chord_count(const CanonMove& m, double tolerance) {
   const double rho = (m.from.head<2>() - m.centre).norm(), sweep = std::abs(arc_sweep(m));
   const double step = rho > tolerance ? 2 * std::acos(1 - tolerance / rho) : M_PI / 2;
   return std::clamp(static_cast<int>(std::ceil(sweep / step)), 1, kMaxChords);
 }
 
-bool is_helix(const SimMove& m) { return m.shape != MoveShape::Line && m.from.z() != m.to.z(); }
+bool is_helix(const CanonMove& m) { return m.shape != MoveShape::Line && m.from.z() != m.to.z(); }
 
-Vec3 chord_end(const SimMove& m, int i, int n) { return i == n ? m.to : move_point(m, static_cast<double>(i) / n); }
+Vec3 chord_end(const CanonMove& m, int i, int n) { return i == n ? m.to : move_point(m, static_cast<double>(i) / n); }
 
 // ---- one band of rows: its moves in program order
 
@@ -92,7 +92,7 @@ class BandSweep {
   // Sweeps move k; `linked`: it starts where move k - 1 (same tool, same finishing state) ended; `next_linked`
   // the same for move k + 1. Returns the cells it lowered.
   size_t move(uint32_t k, bool linked, bool next_linked, bool finishing) {
-    const SimMove& m = prog_.moves[k];
+    const CanonMove& m = prog_.moves[k];
     const CutterProfile& cp = profiles_[m.tool];
     const float trace_d2 = static_cast<float>(std::min(trace_radius_, cp.R) * std::min(trace_radius_, cp.R));
     const Target t{top_, cut_by_, finishing ? trace_ : nullptr, k, cp.R2, trace_d2};
@@ -129,7 +129,7 @@ class BandSweep {
   // The first piece of move k (false for a level arc, which is swept whole, or past the end).
   bool first_piece(size_t k, Piece& p) const {
     if (k >= prog_.moves.size()) return false;
-    const SimMove& m = prog_.moves[k];
+    const CanonMove& m = prog_.moves[k];
     const CutterProfile& cp = profiles_[m.tool];
     if (m.shape == MoveShape::Line) { p = line_piece(m, m.from, m.to, cp, o_.prune); return true; }
     if (!is_helix(m)) return false;
@@ -324,14 +324,14 @@ SimulationResult simulate(const MachineProgram& prog, Stock& stock, const Simula
   std::vector<uint8_t> linked(n + 1, 0);
   std::vector<uint32_t> band_start(bands + 1, 0);
   for (size_t k = 0; k < n; ++k) {
-    const SimMove& m = prog.moves[k];
+    const CanonMove& m = prog.moves[k];
     Vec2 lo, hi;
     move_xy_bounds(m, lo, hi);
     const double R = profiles[m.tool].R;
     row0[k] = g.first_y(lo.y() - R);
     row1[k] = g.last_y(hi.y() + R);
     if (k > 0) {
-      const SimMove& p = prog.moves[k - 1];
+      const CanonMove& p = prog.moves[k - 1];
       linked[k] = p.tool == m.tool && p.to == m.from && finishing(k) == finishing(k - 1);
     }
     if (row0[k] > row1[k]) continue;
@@ -378,7 +378,7 @@ SimulationResult simulate(const MachineProgram& prog, Stock& stock, const Simula
   return result;
 }
 
-double lowest_bottom_reference(const SimMove& move, const Cutter& cutter, double x, double y, int samples) {
+double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, double x, double y, int samples) {
   const CutterProfile cp(cutter);
   double best = kInf;
   for (int i = 0; i <= samples; ++i) {

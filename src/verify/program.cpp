@@ -12,10 +12,11 @@ MachineProgram program_from_job(const std::vector<Toolpath>& job) {
     for (const ToolpathPass& pass : tp.passes) {
       for (const Move& mv : pass.moves) {
         ++number;
-        SimMove m;
+        CanonMove m;
         m.from = at;
         m.to = mv.to;
         m.rapid = mv.type == MoveType::Rapid;
+        m.feed = m.rapid ? 0.0f : static_cast<float>(mv.feed);
         m.tool = tool;
         m.source = number;
         at = mv.to;

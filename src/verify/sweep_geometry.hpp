@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "rosmill/cutter/contact.hpp"
-#include "rosmill/verify/arc.hpp"
+#include "rosmill/gcode/canon_arc.hpp"
 #include "rosmill/verify/program.hpp"
 
 namespace rosmill::verify::sweep {
@@ -150,7 +150,7 @@ struct ArcFrame {
   double xmin, xmax;          // the path's x extent
 };
 
-inline ArcFrame arc_frame(const SimMove& m) {
+inline ArcFrame arc_frame(const CanonMove& m) {
   ArcFrame a{};
   a.cx = m.centre.x();
   a.cy = m.centre.y();

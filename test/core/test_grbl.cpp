@@ -325,3 +325,19 @@ TEST(GrblUrl, MalformedControllersAreRefused) {
   auto closed = open_controller("grbl+tcp://127.0.0.1:1");
   EXPECT_THROW(closed->connect(), Error);
 }
+
+TEST(GrblSimulationStream, LinesAreSentAsTheReadersCodeAndABadCommentIsNamed) {
+  // GRBL's buffer gets each line's code: comments, spaces and blank or comment-only lines left out.
+  GrblSimulation sim;
+  auto c = grbl(sim);
+  c->connect();
+  run_to_end(*c, {"%", "(setup) g21 g90 ; metric", "", "G0 Z5 (up to the clearance)", "g0 x1 y2", "M30", "%"},
+             SendOptions{});
+  EXPECT_EQ(sim.executed(), (std::vector<std::string>{"G21G90", "G0Z5", "G0X1Y2", "M30"}));
+  try {
+    c->start({"G21", "G0 Z5 (unclosed"}, SendOptions{});
+    FAIL() << "an unclosed comment was sent";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2: comment not closed"), std::string::npos) << e.what();
+  }
+}

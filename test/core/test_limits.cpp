@@ -6,7 +6,8 @@
 #include <fstream>
 
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
+#include "rosmill/gcode/lexer.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "test_post_jobs.hpp"
@@ -96,6 +97,9 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
       {program({"G92 X0 Y0", "G1 Z-1 F100"}), 5, "unchecked move"},
       {program({"G10 L2 P1 Z-500", "G1 Z-1 F100"}), 5, "unchecked move"},
       {program({"G55", "G1 Z-1 F100"}), 5, "work offset"},
+      // An arc by radius and a full circle (end = start) are swept as the controller sweeps them.
+      {program({"G0 X245 Y0", "G1 Z-1 F100", "G3 X245 Y20 R10"}), 7, "envelope x max"},
+      {program({"G0 X245 Y0", "G1 Z-1 F100", "G3 X245 Y0 I5 J0"}), 7, "envelope x max"},
       // Violations come by line: the feed on line 5 before the envelope on line 7.
       {program({"G1 Z-1 F5000", "X5", "G0 Z10 X400"}), 5, "max feed"},
   };
@@ -126,6 +130,23 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
   EXPECT_TRUE(check_limits(program({"G1 Z-1 F100", "X5", "G0 Z7"}), m, o).empty());
 }
 
+TEST(MachineLimits, WhatTheCheckCannotFollowIsRefusedWithTheLine) {
+  const MachineLimits m = machine();
+  auto error_of = [&](std::initializer_list<std::string> body) {
+    try {
+      check_limits(program(body), m);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error_of({"G1 Z-1 F100", "G18 G2 X10 Z-1 I5 K0"}), "line 6: arcs outside the XY plane (G17) are not followed");
+  EXPECT_EQ(error_of({"G93 G1 Z-1 F2"}), "line 5: inverse-time feed (G93) is not followed");
+  EXPECT_EQ(error_of({"G1 Z-1 F100", "G2 X10 Y0 I3"}).rfind("line 6: radius to the end of the arc differs", 0), 0u);
+  EXPECT_EQ(error_of({"G1 Z-1 F100 (open"}), "line 5: comment not closed with ')'");
+  EXPECT_EQ(error_of({"G81 X0 Y0 Z-1 R1"}).rfind("line 5: G81 is not followed", 0), 0u);
+}
+
 TEST(ModalScan, StateBeforeALineIsWhatTheControllerHas) {
   PostOptions o;
   o.arcs = true;
@@ -148,17 +169,18 @@ TEST(ModalScan, StateBeforeALineIsWhatTheControllerHas) {
   EXPECT_DOUBLE_EQ(s.feed, 800);
   EXPECT_NEAR(s.position.head<2>().norm(), 23.0, 1e-3);
   EXPECT_TRUE(s.known[0] && s.known[1] && s.known[2]);
-  EXPECT_THROW(parse_block("G1 X(unclosed", "line 3"), Error);
-  EXPECT_THROW(parse_block("G1 X", "line 3"), Error);
-  const Block b = parse_block("n20 g1 x-1.5 ( comment X9 ) y2 ; z7", "l");
+  EXPECT_THROW(lex_line("G1 X(unclosed", Place{"", 3}), Error);
+  EXPECT_THROW(lex_line("G1 X", Place{"", 3}), Error);
+  const Block b = lex_line("n20 g1 x-1.5 ( comment X9 ) y2 ; z7", Place{});
   EXPECT_DOUBLE_EQ(b.get('X'), -1.5);
   EXPECT_TRUE(std::isnan(b.get('Z')));
   EXPECT_DOUBLE_EQ(b.get('N'), 20);
   // Packed words (as GRBL senders strip spaces): "0X9" is G0 then X9, not a hexadecimal number.
-  const Block packed = parse_block("G0X9Y-.5Z1.", "l");
-  EXPECT_DOUBLE_EQ(packed.get('G'), 0);
+  const Block packed = lex_line("G0X9Y-.5Z1.", Place{});
+  ASSERT_EQ(packed.g_count, 1);
+  EXPECT_EQ(packed.g[0], 0);
   EXPECT_DOUBLE_EQ(packed.get('X'), 9);
   EXPECT_DOUBLE_EQ(packed.get('Y'), -0.5);
   EXPECT_DOUBLE_EQ(packed.get('Z'), 1);
-  EXPECT_THROW(parse_block("G1 Xinf", "l"), Error);
+  EXPECT_THROW(lex_line("G1 Xinf", Place{}), Error);
 }

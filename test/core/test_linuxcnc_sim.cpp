@@ -18,7 +18,7 @@
 #include "rosmill/control/program_run.hpp"
 #include "rosmill/control/linuxcnc.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "test_post_jobs.hpp"
 

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "grbl_sim.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"

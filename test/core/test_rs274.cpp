@@ -3,10 +3,13 @@
 // over every strategy, preset and template (plan_names.hpp) on every seed primitive.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "rosmill/control/controller.hpp"
 #include "plan_names.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/block.hpp"
+#include "rosmill/gcode/interpreter.hpp"
+#include "rosmill/gcode/lexer.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 #include "test_post_jobs.hpp"
@@ -53,11 +56,12 @@ TEST(Rs274Verify, ArcsAreReadAsArcsWithTheirCentres) {
   ASSERT_TRUE(r.ok) << r.error;
   size_t arcs = 0;
   for (const CanonMove& m : r.moves)
-    if (m.kind == CanonMove::Arc) {
+    if (m.is_arc()) {
       ++arcs;
       EXPECT_NEAR(m.centre.norm(), 0.0, 1e-3);
-      EXPECT_NEAR(m.end.head<2>().norm(), 28.0, 1e-3);
-      EXPECT_EQ(m.rotation, 1);  // the contours run counter-clockwise
+      EXPECT_NEAR(m.to.head<2>().norm(), 28.0, 1e-3);
+      EXPECT_EQ(m.shape, MoveShape::ArcCCW);  // the contours run counter-clockwise
+      EXPECT_EQ(m.turns, 1);
     }
   EXPECT_GE(arcs, 2u);
 }
@@ -119,7 +123,7 @@ namespace {
 std::vector<CanonMove> moves_from(const std::vector<std::string>& lines, const Rs274Result& r, size_t first_line) {
   size_t skip = 0;
   for (size_t i = 0; i + 1 < first_line; ++i) {
-    const Block b = parse_block(lines[i], "line");
+    const Block b = lex_line(lines[i], Place{});
     skip += b.has('X') || b.has('Y') || b.has('Z');
   }
   return std::vector<CanonMove>(r.moves.begin() + static_cast<std::ptrdiff_t>(std::min(skip, r.moves.size())), r.moves.end());
@@ -149,12 +153,13 @@ TEST(Rs274Verify, AResumedProgramMovesAsTheOriginalFromItsLine) {
       ASSERT_EQ(got.size(), expected.size()) << dialect << " from line " << line;
       for (size_t k = 0; k < got.size(); ++k) {
         const std::string at = std::string(dialect) + " from line " + std::to_string(line) + ", move " + std::to_string(k);
-        ASSERT_EQ(got[k].kind, expected[k].kind) << at;
-        EXPECT_LT((got[k].end - expected[k].end).cwiseAbs().maxCoeff(), 1e-4) << at;
+        ASSERT_EQ(got[k].rapid, expected[k].rapid) << at;
+        ASSERT_EQ(got[k].shape, expected[k].shape) << at;
+        EXPECT_LT((got[k].to - expected[k].to).cwiseAbs().maxCoeff(), 1e-4) << at;
         EXPECT_NEAR(got[k].feed, expected[k].feed, 1e-6) << at;
-        if (got[k].kind == CanonMove::Arc) {
+        if (got[k].is_arc()) {
           EXPECT_LT((got[k].centre - expected[k].centre).cwiseAbs().maxCoeff(), 1e-4) << at;
-          EXPECT_EQ(got[k].rotation, expected[k].rotation) << at;
+          EXPECT_EQ(got[k].turns, expected[k].turns) << at;
         }
       }
       // The preamble ends where the original was before the line, with the same modal state.
@@ -172,5 +177,34 @@ TEST(Rs274Verify, AResumedProgramMovesAsTheOriginalFromItsLine) {
       ++resumes;
     }
     EXPECT_GE(resumes, 8u);
+  }
+}
+
+TEST(Rs274Verify, AResumeRestoresInchesOtherPlanesAndWorkOffsets) {
+  // A hand-written program in inches, in G59.1, with XZ arcs: from every line after the first move, the resumed
+  // program's moves are the original's (rs274 prints program coordinates, so the offset's values do not matter).
+  const std::vector<std::string> p = {"G20 G90 G59.1", "T1 M6", "G0 X0 Y0 Z1", "S1000 M3", "G1 Z0 F10",
+                                      "G18 G2 X1 Z0 I0.5 K0", "G3 X2 Z0 R0.5", "G1 Y0.5", "G17 G0 Z1", "M5", "M30"};
+  const Rs274Result whole = run_rs274(p);
+  ASSERT_TRUE(whole.ok) << whole.error;
+  for (size_t line = 4; line <= p.size(); ++line) {
+    control::SendOptions so;
+    so.from_line = line;
+    const std::vector<std::string> resumed = control::resumed_program(p, so, "linuxcnc");
+    const size_t preamble = resumed.size() - (p.size() - line + 1);
+    EXPECT_NE(std::find(resumed.begin(), resumed.end(), "G20 G" + std::to_string(state_before(p, line - 1).plane) +
+                                                            " G59.1 G90 G94"),
+              resumed.end())
+        << line;
+    const Rs274Result r = run_rs274(resumed);
+    ASSERT_TRUE(r.ok) << "from line " << line << ": " << r.error;
+    const std::vector<CanonMove> expected = moves_from(p, whole, line), got = moves_from(resumed, r, preamble + 1);
+    ASSERT_EQ(got.size(), expected.size()) << line;
+    for (size_t k = 0; k < got.size(); ++k) {
+      EXPECT_EQ(got[k].shape, expected[k].shape) << line << ", move " << k;
+      EXPECT_EQ(got[k].plane, expected[k].plane) << line << ", move " << k;
+      EXPECT_LT((got[k].to - expected[k].to).cwiseAbs().maxCoeff(), 1e-4) << line << ", move " << k;
+      EXPECT_LT((got[k].centre - expected[k].centre).cwiseAbs().maxCoeff(), 1e-4) << line << ", move " << k;
+    }
   }
 }

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
-#include "rosmill/verify/arc.hpp"
+#include "rosmill/gcode/canon_arc.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 
 using namespace rosmill;

@@ -14,7 +14,7 @@ using namespace rosmill::verify;
 
 namespace {
 
-MachineProgram one_move(const SimMove& m, const Cutter& c) {
+MachineProgram one_move(const CanonMove& m, const Cutter& c) {
   MachineProgram p;
   Tool t;
   t.cutter = c;
@@ -26,7 +26,7 @@ MachineProgram one_move(const SimMove& m, const Cutter& c) {
 // Every cell of the grid agrees with the sampled reference (which can only be higher, by its sampling error).
 // Cells within 1e-6 mm of the footprint's rim may go either way; `slack` is the allowed excess over the reference
 // (the chords of a helix sit inside the arc by up to the arc tolerance).
-void expect_matches_reference(const SimMove& m, const Cutter& c, double slack = 1e-4) {
+void expect_matches_reference(const CanonMove& m, const Cutter& c, double slack = 1e-4) {
   Cutter inner = c;
   inner.diameter -= 2e-6;
   const GridSpec g = GridSpec::covering(Vec2(-12, -12), Vec2(12, 12), 0.5);
@@ -50,15 +50,15 @@ void expect_matches_reference(const SimMove& m, const Cutter& c, double slack = 
   EXPECT_GT(cut, 20);
 }
 
-SimMove line(Vec3 a, Vec3 b) {
-  SimMove m;
+CanonMove line(Vec3 a, Vec3 b) {
+  CanonMove m;
   m.from = a;
   m.to = b;
   return m;
 }
 
-SimMove arc(Vec3 a, Vec3 b, Vec2 c, bool ccw) {
-  SimMove m = line(a, b);
+CanonMove arc(Vec3 a, Vec3 b, Vec2 c, bool ccw) {
+  CanonMove m = line(a, b);
   m.shape = ccw ? MoveShape::ArcCCW : MoveShape::ArcCW;
   m.centre = c;
   return m;
@@ -80,7 +80,7 @@ MachineProgram mixed_program(unsigned seed) {
   }
   Vec3 at(0, 0, 3);
   uint32_t source = 0;
-  auto push = [&](SimMove m) {
+  auto push = [&](CanonMove m) {
     m.from = at;
     m.source = ++source;
     at = m.to;
@@ -88,7 +88,7 @@ MachineProgram mixed_program(unsigned seed) {
   };
   for (uint16_t tool = 0; tool < 3; ++tool) {
     for (int k = 0; k < 300; ++k) {
-      SimMove m;
+      CanonMove m;
       m.tool = tool;
       const double r = u(rng);
       if (r < 0.05) {  // a rapid somewhere
@@ -119,7 +119,7 @@ MachineProgram mixed_program(unsigned seed) {
     for (int line = 0; line < 12; ++line) {
       for (int q = 0; q <= 120; ++q) {
         const double x = line % 2 ? 9 - 0.15 * q : -9 + 0.15 * q, y = -9 + 1.5 * line;
-        SimMove m;
+        CanonMove m;
         m.tool = tool;
         m.to = Vec3(x, y, 2 * std::exp(-(x * x + y * y) / 30) - 1);
         push(m);

@@ -1,64 +1,45 @@
-// Reading G-code back: one line into words, and the modal state a controller is in after each line. The limits
-// checker walks a program with it, and a resumed program restores what it computes (units, distance mode,
-// plane, work offset, tool, spindle, feed, coolant, motion mode and position).
+// One block (line) of an RS274/NGC program as the lexer reads it: the words by letter, the G and M codes in the
+// order written, and the marks around the words (block delete, a '%' demarcation line). Every consumer of
+// G-code (the machine-limits check, resume-from-line, the verifier, GRBL streaming, the rs274 comparison) reads
+// this one type. After LinuxCNC's rs274ngc interpreter (Kramer, Proctor and Messina, "The NIST RS274NGC
+// Interpreter - Version 3", section 3.3, format of a line).
 #pragma once
+#include <cmath>
+#include <cstdint>
 #include <string>
-#include <vector>
-
-#include "rosmill/geometry/types.hpp"
+#include <string_view>
 
 namespace rosmill::gcode {
 
-struct Word {
-  char letter;   // upper case
-  double value;
+// Where a line is, spelled out only when an error names it: "file:12", "line 12" without a file name, or the
+// name alone when it says everything (line 0).
+struct Place {
+  std::string_view file;
+  size_t line = 0;
+  std::string str() const;
 };
 
 struct Block {
-  std::vector<Word> words;
-  bool has(char letter) const;
-  double get(char letter) const;  // NaN when absent
-  // The G codes of the block, times ten (G91.1 -> 911), so that G codes with a decimal compare exactly.
-  std::vector<int> g_codes() const;
-  std::vector<int> m_codes() const;
+  static constexpr int kMaxCodes = 8;
+  // Only the first g_count, m_count codes and the `present` letters' values are set (a block is made for every
+  // line read: nothing else is cleared).
+  int g[kMaxCodes];       // G numbers times ten, so that G codes with a decimal compare exactly (G91.1 -> 911)
+  int m[kMaxCodes];       // M numbers
+  int g_count = 0, m_count = 0;
+  double value[26];       // the other words (line number N included), by letter
+  uint32_t present = 0;   // bit per letter of `value`
+  bool block_delete = false;  // the line starts with '/': skipped when the operator's block-delete switch is on
+  bool percent = false;       // a '%' line, which demarcates the program in a file
+
+  bool has(char letter) const { return present >> (letter - 'A') & 1u; }
+  double get(char letter) const { return has(letter) ? value[letter - 'A'] : NAN; }  // NaN when absent
+  bool has_axis() const { return has('X') || has('Y') || has('Z'); }
+  bool has_g(int g10) const;
+  bool has_m(int number) const;
+  bool empty() const { return g_count == 0 && m_count == 0 && present == 0; }
 };
 
-// Parses one line (comments in parentheses and after ';' dropped, line number kept as word N). Throws Error
-// naming `where` on a malformed word.
-Block parse_block(const std::string& line, const std::string& where);
-
-struct ModalState {
-  bool metric = true;        // G21 / G20
-  bool absolute = true;      // G90 / G91
-  int plane = 17;            // 17, 18, 19
-  int work_offset = 54;      // 54..59
-  int motion = -1;           // 0, 1, 2, 3; -1 before any motion word
-  double feed = 0.0;         // mm/min
-  double spindle_rpm = 0.0;
-  int spindle = 5;           // 3, 4 or 5
-  bool flood = false, mist = false;
-  int tool = 0;              // the tool in the spindle (after M6; GRBL: the last T word)
-  int length_offset = -1;    // H of G43, -1 when off (G49)
-  Vec3 position = Vec3::Zero();  // mm, program coordinates
-  bool known[3] = {false, false, false};
-  bool ended = false;        // after M2 / M30
-};
-
-// What one block did to the machine.
-struct BlockMotion {
-  bool moved = false;
-  int motion = -1;
-  Vec3 from = Vec3::Zero(), to = Vec3::Zero();
-  bool from_known[3] = {false, false, false};
-  bool to_known[3] = {false, false, false};
-  Vec2 centre = Vec2::Zero();  // arcs in the XY plane, absolute
-};
-
-// Applies a block to the state (in the order a controller does: modes, tool, spindle, coolant, then motion).
-// Throws Error naming `where` on what it cannot follow (arcs outside G17, R-format arcs, inverse-time feed).
-BlockMotion apply_block(ModalState& state, const Block& block, const std::string& where);
-
-// The modal state after lines [0, line_count) of a program.
-ModalState state_before(const std::vector<std::string>& lines, size_t line_count);
+// "G91.1" for 911.
+std::string g_name(int g10);
 
 }  // namespace rosmill::gcode

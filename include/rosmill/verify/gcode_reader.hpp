@@ -1,10 +1,11 @@
-// A small RS274 (LinuxCNC flavour) reader for what the simulator needs: G0/G1/G2/G3 in the XY plane (helical
-// z allowed), G17, G20/G21, G90/G91, G90.1/G91.1, F, S, T with M6, comments, line numbers; M2 or M30 ends the
-// program (the controller reads no further). Words that do not move the tool (spindle, coolant, G54, G40, G49,
-// G43, G64, G61, G93-G97, G98/G99, G4 dwell, pauses, user M-codes) are accepted and ignored. Anything else that
-// would change the motion (G18/G19, cutter radius compensation, canned cycles, G28/G30/G53, G92, other work
-// offsets, subroutines, parameters and expressions, P turns on arcs, rotary axes A/B/C, M70-M73) or a word the
-// reader does not know throws Error naming the file and line.
+// A G-code program as the simulator sees it: the canonical moves of the one reader (rosmill/gcode/interpreter.hpp)
+// with the tools of the setup. It follows what the simulation models: G0/G1/G2/G3 in the XY plane (helical z
+// allowed), G17, G20/G21, G90/G91, G90.1/G91.1, F, S, T with M6, comments, line numbers; M2 or M30 ends the
+// program (the controller reads no further), as does a closing '%'. Words that do not move the tool (spindle,
+// coolant, G54, G40, G49, G43, G64, G61, G93-G97, G98/G99, G4 dwell, pauses, user M-codes) are accepted and
+// ignored. Anything else that would change the motion (G18/G19, cutter radius compensation, canned cycles,
+// G28/G30/G53, G92, other work offsets, block delete, subroutines, parameters and expressions, P turns on arcs,
+// rotary axes A/B/C, M70-M73) or a word the verifier does not know throws Error naming the file and line.
 #pragma once
 #include <map>
 #include <optional>

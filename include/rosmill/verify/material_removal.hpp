@@ -44,6 +44,6 @@ SimulationResult simulate(const MachineProgram& program, Stock& stock, const Sim
 
 // The lowest cutter bottom (tip height + profile) the move passes over the point (x, y); +infinity when the
 // cutter never covers it. The slow, obvious reference of what simulate() computes (tests compare the two).
-double lowest_bottom_reference(const SimMove& move, const Cutter& cutter, double x, double y, int samples = 20000);
+double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, double x, double y, int samples = 20000);
 
 }  // namespace rosmill::verify

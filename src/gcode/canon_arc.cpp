@@ -1,10 +1,10 @@
-#include "rosmill/verify/arc.hpp"
+#include "rosmill/gcode/canon_arc.hpp"
 
 #include <cmath>
 
-namespace rosmill::verify {
+namespace rosmill::gcode {
 
-double arc_sweep(const SimMove& arc) {
+double arc_sweep(const CanonMove& arc) {
   const Vec2 a = arc.from.head<2>() - arc.centre, b = arc.to.head<2>() - arc.centre;
   double ccw = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b));  // (-π, π]
   if (ccw <= 0) ccw += 2 * M_PI;                                      // (0, 2π]: equal ends make a full turn
@@ -12,7 +12,7 @@ double arc_sweep(const SimMove& arc) {
   return ccw - 2 * M_PI == 0.0 ? -2 * M_PI : ccw - 2 * M_PI;          // [-2π, 0)
 }
 
-Vec3 move_point(const SimMove& move, double s) {
+Vec3 move_point(const CanonMove& move, double s) {
   if (move.shape == MoveShape::Line) return move.from + s * (move.to - move.from);
   const Vec2 a = move.from.head<2>() - move.centre;
   const double angle = s * arc_sweep(move), c = std::cos(angle), sn = std::sin(angle);
@@ -20,7 +20,7 @@ Vec3 move_point(const SimMove& move, double s) {
   return Vec3(p.x(), p.y(), move.from.z() + s * (move.to.z() - move.from.z()));
 }
 
-void move_xy_bounds(const SimMove& move, Vec2& min, Vec2& max) {
+void move_xy_bounds(const CanonMove& move, Vec2& min, Vec2& max) {
   min = move.from.head<2>().cwiseMin(move.to.head<2>());
   max = move.from.head<2>().cwiseMax(move.to.head<2>());
   if (move.shape == MoveShape::Line) return;
@@ -38,4 +38,4 @@ void move_xy_bounds(const SimMove& move, Vec2& min, Vec2& max) {
   }
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::gcode
