@@ -67,23 +67,28 @@ void settle_degenerate(const SurfacePatches& patches, const std::vector<Verdict>
   }
 }
 
+// Reachability of facets [first, last). Arrays and test come by value: a byte stored through `reach` could
+// otherwise be any of them, and every one would be read again from memory after each facet.
+template <typename Test>
+void reach_of_facets(size_t first, size_t last, const uint32_t* label, const Verdict* verdict, const Vec3* normal,
+                     const Test test, uint8_t* reach) {
+  for (size_t f = first; f < last; ++f) {
+    const Verdict patch = verdict[label[f]];
+    reach[f] = patch == Verdict::Mixed ? uint8_t(test(normal[f])) : uint8_t(patch);
+  }
+}
+
 // Per facet reachability: the patch's verdict, or the exact test for the facets of mixed patches. Both cores,
 // one half each, from 20,000 facets on (a range no longer than its grain stays on the calling thread).
 template <typename Test>
 void fill_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict, const Test& test,
                 std::vector<uint8_t>& reach) {
   const Mesh& mesh = patches.mesh();
-  const uint32_t* label = patches.labels().data();
-  const Vec3* normal = mesh.normals.data();
-  const Verdict* v = verdict.data();
-  uint8_t* out = reach.data();
   tbb::parallel_for(
       tbb::blocked_range<size_t>(0, mesh.face_count(), 20000),
       [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t f = r.begin(); f < r.end(); ++f) {
-          const Verdict patch = v[label[f]];
-          out[f] = patch == Verdict::Mixed ? uint8_t(test(normal[f])) : uint8_t(patch);
-        }
+        reach_of_facets(r.begin(), r.end(), patches.labels().data(), verdict.data(), mesh.normals.data(), test,
+                        reach.data());
       },
       tbb::static_partitioner());
 }

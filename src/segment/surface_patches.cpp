@@ -7,6 +7,7 @@
 #include <tbb/partitioner.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "labelling.hpp"
@@ -40,31 +41,40 @@ struct EdgeCounts {
   }
 };
 
+// Edges [first, last) of the mesh: marks those the flood crosses in `soft` and counts the others by kind. The
+// mesh's arrays are read into locals first: a byte stored through `soft` could otherwise be any of them.
+EdgeCounts classify_edges(const Mesh& mesh, double t2, size_t first, size_t last, uint8_t* soft) {
+  const MeshEdge* edges = mesh.edges.data();
+  const uint32_t* edge_faces = mesh.edge_faces.data();
+  const double* areas = mesh.areas.data();
+  const Vec3* normals = mesh.normals.data();
+  EdgeCounts c;
+  for (size_t e = first; e < last; ++e) {
+    const MeshEdge& edge = edges[e];
+    uint8_t pass = 0;
+    if (edge.face_count == 2) {
+      const uint32_t f0 = edge_faces[edge.first_face], f1 = edge_faces[edge.first_face + 1];
+      c.inconsistent += !edge.consistent;
+      if (areas[f0] > 0.0 && areas[f1] > 0.0) pass = (normals[f0] - normals[f1]).squaredNorm() < t2;
+    } else if (edge.face_count == 1) {
+      ++c.open;
+    } else {
+      ++c.nonmanifold;
+    }
+    soft[e] = pass;
+  }
+  return c;
+}
+
 // Marks the edges the flood crosses: manifold, both facets with an area, normals closer than the threshold.
 // Counts the mesh's open, non-manifold and inconsistent edges on the way.
 std::vector<uint8_t> soft_edges(const Mesh& mesh, double threshold, MeshNotes& notes) {
   const double t2 = threshold * threshold;
   std::vector<uint8_t> soft(mesh.edges.size());
-  uint8_t* out = soft.data();
   const EdgeCounts counts = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, mesh.edges.size(), kParallelFrom), EdgeCounts{},
-      [&](const tbb::blocked_range<size_t>& r, EdgeCounts c) {
-        for (size_t e = r.begin(); e < r.end(); ++e) {
-          const MeshEdge& edge = mesh.edges[e];
-          uint8_t pass = 0;
-          if (edge.face_count == 2) {
-            const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
-            c.inconsistent += !edge.consistent;
-            if (mesh.areas[f0] > 0.0 && mesh.areas[f1] > 0.0)
-              pass = (mesh.normals[f0] - mesh.normals[f1]).squaredNorm() < t2;
-          } else if (edge.face_count == 1) {
-            ++c.open;
-          } else {
-            ++c.nonmanifold;
-          }
-          out[e] = pass;
-        }
-        return c;
+      [&](const tbb::blocked_range<size_t>& r, const EdgeCounts& c) {
+        return c + classify_edges(mesh, t2, r.begin(), r.end(), soft.data());
       },
       std::plus<EdgeCounts>(), tbb::static_partitioner());
   notes.open_edges = counts.open;
