@@ -2,7 +2,7 @@
 // setup (+Z: EGI of every patch, pruning, recombination, segment records), median of 3 after a first run, the
 // mesh already loaded, threshold 0.4 (23.07 degrees). Models: every STL of ../shared/data/stl and a generated 2,012,000-
 // triangle closed wavy solid. Usage: bench_segment [threads]
-#include <omp.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
@@ -75,9 +75,12 @@ void run(const std::string& name, const Mesh& mesh, double cgal) {
 
 int main(int argc, char** argv) {
   rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
-  if (argc > 1) omp_set_num_threads(std::atoi(argv[1]));
-  std::printf("threads %d; seconds, median of 3, mesh loaded; phase2 = EGI + +Z pruning + recombination, setup = "
-              "+Z alone on a built EGI\n", omp_get_max_threads());
+  using tbb::global_control;
+  const size_t threads = argc > 1 ? size_t(std::max(1, std::atoi(argv[1])))
+                                  : global_control::active_value(global_control::max_allowed_parallelism);
+  const global_control limit(global_control::max_allowed_parallelism, threads);
+  std::printf("threads %zu; seconds, median of 3, mesh loaded; phase2 = EGI + +Z pruning + recombination, setup = "
+              "+Z alone on a built EGI\n", threads);
   std::printf("%-20s %9s %8s %8s %9s %16s %9s %9s %6s\n", "model", "tris", "flooded", "patches", "phase1",
               "CGAL (phase1/)", "phase2", "setup", "segs");
   for (const Model& m : kModels) {

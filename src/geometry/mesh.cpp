@@ -4,6 +4,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <unordered_map>
 
 #include "rosmill/error.hpp"
@@ -58,24 +61,32 @@ void weld_tolerance(const std::vector<Vec3>& corners, double tol, IndexedTriangl
   }
 }
 
+void face_geometry(Mesh& mesh, size_t f) {
+  const auto& t = mesh.faces[f];
+  const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+  const Vec3 c = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+  const double len = c.norm();
+  if (repeated || !(len > 0.0)) {
+    mesh.normals[f].setZero();
+    mesh.areas[f] = 0.0;
+  } else {
+    mesh.normals[f] = c / len;
+    mesh.areas[f] = 0.5 * len;
+  }
+}
+
+// Both cores from 20,000 faces on, one half each: a range no longer than its grain is not split, so smaller
+// meshes stay on the calling thread (below that the threads' start costs more than they save).
 void compute_face_geometry(Mesh& mesh) {
   const size_t n = mesh.faces.size();
   mesh.normals.resize(n);
   mesh.areas.resize(n);
-#pragma omp parallel for schedule(static) if (n > 20000)
-  for (size_t f = 0; f < n; ++f) {
-    const auto& t = mesh.faces[f];
-    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-    const Vec3 c = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
-    const double len = c.norm();
-    if (repeated || !(len > 0.0)) {
-      mesh.normals[f].setZero();
-      mesh.areas[f] = 0.0;
-    } else {
-      mesh.normals[f] = c / len;
-      mesh.areas[f] = 0.5 * len;
-    }
-  }
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, n, 20000),
+      [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t f = r.begin(); f < r.end(); ++f) face_geometry(mesh, f);
+      },
+      tbb::static_partitioner());
 }
 
 // Edges by a counting sort of the half-edges on their lower vertex, then on the higher one within each vertex's
@@ -125,17 +136,18 @@ void build_edges(Mesh& mesh) {
   start[0] = 0;
 
   // Two passes over vertex ranges, both cores: sort each list and count its edges, then number and emit them.
+  // Each chunk is one task, handed to whichever thread is free (a single chunk runs on the calling thread).
   const int chunks = n > 50000 ? 2 * 8 : 1;
   std::vector<uint32_t> chunk_edges(chunks + 1, 0);
   auto chunk_bound = [&](int k) { return nv * size_t(k) / size_t(chunks); };
-#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
-  for (int k = 0; k < chunks; ++k) {
+  auto each_chunk = [chunks](const auto& work) { tbb::parallel_for(0, chunks, work, tbb::simple_partitioner()); };
+  each_chunk([&](int k) {
     std::vector<std::pair<uint32_t, uint32_t>> scratch;
     uint32_t count = 0;
     for (size_t v = chunk_bound(k); v < chunk_bound(k + 1); ++v)
       count += sort_vertex_list(mesh, half.data() + start[v], half.data() + start[v + 1], scratch);
     chunk_edges[k + 1] = count;
-  }
+  });
   for (int k = 0; k < chunks; ++k) chunk_edges[k + 1] += chunk_edges[k];
   mesh.edges.resize(chunk_edges[chunks]);
   mesh.face_edges.resize(n);
@@ -143,8 +155,7 @@ void build_edges(Mesh& mesh) {
     const Mesh::Face& t = mesh.faces[fc >> 2];
     return t[fc & 3] < t[((fc & 3) + 1) % 3];
   };
-#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
-  for (int k = 0; k < chunks; ++k) {
+  each_chunk([&](int k) {
     uint32_t id = chunk_edges[k];
     for (size_t v = chunk_bound(k); v < chunk_bound(k + 1); ++v) {
       const uint32_t end = start[v + 1];
@@ -173,7 +184,7 @@ void build_edges(Mesh& mesh) {
         i = j;
       }
     }
-  }
+  });
 }
 
 Mesh finish_mesh(Mesh mesh) {

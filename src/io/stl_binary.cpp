@@ -1,5 +1,10 @@
 // Binary STL body: 50-byte records of little-endian float32 normal and corners, then a 16-bit attribute.
 #include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/partitioner.h>
+
 #include <algorithm>
 #include <cstring>
 #include <exception>
@@ -85,11 +90,24 @@ void weld_range(const char* data, size_t first, size_t last, const std::string& 
   }
 }
 
+// Loops over vertices and faces split in one half per core from `grain` items on (a range no longer than its
+// grain is not split: shorter ones stay on the calling thread, whose start costs less than the threads' would).
+template <typename Body>
+void for_halves(int64_t first, int64_t last, int64_t grain, const Body& body) {
+  tbb::parallel_for(
+      tbb::blocked_range<int64_t>(first, last, grain),
+      [&](const tbb::blocked_range<int64_t>& r) {
+        for (int64_t i = r.begin(); i < r.end(); ++i) body(i);
+      },
+      tbb::static_partitioner());
+}
+
+constexpr int64_t kParallelVertices = 100000;
+
 // The welder's vertex positions into vertices[0, size).
 void write_positions(const FloatWelder& welder, Vec3* vertices) {
-  const int64_t n = int64_t(welder.size());
-#pragma omp parallel for schedule(static) if (n > 100000)
-  for (int64_t v = 0; v < n; ++v) vertices[v] = key_position(welder.keys()[v]);
+  for_halves(0, int64_t(welder.size()), kParallelVertices,
+             [&](int64_t v) { vertices[v] = key_position(welder.keys()[v]); });
 }
 
 // The second half's vertex ids in the whole file's numbering: a vertex the first half also has keeps the first
@@ -99,11 +117,12 @@ std::vector<uint32_t> merged_ids(const FloatWelder& first, const FloatWelder& se
   if (first.size() + second.size() >= FloatWelder::kAbsent)
     throw Error("mesh", "more than 4,294,967,294 distinct vertices");
   const int64_t n = int64_t(second.size());
-  constexpr int64_t kChunk = 4096;
+  constexpr int64_t kChunk = 4096;  // keys looked up together (the welder prefetches their slots at once)
   std::vector<uint32_t> ids(static_cast<size_t>(n));
-#pragma omp parallel for schedule(static)
-  for (int64_t c = 0; c < n; c += kChunk)
+  for_halves(0, (n + kChunk - 1) / kChunk, 1, [&](int64_t k) {
+    const int64_t c = k * kChunk;
     first.find_many(second.keys() + c, size_t(std::min(kChunk, n - c)), ids.data() + c);
+  });
   uint32_t next = uint32_t(first.size());
   for (uint32_t& id : ids)
     if (id == FloatWelder::kAbsent) id = next++;
@@ -140,15 +159,16 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
   std::optional<FloatWelder> welders[2];
   size_t mismatches[2] = {0, 0};
   std::exception_ptr failures[2];
-#pragma omp parallel for num_threads(2) schedule(static, 1)
-  for (int k = 0; k < 2; ++k) {
+  auto weld_half = [&](int k) {
     try {
       welders[k].emplace(count / 4 + count / 16);  // a quarter of the triangles' count, and the seam
       weld_range(data, k == 0 ? 0 : half, k == 0 ? half : count, name, *welders[k], out.faces.data(), mismatches[k]);
     } catch (...) {
       failures[k] = std::current_exception();
     }
-  }
+  };
+  // Exactly two tasks: the merge below numbers the vertices of two welders, one per half.
+  tbb::parallel_invoke([&] { weld_half(0); }, [&] { weld_half(1); });
   for (const std::exception_ptr& failure : failures)  // the error a sequential read would have met first
     if (failure) std::rethrow_exception(failure);
   stored_normal_mismatches += mismatches[0] + mismatches[1];
@@ -159,14 +179,12 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
   const std::vector<uint32_t> ids = merged_ids(first, second, vertex_count);
   out.vertices.resize(vertex_count);
   write_positions(first, out.vertices.data());
-  const int64_t n2 = int64_t(ids.size());
-#pragma omp parallel for schedule(static) if (n2 > 100000)
-  for (int64_t v = 0; v < n2; ++v)
+  for_halves(0, int64_t(ids.size()), kParallelVertices, [&](int64_t v) {
     if (ids[v] >= first.size()) out.vertices[ids[v]] = key_position(second.keys()[v]);
-  const int64_t end = int64_t(count);
-#pragma omp parallel for schedule(static)
-  for (int64_t t = int64_t(half); t < end; ++t)
+  });
+  for_halves(int64_t(half), int64_t(count), 1, [&](int64_t t) {
     for (uint32_t& v : out.faces[t]) v = ids[v];
+  });
 }
 
 }  // namespace rosmill::io

@@ -1,5 +1,9 @@
 // Phase 2 laid out patch by patch: the whole patches keep their phase 1 records, the split patches bring their
 // parts, and both are numbered by first facet, with the neighbours across patches linked at the end.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include <algorithm>
 
 #include "setup_steps.hpp"
@@ -45,15 +49,20 @@ Numbering number_segments(const SurfacePatches& patches, const std::vector<Verdi
   return out;
 }
 
-// Labels: the whole patches in one pass over the facets (both cores), then the split patches' parts. (Copied
-// from the patch labels and renumbered in place: a vector's zero-filling resize is a slow loop for 32-bit words.)
+// Labels: the whole patches in one pass over the facets (both cores, one half each, from 20,000 facets on: a
+// range no longer than its grain stays on the calling thread), then the split patches' parts. (Copied from the
+// patch labels and renumbered in place: a vector's zero-filling resize is a slow loop for 32-bit words.)
 void write_labels(const SurfacePatches& patches, const std::vector<PatchParts>& split, const Numbering& number,
                   std::vector<uint32_t>& labels) {
   labels = patches.labels();
-  const int64_t n = int64_t(labels.size());
   const uint32_t* of_patch = number.of_patch.data();
-#pragma omp parallel for schedule(static) if (n > 20000)
-  for (int64_t f = 0; f < n; ++f) labels[f] = of_patch[labels[f]];
+  uint32_t* label = labels.data();
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, labels.size(), 20000),
+      [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t f = r.begin(); f < r.end(); ++f) label[f] = of_patch[label[f]];
+      },
+      tbb::static_partitioner());
   for (uint32_t s = 0; s < split.size(); ++s)
     for (const Patch& part : split[s].parts)
       for (uint32_t i = part.first_facet; i < part.first_facet + part.facet_count; ++i)

@@ -1,6 +1,10 @@
 // Patch records from a label per facet: facets grouped by patch (a counting sort), area, area-weighted mean
 // normal, neighbouring patches and the boundary loops. Only the edges that may separate patches are visited
 // for neighbours and loops, so the cost is one pass over the facets plus the patch borders.
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include <algorithm>
 
 #include "labelling.hpp"
@@ -139,12 +143,20 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
   // (each thread lists vertices in a head array of its own, one entry per mesh vertex).
   std::vector<uint32_t> group_start;
   const std::vector<HalfEdge> half = border_half_edges(mesh, labels, count, edges, group_start);
-#pragma omp parallel if (half.size() > 20000 && count >= 16)
-  {
-    std::vector<uint32_t> head(mesh.vertex_count(), kNone), link;
-#pragma omp for schedule(dynamic, 1)
-    for (int64_t l = 0; l < int64_t(count); ++l)
-      chain_loops(half.data() + group_start[l], half.data() + group_start[l + 1], head, link, patches[l].loops);
+  struct Scratch {
+    std::vector<uint32_t> head, link;
+  };
+  auto fresh = [&] { return Scratch{std::vector<uint32_t>(mesh.vertex_count(), kNone), {}}; };
+  auto loops_of = [&](uint32_t l, Scratch& s) {
+    chain_loops(half.data() + group_start[l], half.data() + group_start[l + 1], s.head, s.link, patches[l].loops);
+  };
+  if (half.size() > 20000 && count >= 16) {  // one patch at a time to whichever core is free
+    tbb::enumerable_thread_specific<Scratch> scratch(fresh);
+    tbb::parallel_for(
+        uint32_t(0), count, [&](uint32_t l) { loops_of(l, scratch.local()); }, tbb::simple_partitioner());
+  } else {
+    Scratch scratch = fresh();
+    for (uint32_t l = 0; l < count; ++l) loops_of(l, scratch);
   }
 }
 

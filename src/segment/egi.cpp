@@ -5,6 +5,9 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include "rosmill/error.hpp"
 
@@ -135,30 +138,40 @@ EgiSet::EgiSet(const SurfacePatches& patches, const EgiBins& bins) : patches_(&p
   const Mesh& mesh = patches.mesh();
   const uint32_t* order = patches.facet_order().data();
   const std::vector<EgiChunk> chunks = egi_chunks(patches);
-  // Each chunk's histogram as its touched bins and their areas, summed in a dense array of the thread's.
+  // Each chunk's histogram as its touched bins and their areas, summed in a dense array of the thread's. Chunks
+  // go one at a time to whichever core is free, from 20,000 facets on; smaller meshes stay on the calling thread.
   std::vector<PatchEgi> partial(chunks.size());
-  const int64_t n = int64_t(chunks.size());
-#pragma omp parallel if (mesh.face_count() > 20000)
-  {
-    std::vector<double> dense(bins_.size(), 0.0);
+  struct Scratch {
+    std::vector<double> dense;
     std::vector<uint32_t> touched;
-#pragma omp for schedule(dynamic, 1)
-    for (int64_t c = 0; c < n; ++c) {
-      touched.clear();
-      for (uint32_t i = chunks[c].begin; i < chunks[c].end; ++i) {
-        const double a = mesh.areas[order[i]];
-        if (!(a > 0.0)) continue;
-        const uint32_t b = bins_.bin_of(mesh.normals[order[i]]);
-        if (dense[b] == 0.0) touched.push_back(b);
-        dense[b] += a;
-      }
-      partial[c].bins.assign(touched.begin(), touched.end());
-      partial[c].areas.resize(touched.size());
-      for (size_t k = 0; k < touched.size(); ++k) {
-        partial[c].areas[k] = dense[touched[k]];
-        dense[touched[k]] = 0.0;
-      }
+  };
+  auto histogram = [&](const EgiChunk& chunk, Scratch& scratch, PatchEgi& out) {
+    std::vector<double>& dense = scratch.dense;
+    std::vector<uint32_t>& touched = scratch.touched;
+    touched.clear();
+    for (uint32_t i = chunk.begin; i < chunk.end; ++i) {
+      const double a = mesh.areas[order[i]];
+      if (!(a > 0.0)) continue;
+      const uint32_t b = bins_.bin_of(mesh.normals[order[i]]);
+      if (dense[b] == 0.0) touched.push_back(b);
+      dense[b] += a;
     }
+    out.bins.assign(touched.begin(), touched.end());
+    out.areas.resize(touched.size());
+    for (size_t k = 0; k < touched.size(); ++k) {
+      out.areas[k] = dense[touched[k]];
+      dense[touched[k]] = 0.0;
+    }
+  };
+  auto fresh = [&] { return Scratch{std::vector<double>(bins_.size(), 0.0), {}}; };
+  if (mesh.face_count() > 20000) {
+    tbb::enumerable_thread_specific<Scratch> scratch(fresh);
+    tbb::parallel_for(
+        size_t(0), chunks.size(), [&](size_t c) { histogram(chunks[c], scratch.local(), partial[c]); },
+        tbb::simple_partitioner());
+  } else {
+    Scratch scratch = fresh();
+    for (size_t c = 0; c < chunks.size(); ++c) histogram(chunks[c], scratch, partial[c]);
   }
   // A patch's chunks are consecutive: merge their histograms, bins ascending.
   std::vector<double> dense(bins_.size(), 0.0);

@@ -3,6 +3,11 @@
 // patches keep their phase 1 records; only the split patches are described anew.
 #include "rosmill/segment/setup_segmentation.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -62,20 +67,30 @@ void settle_degenerate(const SurfacePatches& patches, const std::vector<Verdict>
   }
 }
 
-// Per facet reachability: the patch's verdict, or the exact test for the facets of mixed patches.
+// Reachability of facets [first, last). Arrays and test come by value: a byte stored through `reach` could
+// otherwise be any of them, and every one would be read again from memory after each facet.
+template <typename Test>
+void reach_of_facets(size_t first, size_t last, const uint32_t* label, const Verdict* verdict, const Vec3* normal,
+                     const Test test, uint8_t* reach) {
+  for (size_t f = first; f < last; ++f) {
+    const Verdict patch = verdict[label[f]];
+    reach[f] = patch == Verdict::Mixed ? uint8_t(test(normal[f])) : uint8_t(patch);
+  }
+}
+
+// Per facet reachability: the patch's verdict, or the exact test for the facets of mixed patches. Both cores,
+// one half each, from 20,000 facets on (a range no longer than its grain stays on the calling thread).
 template <typename Test>
 void fill_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict, const Test& test,
                 std::vector<uint8_t>& reach) {
   const Mesh& mesh = patches.mesh();
-  const int64_t n = int64_t(mesh.face_count());
-  const uint32_t* label = patches.labels().data();
-  const Vec3* normal = mesh.normals.data();
-  const Verdict* v = verdict.data();
-#pragma omp parallel for schedule(static) if (n > 20000)
-  for (int64_t f = 0; f < n; ++f) {
-    const Verdict patch = v[label[f]];
-    reach[f] = patch == Verdict::Mixed ? uint8_t(test(normal[f])) : uint8_t(patch);
-  }
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, mesh.face_count(), 20000),
+      [&](const tbb::blocked_range<size_t>& r) {
+        reach_of_facets(r.begin(), r.end(), patches.labels().data(), verdict.data(), mesh.normals.data(), test,
+                        reach.data());
+      },
+      tbb::static_partitioner());
 }
 
 std::vector<uint8_t> facet_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict,
@@ -107,15 +122,19 @@ bool split_mixed_patches(const SurfacePatches& patches, const std::vector<Verdic
     return patches.patch(a).facet_count > patches.patch(b).facet_count;
   });
   split.resize(mixed.size());
-  const int64_t n = int64_t(mixed.size());
   size_t mixed_facets = 0;
   for (uint32_t p : mixed) mixed_facets += patches.patch(p).facet_count;
-#pragma omp parallel if (mixed_facets > 20000 && n > 1)
-  {
+  auto split_one = [&](size_t i, detail::PartsScratch& scratch) {
+    detail::split_patch(patches, patches.patch(mixed[i]), reach, rule, scratch, split[i]);
+  };
+  // One patch at a time to whichever core is free, when there are 20,000 facets to split in two patches or more.
+  if (mixed_facets > 20000 && mixed.size() > 1) {
+    tbb::enumerable_thread_specific<detail::PartsScratch> scratch;
+    tbb::parallel_for(
+        size_t(0), mixed.size(), [&](size_t i) { split_one(i, scratch.local()); }, tbb::simple_partitioner());
+  } else {
     detail::PartsScratch scratch;
-#pragma omp for schedule(dynamic, 1)
-    for (int64_t i = 0; i < n; ++i)
-      detail::split_patch(patches, patches.patch(mixed[i]), reach, rule, scratch, split[i]);
+    for (size_t i = 0; i < mixed.size(); ++i) split_one(i, scratch);
   }
   for (const detail::PatchParts& s : split)
     if (s.small_left) return false;

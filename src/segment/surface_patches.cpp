@@ -1,7 +1,13 @@
 // Phase 1 surface flooding (Lefebvre & Lauwers, section 3.2.2) as a linear pass: every manifold edge is tested once (both cores),
 // then a union-find joins the facets across the edges that pass. A patch is then exactly the set of facets a
 // flood from any of its facets reaches, including facets first rejected through another edge (figs. 6, 7).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/partitioner.h>
+
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "labelling.hpp"
@@ -23,32 +29,57 @@ void check_options(const SegmentOptions& o) {
     throw Error("parameter min_area_fraction", "must be in [0, 1), got " + std::to_string(o.small.min_area_fraction));
 }
 
+// Loops over edges and facets run on both cores, one half each, from 20,000 items on (a range no longer than
+// its grain is not split, so smaller meshes stay on the calling thread: their threads' start would cost more).
+constexpr size_t kParallelFrom = 20000;
+
+// The open, non-manifold and inconsistent edges of a range of edges.
+struct EdgeCounts {
+  size_t open = 0, nonmanifold = 0, inconsistent = 0;
+  EdgeCounts operator+(const EdgeCounts& o) const {
+    return {open + o.open, nonmanifold + o.nonmanifold, inconsistent + o.inconsistent};
+  }
+};
+
+// Edges [first, last) of the mesh: marks those the flood crosses in `soft` and counts the others by kind. The
+// mesh's arrays are read into locals first: a byte stored through `soft` could otherwise be any of them.
+EdgeCounts classify_edges(const Mesh& mesh, double t2, size_t first, size_t last, uint8_t* soft) {
+  const MeshEdge* edges = mesh.edges.data();
+  const uint32_t* edge_faces = mesh.edge_faces.data();
+  const double* areas = mesh.areas.data();
+  const Vec3* normals = mesh.normals.data();
+  EdgeCounts c;
+  for (size_t e = first; e < last; ++e) {
+    const MeshEdge& edge = edges[e];
+    uint8_t pass = 0;
+    if (edge.face_count == 2) {
+      const uint32_t f0 = edge_faces[edge.first_face], f1 = edge_faces[edge.first_face + 1];
+      c.inconsistent += !edge.consistent;
+      if (areas[f0] > 0.0 && areas[f1] > 0.0) pass = (normals[f0] - normals[f1]).squaredNorm() < t2;
+    } else if (edge.face_count == 1) {
+      ++c.open;
+    } else {
+      ++c.nonmanifold;
+    }
+    soft[e] = pass;
+  }
+  return c;
+}
+
 // Marks the edges the flood crosses: manifold, both facets with an area, normals closer than the threshold.
 // Counts the mesh's open, non-manifold and inconsistent edges on the way.
 std::vector<uint8_t> soft_edges(const Mesh& mesh, double threshold, MeshNotes& notes) {
   const double t2 = threshold * threshold;
-  const int64_t n = int64_t(mesh.edges.size());
   std::vector<uint8_t> soft(mesh.edges.size());
-  size_t open = 0, nonmanifold = 0, inconsistent = 0;
-#pragma omp parallel for schedule(static) reduction(+ : open, nonmanifold, inconsistent) if (n > 20000)
-  for (int64_t e = 0; e < n; ++e) {
-    const MeshEdge& edge = mesh.edges[e];
-    uint8_t pass = 0;
-    if (edge.face_count == 2) {
-      const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
-      inconsistent += !edge.consistent;
-      if (mesh.areas[f0] > 0.0 && mesh.areas[f1] > 0.0)
-        pass = (mesh.normals[f0] - mesh.normals[f1]).squaredNorm() < t2;
-    } else if (edge.face_count == 1) {
-      ++open;
-    } else {
-      ++nonmanifold;
-    }
-    soft[e] = pass;
-  }
-  notes.open_edges = open;
-  notes.nonmanifold_edges = nonmanifold;
-  notes.inconsistent_edges = inconsistent;
+  const EdgeCounts counts = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, mesh.edges.size(), kParallelFrom), EdgeCounts{},
+      [&](const tbb::blocked_range<size_t>& r, const EdgeCounts& c) {
+        return c + classify_edges(mesh, t2, r.begin(), r.end(), soft.data());
+      },
+      std::plus<EdgeCounts>(), tbb::static_partitioner());
+  notes.open_edges = counts.open;
+  notes.nonmanifold_edges = counts.nonmanifold;
+  notes.inconsistent_edges = counts.inconsistent;
   return soft;
 }
 
@@ -135,20 +166,22 @@ std::vector<std::array<uint32_t, 3>> inner_neighbours(const Mesh& mesh, const st
     for (int k = 0; k < 3; ++k)
       if (mesh.face_edges[f][k] == e) inner[position[f]][k] = to;
   };
-#pragma omp parallel if (n > 20000)
-  {
-#pragma omp for schedule(static)
-    for (int64_t i = 0; i < n; ++i) position[facet_order[i]] = uint32_t(i);
-#pragma omp for schedule(static)
-    for (int64_t e = 0; e < edge_count; ++e) {
-      const MeshEdge& edge = mesh.edges[e];
-      if (edge.face_count != 2) continue;
-      const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
-      if (labels[f0] != labels[f1]) continue;
-      link(f0, uint32_t(e), position[f1]);
-      link(f1, uint32_t(e), position[f0]);
-    }
-  }
+  // Both loops in halves when the facets are many (the edges, about 1.5 per facet, follow the facets' choice).
+  auto each = [parallel = n > int64_t(kParallelFrom)](int64_t count, const auto& body) {
+    if (parallel)
+      tbb::parallel_for(int64_t(0), count, body, tbb::static_partitioner());
+    else
+      for (int64_t i = 0; i < count; ++i) body(i);
+  };
+  each(n, [&](int64_t i) { position[facet_order[i]] = uint32_t(i); });
+  each(edge_count, [&](int64_t e) {
+    const MeshEdge& edge = mesh.edges[e];
+    if (edge.face_count != 2) return;
+    const uint32_t f0 = mesh.edge_faces[edge.first_face], f1 = mesh.edge_faces[edge.first_face + 1];
+    if (labels[f0] != labels[f1]) return;
+    link(f0, uint32_t(e), position[f1]);
+    link(f1, uint32_t(e), position[f0]);
+  });
   return inner;
 }
 
