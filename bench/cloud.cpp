@@ -27,7 +27,7 @@
 #include "rosmill/heap_reuse.hpp"
 #include "rosmill/planner/plan_request.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 
@@ -117,7 +117,7 @@ void bench(const char* name, const PointCloud& cloud) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
+  rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   std::printf("threads %d; seed defaults (rough flat 10, d 2, delta 0.5; semi ball 5 stepover 2; finish ball 3 "

@@ -11,14 +11,14 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
-#include "rosmill/cutter/reference_drop.hpp"
+#include "rosmill/testing/reference_drop.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/drop_grid.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/heap_reuse.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 
@@ -51,7 +51,7 @@ double spacing_for(const Box3& box, double radius, size_t target) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
+  rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   std::printf("threads %d; seconds = index build + all drops; check: of 2000 points, equal to the reference within 1e-6 / rim ties (see reference_drop.hpp) / different\n",

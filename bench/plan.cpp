@@ -17,7 +17,7 @@
 #include "rosmill/toolpath/toolpath_stats.hpp"
 #include "bundled_models.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

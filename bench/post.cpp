@@ -19,7 +19,7 @@
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/heap_reuse.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 
@@ -124,7 +124,7 @@ void bench_arc_reduction() {
 }  // namespace
 
 int main() {
-  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
+  rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   bench_million_moves();
   bench_arc_reduction();
   return 0;

@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "rosmill/error.hpp"
-#include "rosmill/geometry/wavy_solid.hpp"
+#include "rosmill/testing/wavy_solid.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 #include "rosmill/heap_reuse.hpp"
 
-using namespace rosmill;
-using namespace rosmill::segment;
+using namespace rosmill::core;
+using namespace rosmill::core::segment;
 
 namespace {
 
@@ -74,7 +74,7 @@ void run(const std::string& name, const Mesh& mesh, double cgal) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
+  rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   using tbb::global_control;
   const size_t threads = argc > 1 ? size_t(std::max(1, std::atoi(argv[1])))
                                   : global_control::active_value(global_control::max_allowed_parallelism);

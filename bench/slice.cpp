@@ -19,7 +19,7 @@
 #include "../test/core/test_slice_meshes.hpp"
 #include "rosmill/heap_reuse.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 
@@ -72,7 +72,7 @@ void row(const std::string& name, const Mesh& mesh, bool by_step) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
+  rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   const std::string dir = argc > 1 ? argv[1] : ROSMILL_SHARED_DATA "/stl";
   std::printf("%-22s %9s %-9s %6s %9s %6s %10s %9s %8s %8s %7s\n", "model", "triangles", "planes", "layers",
               "contours", "open", "points", "seconds", "cpu_s", "ref", "speedup");

@@ -21,10 +21,10 @@
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/heap_reuse.hpp"
-#include "rosmill/geometry/wavy_solid.hpp"
+#include "rosmill/testing/wavy_solid.hpp"
 #include "rosmill/io/stl.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 namespace fs = std::filesystem;
 
 namespace {

@@ -17,8 +17,8 @@
 #include "rosmill/verify/verify.hpp"
 #include "rosmill/heap_reuse.hpp"
 
-using namespace rosmill;
-using namespace rosmill::verify;
+using namespace rosmill::core;
+using namespace rosmill::core::verify;
 
 namespace {
 
@@ -62,7 +62,7 @@ std::string raster_program(double r, double ball, int lines, int moves) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  rosmill::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
+  rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   const int only = argc > 2 ? std::atoi(argv[2]) : 0;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);

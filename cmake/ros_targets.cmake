@@ -45,7 +45,7 @@ if(CATKIN_ENABLE_TESTING)
   foreach(test_source ${ROSMILL_ROSTEST_NODES})
     get_filename_component(test_name ${test_source} NAME_WE)
     add_executable(${test_name} ${test_source})
-    target_link_libraries(${test_name} PRIVATE rosmill_ros GTest::gtest)
+    target_link_libraries(${test_name} PRIVATE rosmill_ros rosmill_test_support GTest::gtest)
     target_compile_definitions(${test_name} PRIVATE ${ROSMILL_TEST_DEFS})
     set_target_properties(${test_name} PROPERTIES
       RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
@@ -75,7 +75,7 @@ foreach(bench_source ${ROSMILL_ROS_BENCHES})
   get_filename_component(bench_name ${bench_source} NAME_WE)
   add_executable(bench_ros_${bench_name} ${bench_source})
   set_target_properties(bench_ros_${bench_name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/bench)
-  target_link_libraries(bench_ros_${bench_name} PRIVATE rosmill_ros)
+  target_link_libraries(bench_ros_${bench_name} PRIVATE rosmill_ros rosmill_test_support)
   # The benchmark starts the node executables itself (with its own master).
   target_compile_definitions(bench_ros_${bench_name} PRIVATE ${ROSMILL_TEST_DEFS}
     ROSMILL_NODE_DIR="${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}")

@@ -1,6 +1,6 @@
 // End-to-end latency through the running nodes (issue 8, point 6; target <= 1 s each on this machine kind):
 //   cloud: a 300,304-point PointCloud2 (the seed dome on its table, sampled on a 548 x 548 grid) published ->
-//          the ToolpathJobMsg that toolpath_planner publishes for it (cloud-rough, 10 mm flat end mill);
+//          the msg::ToolpathJob that toolpath_planner publishes for it (cloud-rough, 10 mm flat end mill);
 //   stl:   a 100,334-triangle binary STL (the wavy solid, n = 221) asked of stl_loader's load_mesh service ->
 //          its mesh marker received, and the segmenter's patch markers received.
 // The bench starts its own ROS master (rosmaster on a free port) and the node executables, and stops each by its
@@ -26,10 +26,12 @@
 #include <vector>
 
 #include "rosmill/LoadMesh.h"
-#include "rosmill/ToolpathJobMsg.h"
-#include "rosmill/geometry/wavy_solid.hpp"
+#include "rosmill/ToolpathJob.h"
+#include "rosmill/testing/wavy_solid.hpp"
 
 extern char** environ;
+
+namespace msg = ::rosmill;
 
 namespace {
 
@@ -117,14 +119,14 @@ sensor_msgs::PointCloud2 dome_cloud(int n) {
   return cloud;
 }
 
-void write_binary_stl(const std::string& path, const std::vector<rosmill::Vec3>& corners) {
+void write_binary_stl(const std::string& path, const std::vector<rosmill::core::Vec3>& corners) {
   std::ofstream f(path, std::ios::binary);
   char header[80] = "rosmill bench: wavy solid";
   f.write(header, 80);
   const uint32_t count = uint32_t(corners.size() / 3);
   f.write(reinterpret_cast<const char*>(&count), 4);
   for (size_t t = 0; t < corners.size(); t += 3) {
-    const rosmill::Vec3 n = (corners[t + 1] - corners[t]).cross(corners[t + 2] - corners[t]).normalized();
+    const rosmill::core::Vec3 n = (corners[t + 1] - corners[t]).cross(corners[t + 2] - corners[t]).normalized();
     float v[12] = {float(n.x()), float(n.y()), float(n.z())};
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) v[3 + 3 * k + c] = float(corners[t + k][c]);
@@ -178,7 +180,7 @@ int main(int argc, char** argv) {
                    "_tool_table:=" ROSMILL_SOURCE_DIR "/config/tools.yaml", "_cloud_strategy:=cloud-rough",
                    "_tool_id:=1", "_frame_id:=workpiece"},
                   log);
-    Arrivals<rosmill::ToolpathJobMsg> jobs(nh, "toolpath");
+    Arrivals<msg::ToolpathJob> jobs(nh, "toolpath");
     ros::Publisher pub = nh.advertise<sensor_msgs::PointCloud2>("cloud", 1);
     for (int i = 0; i < 200 && pub.getNumSubscribers() == 0; ++i) ros::WallDuration(0.05).sleep();
     sensor_msgs::PointCloud2 cloud = dome_cloud(548);
@@ -202,7 +204,7 @@ int main(int argc, char** argv) {
 
   {  // STL -> markers
     const std::string stl = home + "/wavy_100k.stl";
-    const std::vector<rosmill::Vec3> corners = rosmill::wavy_solid_corners(221, 100.0);
+    const std::vector<rosmill::core::Vec3> corners = rosmill::core::wavy_solid_corners(221, 100.0);
     write_binary_stl(stl, corners);
     Child loader({node("stl_loader"), "__name:=stl_loader", quiet}, log);
     Child segmenter({node("segmenter"), "__name:=segmenter", quiet}, log);

@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace rosmill {
+namespace rosmill::core {
 
 class Error : public std::runtime_error {
  public:
@@ -16,4 +16,4 @@ class Error : public std::runtime_error {
   std::string where_;
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -9,10 +9,10 @@
 // that the process's resident size stays at its high-water mark.
 #pragma once
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Call once, early in main(), before any large allocation. Returns false when the C library refused a setting
 // (the program still works, only slower).
 bool keep_freed_memory();
 
-}  // namespace rosmill
+}  // namespace rosmill::core

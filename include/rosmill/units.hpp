@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-namespace rosmill {
+namespace rosmill::core {
 
 enum class Units { Millimetre, Inch, Metre };
 
@@ -12,4 +12,4 @@ double mm_per_unit(Units u);
 Units parse_units(const std::string& text, const std::string& where = "units");
 const char* units_name(Units u);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -13,7 +13,7 @@
 #include "rosmill/plan/drop_grid.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 struct Options {
@@ -69,4 +69,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

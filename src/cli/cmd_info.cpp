@@ -10,7 +10,7 @@
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 nlohmann::json box_json(const Box3& box) {
@@ -96,4 +96,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

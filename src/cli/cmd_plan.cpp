@@ -4,7 +4,7 @@
 //   cloud files: [--orient none|ransac|lowest] [--origin corner|keep] [--voxel MM] [--outliers K]
 //   [--holes bridge|skip]
 // rosmill plan --list: the strategies, presets, templates and tools.
-// Plans through rosmill::plan(request) on a mesh (STL) or a cloud (PCD/PLY). Lengths in mm. A cloud is prepared
+// Plans through rosmill::core::plan(request) on a mesh (STL) or a cloud (PCD/PLY). Lengths in mm. A cloud is prepared
 // first (cloud/cloud_input.hpp: orientation, origin at the stock corner, filters, a density and holes report).
 // NAME is a strategy, a preset or a template (config/presets.yaml); a preset takes its own tool and tolerance
 // unless --tool / --tolerance are given.
@@ -25,18 +25,20 @@
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/stock.hpp"
+#include "rosmill/segment/setup_frame.hpp"
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 struct Options {
   std::string file, strategy, tool = "ball:6", tools, presets, units, out, dialect = "linuxcnc", stock, machine;
+  std::string setup = "+Z";
   bool no_limits = false;
-  double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = 0.001, angle = 0.0;
+  double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = PlanParams{}.tolerance, angle = 0.0;
   bool json = false, list = false;
   CloudInputOptions cloud;  // --orient, --origin, --voxel, --outliers, --holes
   bool tool_given = false, tolerance_given = false;
@@ -90,6 +92,16 @@ Tool pick_tool(const Options& o) {
   return resolve_tool(o.tool, &table);
 }
 
+// --setup: a named setup (+Z, -X, ...) or a tool direction "x,y,z" in the part's frame.
+SetupFrame setup_of(const std::string& text) {
+  if (text.find(',') == std::string::npos) return named_setup(text, "--setup");
+  Vec3 d;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &d.x(), &d.y(), &d.z(), &tail) != 3)
+    throw Error("--setup", "expected +Z, -Z, +X, -X, +Y, -Y or a direction x,y,z, got '" + text + "'");
+  return direction_setup(d, "--setup");
+}
+
 void run(const Options& o) {
   PlanParams params;
   params.tool = pick_tool(o);
@@ -124,13 +136,17 @@ void run(const Options& o) {
     mesh = read_stl(o.file, ro);
     input.mesh = &mesh;
   }
+  // A setup turns the part over so that its tool axis becomes +Z: the toolpath is in the turned part's frame.
+  const SetupFrame setup = setup_of(o.setup);
+  if (input.mesh) mesh = mesh_in_setup(mesh, setup);
+  if (input.cloud) cloud = cloud_in_setup(cloud, setup);
   Mesh stock;
   if (!o.stock.empty()) {
     if (o.strategy != "rough") throw Error("--stock", "a stock mesh is used by --strategy rough only");
     StlReadOptions ro;
     if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
     try {
-      stock = read_stl(o.stock, ro);
+      stock = mesh_in_setup(read_stl(o.stock, ro), setup);
       check_stock_mesh(stock, input.mesh);
     } catch (const Error& e) {
       throw Error("--stock " + o.stock, e.what());
@@ -172,6 +188,8 @@ void run(const Options& o) {
                         {"estimated_seconds", total.estimated_seconds},
                         {"seconds", seconds}};
     if (!o.out.empty()) j["output"] = o.out;
+    const Vec3& axis = setup.tool_axis;
+    j["setup"] = {{"name", setup.name}, {"tool_axis", {axis.x(), axis.y(), axis.z()}}};
     std::printf("%s\n", j.dump().c_str());
   } else {
     std::printf("%s", prep_report.c_str());
@@ -196,6 +214,9 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--allowance", o->allowance, "stock to leave, mm");
   auto* tolerance = cmd->add_option("--tolerance", o->tolerance, "chord and gouge tolerance, mm");
   cmd->add_option("--angle", o->angle, "raster direction, degrees");
+  cmd->add_option("--setup", o->setup,
+                  "setup: the tool direction in the part's frame, +Z, -Z, +X, -X, +Y, -Y or x,y,z; the part is turned so "
+                  "that it points up, and the toolpath is in the turned part's frame")->capture_default_str();
   cmd->add_option("--stock", o->stock, "rough: stock STL (closed, containing the part; same --units) instead of the box");
   cmd->add_option("--units", o->units, "units of the file: mm, inch, m (STL default mm, clouds m)");
   cmd->add_flag("--json", o->json, "print one JSON object");
@@ -224,4 +245,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

@@ -9,7 +9,7 @@
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 struct PostArgs {
@@ -89,4 +89,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

@@ -6,7 +6,7 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 struct PrimitiveArgs {
@@ -31,4 +31,4 @@ CommandRegistration registration([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

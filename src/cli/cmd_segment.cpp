@@ -17,7 +17,7 @@
 #include "rosmill/segment/coverage.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 struct SegmentArgs {
@@ -121,4 +121,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

@@ -19,7 +19,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 struct SendArgs {
@@ -141,4 +141,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

@@ -11,7 +11,7 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/slice/slicer.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
 struct SliceArgs {
@@ -102,4 +102,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

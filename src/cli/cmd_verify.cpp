@@ -19,10 +19,10 @@
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 namespace {
 
-using namespace rosmill::verify;
+using namespace rosmill::core::verify;
 
 struct VerifyArgs {
   std::string design, program, stock = "box", tools, units, image;
@@ -146,4 +146,4 @@ CommandRegistration reg([](CLI::App& app) {
 });
 
 }  // namespace
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 
-// Adds its sub-command to the app; the sub-command's callback does the work and throws rosmill::Error on bad
+// Adds its sub-command to the app; the sub-command's callback does the work and throws rosmill::core::Error on bad
 // input (main prints it to stderr and exits 1).
 using CommandSetup = std::function<void(CLI::App& app)>;
 
@@ -18,4 +18,4 @@ struct CommandRegistration {
   explicit CommandRegistration(CommandSetup setup) { command_setups().push_back(std::move(setup)); }
 };
 
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

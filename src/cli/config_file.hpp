@@ -10,7 +10,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 
-namespace rosmill::cli {
+namespace rosmill::core::cli {
 
 inline std::string default_config(const std::string& name) {
   const std::string local = "config/" + name;
@@ -36,4 +36,4 @@ inline std::optional<gcode::MachineLimits> machine_to_check(const std::string& g
   return gcode::load_machine_limits(machine_file(given));
 }
 
-}  // namespace rosmill::cli
+}  // namespace rosmill::core::cli

@@ -10,7 +10,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 CloudGrid::CloudGrid(const std::vector<Vec3>& points, double cell, size_t max_cells) {
   if (!(cell > 0) || !std::isfinite(cell)) throw Error("cloud grid", "cell size must be a positive number");
@@ -172,4 +172,4 @@ double sampling_radius(const CloudGrid& grid, const CloudGrid& coarse, double q,
   return d[at];
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

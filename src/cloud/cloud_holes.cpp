@@ -6,7 +6,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 double auto_hole_cell(const CloudGrid& grid) {
   const Vec3 size = grid.bounds().size();
@@ -118,4 +118,4 @@ bool HoleMap::disc_touches_hole(double x, double y, double r) const {
   return false;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

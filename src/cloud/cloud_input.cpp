@@ -2,7 +2,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 CloudPrepOptions cloud_prep_options(const CloudInputOptions& o, const std::string& prefix) {
   CloudPrepOptions prep;
@@ -29,4 +29,4 @@ PointCloud prepare_input_cloud(const std::vector<Vec3>& points, const CloudInput
   return prepare_cloud(points, cloud_prep_options(o, prefix), report);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -17,7 +17,7 @@
 #include "rosmill/cloud/cloud_grid.hpp"
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 using Cloud = pcl::PointCloud<pcl::PointXYZ>;
@@ -277,4 +277,4 @@ std::string format_prep_report(const CloudPrepReport& r) {
   return s.str();
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

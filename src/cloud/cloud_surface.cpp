@@ -12,7 +12,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/cloud/cloud_sweep.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 constexpr double kNothing = -std::numeric_limits<double>::infinity();
@@ -48,7 +48,7 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   const double cell = options.cell > 0 ? options.cell
                                        : kQueryCellScale * auto_grid_cell(points.size(), std::max(size.x() * size.y(), 1e-6));
   grid_ = CloudGrid(points, cell);
-  spacing_ = rosmill::mean_spacing(grid_);
+  spacing_ = rosmill::core::mean_spacing(grid_);
   max_sink_ = options.max_sink;
   hole_policy_ = options.holes;
   const double hole_cell = options.hole_cell > 0 ? options.hole_cell : auto_hole_cell(grid_);
@@ -56,7 +56,7 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   if (!std::isnan(options.sampling_radius)) {
     sampling_radius_ = options.sampling_radius;
   } else if (spacing_ > 0) {
-    sampling_radius_ = rosmill::sampling_radius(grid_, options.detect_holes ? holes_.grid() : CloudGrid(points, hole_cell));
+    sampling_radius_ = rosmill::core::sampling_radius(grid_, options.detect_holes ? holes_.grid() : CloudGrid(points, hole_cell));
   }
 }
 
@@ -143,4 +143,4 @@ void CloudSurface::drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Dro
   });
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

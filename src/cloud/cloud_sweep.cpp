@@ -5,7 +5,7 @@
 
 #include "rosmill/cutter/contact.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 // One move, prepared once: plan start A, unit direction u, plan length L, tip slope m (rise per mm of plan).
@@ -111,4 +111,4 @@ SweepHit sweep_depth(const CloudSurface& surface, const Cutter& cutter, const Ve
   return hit;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

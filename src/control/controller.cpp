@@ -9,7 +9,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/post.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 namespace {
 
 // file:///DIR: the program is written into a folder a controller loads from (a shared folder, a USB stick).
@@ -99,4 +99,4 @@ std::unique_ptr<Controller> open_controller(const std::string& url, const Contro
   throw Error("--controller " + url, "unknown controller kind '" + scheme + "' (linuxcnc, grbl, grbl+tcp, file)");
 }
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

@@ -9,7 +9,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/lexer.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -300,4 +300,4 @@ void GrblController::disconnect() {
   status_.state = RunState::Disconnected;
 }
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

@@ -10,7 +10,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/post.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -203,4 +203,4 @@ void LinuxcncController::disconnect() {
   status_.state = RunState::Disconnected;
 }
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

@@ -2,7 +2,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 
 RunVerdict RunMonitor::observe(ControllerStatus& s, Clock::time_point now) {
   if (s.state == RunState::Finished) return RunVerdict::Finished;
@@ -101,4 +101,4 @@ ControllerStatus run_to_end(Controller& c, const std::vector<std::string>& progr
   }
 }
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

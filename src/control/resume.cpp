@@ -5,7 +5,7 @@
 #include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/number_format.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 namespace {
 
 std::string num(double v) {
@@ -104,4 +104,4 @@ std::vector<std::string> resumed_program(const std::vector<std::string>& program
   return out;
 }
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

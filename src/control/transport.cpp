@@ -17,7 +17,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 namespace {
 
 int ms(double s) { return s <= 0 ? 0 : static_cast<int>(s * 1000.0 + 0.5); }
@@ -190,4 +190,4 @@ bool LineReader::next(std::string& line, double timeout_s) {
   }
 }
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

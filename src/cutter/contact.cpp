@@ -4,7 +4,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 ContactTriangle make_contact_triangle(const double* p0, const double* p1, const double* p2, unsigned char own) {
   ContactTriangle t{};
@@ -69,4 +69,4 @@ double torus_line_argmax(const CutterProfile& cp, double d0sq, double m, double 
   return w;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -7,7 +7,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 const char* cutter_type_name(CutterType t) {
   switch (t) {
@@ -63,4 +63,4 @@ Cutter parse_cutter_spec(const std::string& spec, const std::string& where) {
   throw Error(where, "bad cutter spec '" + spec + "'" + usage);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

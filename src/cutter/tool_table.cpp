@@ -11,7 +11,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 const std::set<std::string> kFields = {"id", "name", "type", "diameter", "corner_radius", "flute_length",
@@ -174,4 +174,4 @@ Tool resolve_tool(const std::string& spec, const ToolTable* table) {
   return default_tool(parse_cutter_spec(spec, "--tool"));
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

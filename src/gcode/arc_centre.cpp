@@ -5,7 +5,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 namespace {
 
 Vec2 centre_by_radius(const ArcWords& w, const Place& where) {
@@ -43,4 +43,4 @@ Vec2 arc_centre(const ArcWords& w, const Place& where) {
   return centre_by_offsets(w, where);
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

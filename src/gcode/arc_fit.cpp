@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
@@ -107,4 +107,4 @@ double distance_to_arc(const Vec2& p, const Vec2& from, const Vec2& to, const Ve
   return std::min((p - from).norm(), (p - to).norm());
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -1,6 +1,6 @@
 #include "rosmill/gcode/block.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 std::string Place::str() const {
   if (line == 0) return std::string(file);
@@ -25,4 +25,4 @@ std::string g_name(int g10) {
   return s;
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 double arc_sweep(const CanonMove& arc) {
   const Vec2 a = arc.from.head<2>() - arc.centre, b = arc.to.head<2>() - arc.centre;
@@ -38,4 +38,4 @@ void move_xy_bounds(const CanonMove& move, Vec2& min, Vec2& max) {
   }
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

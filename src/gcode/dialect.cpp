@@ -4,7 +4,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 // One row per controller. G40 (no cutter compensation), G49 (no length offset), G80 (no canned cycle) and G94
 // (feed per minute) make the start state explicit whatever the previous program left behind.
@@ -26,4 +26,4 @@ const Dialect& find_dialect(const std::string& name) {
   throw Error("dialect", "unknown dialect '" + name + "' (known: " + known.str() + ")");
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -7,7 +7,7 @@
 #include "rosmill/gcode/arc_centre.hpp"
 #include "rosmill/gcode/lexer.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 namespace {
 
 constexpr int kGroups = 16;
@@ -265,4 +265,4 @@ ModalState state_before(const std::vector<std::string>& lines, size_t count) {
   return reader.state();
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

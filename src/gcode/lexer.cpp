@@ -5,7 +5,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 void code_of(std::string_view line, std::string& code, const Place& where) {
   code.clear();
@@ -127,4 +127,4 @@ Block lex_line(std::string_view line, const Place& where) {
   return lex_line(line, code, where);
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -10,7 +10,7 @@
 #include "rosmill/gcode/canon_arc.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 namespace {
 
 double positive(const YAML::Node& root, const char* key, const std::string& path) {
@@ -212,4 +212,4 @@ void require_within_limits(const std::vector<std::string>& lines, const MachineL
   throw Error("line " + std::to_string(v.front().line), "refused by machine '" + lim.name + "': " + v.front().message() + more);
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -4,7 +4,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 int64_t decimal_scale(int decimals) {
   static const int64_t scales[] = {1, 10, 100, 1000, 10000, 100000, 1000000};
@@ -49,4 +49,4 @@ void append_word(std::string& out, char letter, double value, int decimals) {
   append_fixed(out, to_fixed(value, decimals), decimals);
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -8,7 +8,7 @@
 #include "rosmill/gcode/arc_fit.hpp"
 #include "rosmill/gcode/number_format.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 namespace {
 
 constexpr int kFeedDecimals = 1;
@@ -303,4 +303,4 @@ std::vector<std::string> read_program_lines(const std::string& path) {
   return lines;
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

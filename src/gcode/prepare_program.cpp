@@ -2,7 +2,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 PreparedProgram prepare_program(const Job& job, const PostOptions& post_options, const ProgramChecks& checks) {
   if (job.empty()) throw Error("job", "has no toolpath");
@@ -31,4 +31,4 @@ void check_program(const std::vector<std::string>& lines, const ProgramChecks& c
   }
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

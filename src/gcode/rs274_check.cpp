@@ -22,7 +22,7 @@
 
 extern char** environ;
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 namespace {
 
 namespace fs = std::filesystem;
@@ -326,4 +326,4 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
   return rep;
 }
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -4,7 +4,7 @@
 
 #include <climits>
 
-namespace rosmill {
+namespace rosmill::core {
 
 bool keep_freed_memory() {
   // Every block comes from the heap (no mmap per large block, which free() would unmap), the free top of the
@@ -16,4 +16,4 @@ bool keep_freed_memory() {
   return no_mmap && no_trim && one_arena;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

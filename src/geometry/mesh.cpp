@@ -12,7 +12,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/vertex_welder.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 // Integer cell coordinates of the tolerance weld.
@@ -252,4 +252,4 @@ void scale_mesh(Mesh& mesh, double factor) {
   for (double& a : mesh.areas) a *= factor * factor;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 
-namespace rosmill {
+namespace rosmill::core {
 
 MeshReport report(const Mesh& mesh) {
   MeshReport r;
@@ -30,4 +30,4 @@ MeshReport report(const Mesh& mesh) {
   return r;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 namespace cl = ClipperLib;
@@ -67,4 +67,4 @@ std::vector<OffsetLoop> offset_region(const std::vector<Contour>& region, double
   return out;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -4,7 +4,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 // Triangles are appended counter-clockwise seen from outside, so normals point out of the solid.
@@ -145,4 +145,4 @@ Mesh make_primitive(const std::string& name) {
   throw Error("primitive", "unknown primitive '" + name + "' (expected cube, cylinder, dome, cone or cavity)");
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -2,7 +2,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 double mm_per_unit(Units u) {
   switch (u) {
@@ -29,4 +29,4 @@ const char* units_name(Units u) {
   return "mm";
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

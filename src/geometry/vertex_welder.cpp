@@ -4,7 +4,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 constexpr size_t kBatch = 96;  // keys hashed and prefetched before any is probed
@@ -126,4 +126,4 @@ void ExactWelder<Word>::find_many(const Key* keys, size_t n, uint32_t* ids) cons
 template class ExactWelder<uint32_t>;
 template class ExactWelder<uint64_t>;
 
-}  // namespace rosmill
+}  // namespace rosmill::core

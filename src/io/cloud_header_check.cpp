@@ -7,7 +7,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::io {
+namespace rosmill::core::io {
 namespace {
 
 // Splits the header into lines up to and including the one that starts with `last_key`; returns the offset of
@@ -165,4 +165,4 @@ void check_ply_layout(const char* data, size_t size, const std::string& path) {
                           std::to_string(size - body) + " after the header");
 }
 
-}  // namespace rosmill::io
+}  // namespace rosmill::core::io

@@ -6,10 +6,10 @@
 #include <cstring>
 #include <string>
 
-namespace rosmill::io {
+namespace rosmill::core::io {
 
 // Throw Error naming `path` when the header is malformed or the body is shorter than the header says.
 void check_pcd_layout(const char* data, size_t size, const std::string& path);
 void check_ply_layout(const char* data, size_t size, const std::string& path);
 
-}  // namespace rosmill::io
+}  // namespace rosmill::core::io

@@ -16,7 +16,7 @@
 #include "file_bytes.hpp"
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 std::string lower_extension(const std::string& path) {
@@ -170,4 +170,4 @@ PointCloud read_cloud(const std::string& path, const CloudReadOptions& options, 
   return cloud;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -12,7 +12,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::io {
+namespace rosmill::core::io {
 namespace {
 
 struct Fd {
@@ -140,4 +140,4 @@ std::vector<char> gunzip(const char* data, size_t size, const std::string& name)
   return out;
 }
 
-}  // namespace rosmill::io
+}  // namespace rosmill::core::io

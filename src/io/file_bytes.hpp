@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace rosmill::io {
+namespace rosmill::core::io {
 
 class FileBytes {
  public:
@@ -39,4 +39,4 @@ inline bool is_gzip(const char* data, size_t size) {
   return size >= 2 && static_cast<unsigned char>(data[0]) == 0x1f && static_cast<unsigned char>(data[1]) == 0x8b;
 }
 
-}  // namespace rosmill::io
+}  // namespace rosmill::core::io

@@ -13,7 +13,7 @@
 #include "rosmill/error.hpp"
 #include "stl_parse.hpp"
 
-namespace rosmill::io {
+namespace rosmill::core::io {
 namespace {
 
 inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
@@ -257,4 +257,4 @@ void parse_ascii(const char* data, size_t size, const std::string& name, StlSoup
   AsciiParser(data, size, name, soup).run();
 }
 
-}  // namespace rosmill::io
+}  // namespace rosmill::core::io

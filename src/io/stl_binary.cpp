@@ -14,7 +14,7 @@
 #include "rosmill/geometry/vertex_welder.hpp"
 #include "stl_parse.hpp"
 
-namespace rosmill::io {
+namespace rosmill::core::io {
 
 uint32_t binary_declared_count(const char* data) {
   uint32_t count;
@@ -187,4 +187,4 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
   });
 }
 
-}  // namespace rosmill::io
+}  // namespace rosmill::core::io

@@ -11,7 +11,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill::io {
+namespace rosmill::core::io {
 
 constexpr size_t kStlHeaderBytes = 80;
 constexpr size_t kStlBinaryPrefix = 84;  // header + uint32 triangle count
@@ -56,4 +56,4 @@ inline bool stored_normal_disagrees(const Vec3& stored, const Vec3& a, const Vec
   return d < 0.0 || d * d < kCosTolerance * kCosTolerance * stored_len2 * n_len2;
 }
 
-}  // namespace rosmill::io
+}  // namespace rosmill::core::io

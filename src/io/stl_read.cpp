@@ -12,7 +12,7 @@
 #include "rosmill/io/stl.hpp"
 #include "stl_parse.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 using io::kStlBinaryPrefix;
@@ -142,4 +142,4 @@ Mesh read_stl(const std::string& path, const StlReadOptions& options, StlInfo* i
   return mesh_from_indexed(read_stl_triangles(path, options, info));
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

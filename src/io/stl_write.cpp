@@ -9,7 +9,7 @@
 #include "rosmill/io/stl.hpp"
 #include "stl_parse.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 std::string binary_stl(const Mesh& mesh) {
@@ -73,4 +73,4 @@ void write_stl(const std::string& path, const Mesh& mesh, bool ascii) {
   if (std::fclose(file.release()) != 0) throw Error(path, std::string("write failed: ") + std::strerror(errno));
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -77,13 +77,13 @@ class GcodeBridge {
     ::chmod(program_dir_.c_str(), 0755);  // a controller running as another user reads the programs from here
   }
 
-  void on_job(const ToolpathJobMsg::ConstPtr& msg) {
+  void on_job(const msg::ToolpathJob::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(job_mutex_);
     last_job_ = msg;
   }
 
   // The job through the program pipeline into program_dir; returns the file's path.
-  std::string write_program(const ToolpathJobMsg& msg, gcode::Program& program) {
+  std::string write_program(const msg::ToolpathJob& msg, gcode::Program& program) {
     if (msg.toolpaths.empty()) throw Error("job", "has no toolpath (none received on the toolpath topic yet?)");
     gcode::PostOptions options = post_;
     options.title = "rosmill gcode_bridge: " + msg.toolpaths[0].strategy + ", setup " + msg.toolpaths[0].setup;
@@ -96,7 +96,7 @@ class GcodeBridge {
   }
 
   // Prepares and starts a run; returns the reason when it cannot. Blocks while the controller connects.
-  std::string start_run(const ToolpathJobMsg& job, const std::string& uri, uint32_t from_line) {
+  std::string start_run(const msg::ToolpathJob& job, const std::string& uri, uint32_t from_line) {
     std::lock_guard<std::mutex> lock(run_mutex_);
     if (run_ && run_->active()) return "a program is running on " + board_.copy().controller + ": abort it first";
     run_.reset();
@@ -116,7 +116,7 @@ class GcodeBridge {
           [this](const control::ControllerStatus& s, control::RunVerdict v) { board_.update(s, v); });
       ROS_INFO("gcode_bridge: %s: %zu lines on %s", path.c_str(), program.lines.size(), url.c_str());
     } catch (const std::exception& e) {
-      board_.set_state(ProgramStatusMsg::ERROR, e.what());
+      board_.set_state(msg::ProgramStatus::ERROR, e.what());
       return e.what();
     }
     started_ = Clock::now();
@@ -145,7 +145,7 @@ class GcodeBridge {
       return std::string(what) + ": " + e.what();
     }
     if (fn == &control::ProgramRun::abort) {
-      board_.set_state(ProgramStatusMsg::ABORTED);  // the run's worker publishes nothing after its abort
+      board_.set_state(msg::ProgramStatus::ABORTED);  // the run's worker publishes nothing after its abort
       ROS_WARN("gcode_bridge: program aborted");
     }
     return "";
@@ -158,7 +158,7 @@ class GcodeBridge {
   }
 
   bool on_start(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
-    ToolpathJobMsg::ConstPtr job;
+    msg::ToolpathJob::ConstPtr job;
     {
       std::lock_guard<std::mutex> lock(job_mutex_);
       job = last_job_;
@@ -180,7 +180,7 @@ class GcodeBridge {
 
   void on_goal(const RunProgramGoalConstPtr& goal) {
     RunProgramResult result;
-    ToolpathJobMsg job = goal->job;
+    msg::ToolpathJob job = goal->job;
     if (job.toolpaths.empty()) {
       std::lock_guard<std::mutex> lock(job_mutex_);
       if (last_job_) job = *last_job_;
@@ -210,7 +210,7 @@ class GcodeBridge {
     result.lines = result.status.total_lines;
     result.acknowledged_line = result.status.acknowledged_line;
     result.duration = std::chrono::duration<double>(Clock::now() - started_).count();
-    result.success = result.status.state == ProgramStatusMsg::DONE;
+    result.success = result.status.state == msg::ProgramStatus::DONE;
     result.message = result.success ? "program done"
                                     : result.status.state_name + (result.status.last_error.empty()
                                                                       ? std::string()
@@ -228,7 +228,7 @@ class GcodeBridge {
   Clock::time_point started_;
 
   std::mutex job_mutex_;
-  ToolpathJobMsg::ConstPtr last_job_;
+  msg::ToolpathJob::ConstPtr last_job_;
 
   std::mutex run_mutex_;  // one start or command at a time
   std::unique_ptr<control::ProgramRun> run_;

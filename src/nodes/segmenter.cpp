@@ -1,6 +1,6 @@
 // segmenter: segments the part for machining (Lefebvre & Lauwers). On every mesh (`mesh`, from stl_loader) it runs phase 1
 // (sharp-edge surface flooding and recombination, kept per mesh) and phase 2 for the current setup, and publishes
-// the SegmentationMsg latched on `segmentation` and the coloured patches on `segmentation_markers`. The
+// the msg::Segmentation latched on `segmentation` and the coloured patches on `segmentation_markers`. The
 // `set_setup` service re-runs only phase 2 for another setup.
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
@@ -36,7 +36,7 @@ class Segmenter {
         double_param(pnh, "min_area_fraction", options_.small.min_area_fraction, 0.0, 0.5);
     const std::string setup = string_param(pnh, "setup", "+Z");
     filter_ = setup_filter_of(setup, Vec3::UnitZ(), max_angle_deg_, "parameter " + pnh.resolveName("setup"));
-    segmentation_pub_ = nh.advertise<SegmentationMsg>("segmentation", 1, true);
+    segmentation_pub_ = nh.advertise<msg::Segmentation>("segmentation", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("segmentation_markers", 1, true);
     mesh_sub_ = nh.subscribe("mesh", 1, &Segmenter::on_mesh, this);
     service_ = nh.advertiseService("set_setup", &Segmenter::on_set_setup, this);

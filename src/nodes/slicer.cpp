@@ -1,5 +1,5 @@
 // slicer: cuts every mesh (`mesh`, from stl_loader) by planes z = const (the STL slicing paper) and publishes the contours
-// latched on `slices` (SlicesMsg) and as lines on `slice_markers`. The planes are every `interval` mm from the
+// latched on `slices` (msg::Slices) and as lines on `slice_markers`. The planes are every `interval` mm from the
 // mesh's lowest point, or `layers` evenly spaced planes when that parameter is above 0.
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
@@ -20,7 +20,7 @@ class Slicer {
       : frame_id_(string_param(pnh, "frame_id", "workpiece")),
         interval_(double_param(pnh, "interval", 2.0, 1e-3, 1e4)),
         layers_(int_param(pnh, "layers", 0, 0, 100000)) {
-    slices_pub_ = nh.advertise<SlicesMsg>("slices", 1, true);
+    slices_pub_ = nh.advertise<msg::Slices>("slices", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("slice_markers", 1, true);
     mesh_sub_ = nh.subscribe("mesh", 1, &Slicer::on_mesh, this);
   }
@@ -33,7 +33,7 @@ class Slicer {
       if (mesh.faces.empty()) throw Error("mesh", "has no triangles");
       const std::vector<double> planes =
           layers_ > 0 ? planes_by_count(mesh, layers_, "parameter layers") : planes_by_step(mesh, interval_, "parameter interval");
-      const std::vector<SliceLayer> layers = slice_mesh(mesh, planes);
+      const std::vector<core::SliceLayer> layers = slice_mesh(mesh, planes);
       std_msgs::Header header;
       header.frame_id = frame_id_;
       header.stamp = ::ros::Time::now();

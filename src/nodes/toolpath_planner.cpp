@@ -2,7 +2,7 @@
 // stl_loader) or from a scan (`cloud_topic` PointCloud2, brought into the workpiece frame with tf2, waiting at most
 // tf_timeout for the transform, then prepared by the same input step as `rosmill plan`: parameters orient, origin,
 // voxel, outliers, holes, named after its options; origin defaults to keep, the frame tf gave). Strategies, presets
-// and templates by name (`presets`: the preset table, default presets.yaml next to the tool table). Publishes the job latched on `toolpath` (ToolpathJobMsg) and its view on `toolpath_markers`;
+// and templates by name (`presets`: the preset table, default presets.yaml next to the tool table). Publishes the job latched on `toolpath` (msg::ToolpathJob) and its view on `toolpath_markers`;
 // replans on the `plan` service and the `plan_toolpath` action (several items, per-item results, progress
 // feedback, cancel) for another setup, strategy or tool. An input it rejects (no points, no transform, a broken
 // mesh) is logged and its reason is what a later plan request for that source is answered with.
@@ -36,8 +36,8 @@ namespace {
 
 // A Plan request and a PlanToolpath item have the same fields.
 template <typename Msg>
-PlanItemMsg item_of(const Msg& m) {
-  PlanItemMsg item;
+msg::PlanItem item_of(const Msg& m) {
+  msg::PlanItem item;
   item.setup = m.setup;
   item.direction = m.direction;
   item.strategy = m.strategy;
@@ -50,8 +50,8 @@ PlanItemMsg item_of(const Msg& m) {
 struct PlanOutcome {
   Job job;
   SetupFrame setup;
-  ToolpathJobMsg job_msg;
-  PlanStatisticsMsg statistics;
+  msg::ToolpathJob job_msg;
+  msg::PlanStatistics statistics;
 };
 
 // The cloud input step's options, as parameters named after the command line's.
@@ -90,7 +90,7 @@ class ToolpathPlanner {
         strategy_(string_param(pnh, "strategy", "raster")),
         cloud_strategy_(string_param(pnh, "cloud_strategy", "cloud-rough")),
         setup_(string_param(pnh, "setup", "+Z")),
-        tool_id_(int_param(pnh, "tool_id", 1, 1, 9999)),
+        tool_id_(int_param(pnh, "tool_id", 2, 1, 9999)),
         tools_(tool_table_param(pnh, "tool_table")),
         defaults_(plan_defaults_param(pnh)),
         presets_(presets_param(pnh)),
@@ -105,7 +105,7 @@ class ToolpathPlanner {
     named_setup(setup_, "parameter " + pnh.resolveName("setup"));
     require_strategy(strategy_, "parameter " + pnh.resolveName("strategy"));
     require_strategy(cloud_strategy_, "parameter " + pnh.resolveName("cloud_strategy"));
-    job_pub_ = nh.advertise<ToolpathJobMsg>("toolpath", 1, true);
+    job_pub_ = nh.advertise<msg::ToolpathJob>("toolpath", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("toolpath_markers", 1, true);
     mesh_sub_ = nh.subscribe("mesh", 1, &ToolpathPlanner::on_mesh, this);
     cloud_sub_ = nh.subscribe(string_param(pnh, "cloud_topic", "cloud"), 1, &ToolpathPlanner::on_cloud, this);
@@ -186,7 +186,7 @@ class ToolpathPlanner {
   }
 
   // Plans one item (throws Error with the reason); `progress` may cancel.
-  PlanOutcome plan_item(const PlanItemMsg& item, const PlanProgress& progress) {
+  PlanOutcome plan_item(const msg::PlanItem& item, const PlanProgress& progress) {
     std::shared_ptr<const Mesh> mesh;
     std::shared_ptr<const PointCloud> cloud;
     std::string source = item.source;
@@ -204,14 +204,14 @@ class ToolpathPlanner {
     PlanOutcome out;
     out.setup = resolve_setup(item.setup, from_direction_msg(item.direction));
     const std::string strategy = !item.strategy.empty() ? item.strategy : (mesh ? strategy_ : cloud_strategy_);
-    const Tool& tool = tools_.get(item.tool_id == 0 ? tool_id_ : item.tool_id);
+    const core::Tool& tool = tools_.get(item.tool_id == 0 ? tool_id_ : item.tool_id);
     PlanningRequest request;
     request.strategy = strategy;
     request.params = from_plan_parameters(item.parameters, tool, defaults_);
     request.progress = progress;
     request.presets = &presets_;
     // A template runs its presets' own tools (one per stage).
-    if (presets_.find_template(strategy)) request.params.tool = Tool{};
+    if (presets_.find_template(strategy)) request.params.tool = core::Tool{};
 
     const ::ros::WallTime t0 = ::ros::WallTime::now();
     PlanInput& input = request.input;
@@ -241,24 +241,27 @@ class ToolpathPlanner {
              out.statistics.moves, out.setup.name.c_str(), out.statistics.planning_time);
   }
 
+  // A plan in a callback ends with the node: SIGINT cancels it (roslaunch escalates to SIGTERM after a while).
+  static bool stop_at_shutdown(double) { return ::ros::ok(); }
+
   void plan_and_publish(const std::string& source) {
-    PlanItemMsg item;
+    msg::PlanItem item;
     item.setup = setup_;
     item.source = source;
     try {
-      publish(plan_item(item, {}));
+      publish(plan_item(item, stop_at_shutdown));
     } catch (const std::exception& e) {
       ROS_ERROR("toolpath_planner: %s", e.what());
     }
   }
 
-  static std::string summary(const PlanStatisticsMsg& s) {
+  static std::string summary(const msg::PlanStatistics& s) {
     return "planned " + std::to_string(s.toolpaths) + " toolpath(s), " + std::to_string(s.moves) + " moves";
   }
 
   bool on_plan(Plan::Request& req, Plan::Response& res) {
     try {
-      PlanOutcome out = plan_item(item_of(req), {});
+      PlanOutcome out = plan_item(item_of(req), stop_at_shutdown);
       if (!req.preview) publish(out);
       res.job = std::move(out.job_msg);
       res.statistics = out.statistics;
@@ -299,7 +302,7 @@ class ToolpathPlanner {
     std::string first_failure;
     bool cancelled = false;
     for (size_t i = 0; i < n; ++i) {
-      PlanItemResultMsg& r = result.results[i];
+      msg::PlanItemResult& r = result.results[i];
       if (cancelled || (!first_failure.empty() && !goal->proceed_on_failure)) {
         r.message = cancelled ? "not planned: the goal was cancelled" : "not planned: " + first_failure;
         continue;

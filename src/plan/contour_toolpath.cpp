@@ -7,7 +7,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 // Layer heights from the top down: Zmax - k * stepdown above Zmin, then Zmin itself.
@@ -114,4 +114,4 @@ Job plan_contour(const Mesh& mesh, const PlanParams& params, const PlanProgress&
   return {contour_toolpath(mesh, params.tool, o, progress)};
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -4,7 +4,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 DropGrid grid_over(const Box3& box, double radius, double step) {
   if (!(step > 0) || !std::isfinite(step)) throw Error("--spacing", "must be a positive number");
@@ -31,4 +31,4 @@ std::vector<Vec3> drop_grid(const Surface& surface, const Cutter& cutter, const 
   return out;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -6,7 +6,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 double corner_of(const Cutter& c) {
@@ -153,4 +153,4 @@ Job grid_rough_strategy(const Surface& surface, const PlanParams& params, const 
   return grid_rough_on(surface, params, progress);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -6,7 +6,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 constexpr uint32_t kLeafSize = 4;
@@ -164,4 +164,4 @@ void MeshSurface::drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop
   });
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

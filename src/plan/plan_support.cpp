@@ -10,7 +10,7 @@
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 namespace {
 
@@ -273,4 +273,4 @@ Sampling parse_sampling(const std::string& text, const std::string& where) {
   throw Error(where, "unknown sampling '" + text + "' (chord or step-error)");
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -7,7 +7,7 @@
 
 #include "rosmill/plan/step_error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 namespace {
 
@@ -142,4 +142,4 @@ Job raster_strategy(const Surface& surface, const PlanParams& params, const Plan
   return raster_on(surface, params, RasterOptions{}, progress);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

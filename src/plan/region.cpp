@@ -2,7 +2,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 bool inside_region(const Region& region, const Vec2& p) {
   bool inside = false;
@@ -30,4 +30,4 @@ Region patch_region(const Mesh& mesh, const segment::Patch& patch) {
   return region;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -7,7 +7,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/plan/stock.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 // One scan line sampled once: positions along it and the CL heights of the widened cutter.
@@ -177,4 +177,4 @@ Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanP
   return rough_on(surface, params, RoughOptions{}, progress);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

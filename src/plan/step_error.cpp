@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace rosmill {
+namespace rosmill::core {
 
 double step_error(const Vec3& p1, const Vec3& p2, const Vec3& pi) {
   const Vec2 d = (p2 - p1).head<2>();
@@ -49,9 +49,9 @@ size_t buffer_points(const std::vector<Vec3>& cl, const std::vector<uint8_t>& co
   return buffers;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core
 
-namespace rosmill {
+namespace rosmill::core {
 
 size_t checked_move(const Surface& s, const PlanFrame& f, const Vec3& a, const Vec3& b, std::vector<Vec3>& out,
                     int depth) {
@@ -99,4 +99,4 @@ void sample_step_error(const Surface& s, const PlanFrame& f, const Vec2& a, cons
   for (size_t m = 1; m < kept.size(); ++m) counts.checked += checked_move(s, f, cl[kept[m - 1]], cl[kept[m]], out);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

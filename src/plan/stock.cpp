@@ -10,7 +10,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/slice/slicer.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 // Sections are taken at most this far apart within a slab (mm).
@@ -146,4 +146,4 @@ std::vector<std::pair<double, double>> intersect_spans(const std::vector<std::pa
   return out;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

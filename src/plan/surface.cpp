@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace rosmill {
+namespace rosmill::core {
 
 void Surface::drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const {
   for (size_t i = 0; i < n; ++i) out[i] = drop(cutter, xy[i].x(), xy[i].y());
@@ -24,4 +24,4 @@ SweepHit Surface::sweep(const Cutter& cutter, const Vec3& a, const Vec3& b, doub
 
 bool Surface::skips(double, double, double) const { return false; }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

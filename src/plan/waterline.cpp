@@ -7,7 +7,7 @@
 
 #include "rosmill/plan/raster.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 constexpr double kAbove = 1e-6;  // CL above the level by more than this is material
@@ -210,4 +210,4 @@ Job waterline_strategy(const Surface& surface, const PlanParams& params, const P
   return waterline_on(surface, params, WaterlineOptions{}, progress);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

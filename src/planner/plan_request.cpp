@@ -8,7 +8,7 @@
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 std::string known_names(const PresetTable* presets) {
@@ -112,4 +112,4 @@ Job plan(const PlanningRequest& r) {
   return job;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -9,7 +9,7 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 double optional_number(const YAML::Node& node, const char* field, double fallback, const std::string& where) {
@@ -136,4 +136,4 @@ PlanParams preset_params(const Preset& preset, const PlanParams& given) {
   return p;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

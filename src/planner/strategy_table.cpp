@@ -7,7 +7,7 @@
 #include "rosmill/plan/waterline.hpp"
 #include "rosmill/plan/contour_toolpath.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 Job raster_entry(const StrategyCall& c) {
@@ -46,4 +46,4 @@ const StrategyEntry* find_strategy(const std::string& name) {
   return nullptr;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -132,14 +132,14 @@ sensor_msgs::PointCloud2 to_cloud_msg(const PointCloud& cloud, const std::string
 
 // ---------------------------------------------------------------------------------------------------- tools
 
-ToolMsg to_tool_msg(const Tool& tool) {
-  ToolMsg m;
+msg::Tool to_tool_msg(const core::Tool& tool) {
+  msg::Tool m;
   m.id = tool.id;
   m.name = tool.name;
   switch (tool.cutter.type) {
-    case CutterType::FlatEnd: m.cutter_type = ToolMsg::FLAT_END; break;
-    case CutterType::BallEnd: m.cutter_type = ToolMsg::BALL_END; break;
-    case CutterType::BullNose: m.cutter_type = ToolMsg::BULL_NOSE; break;
+    case CutterType::FlatEnd: m.cutter_type = msg::Tool::FLAT_END; break;
+    case CutterType::BallEnd: m.cutter_type = msg::Tool::BALL_END; break;
+    case CutterType::BullNose: m.cutter_type = msg::Tool::BULL_NOSE; break;
   }
   m.diameter = to_metres(tool.cutter.diameter);
   m.corner_radius = to_metres(tool.cutter.corner_radius);
@@ -153,14 +153,14 @@ ToolMsg to_tool_msg(const Tool& tool) {
   return m;
 }
 
-Tool from_tool_msg(const ToolMsg& m, const std::string& where) {
-  Tool t;
+core::Tool from_tool_msg(const msg::Tool& m, const std::string& where) {
+  core::Tool t;
   t.id = m.id;
   t.name = m.name;
   switch (m.cutter_type) {
-    case ToolMsg::FLAT_END: t.cutter.type = CutterType::FlatEnd; break;
-    case ToolMsg::BALL_END: t.cutter.type = CutterType::BallEnd; break;
-    case ToolMsg::BULL_NOSE: t.cutter.type = CutterType::BullNose; break;
+    case msg::Tool::FLAT_END: t.cutter.type = CutterType::FlatEnd; break;
+    case msg::Tool::BALL_END: t.cutter.type = CutterType::BallEnd; break;
+    case msg::Tool::BULL_NOSE: t.cutter.type = CutterType::BullNose; break;
     default: throw Error(where, "unknown cutter_type " + std::to_string(m.cutter_type));
   }
   t.cutter.diameter = to_mm(m.diameter);
@@ -182,18 +182,18 @@ namespace {
 
 uint8_t to_move_type_msg(MoveType t) {
   switch (t) {
-    case MoveType::Rapid: return ToolpathMoveMsg::RAPID;
-    case MoveType::Feed: return ToolpathMoveMsg::FEED;
-    case MoveType::Plunge: return ToolpathMoveMsg::PLUNGE;
+    case MoveType::Rapid: return msg::ToolpathMove::RAPID;
+    case MoveType::Feed: return msg::ToolpathMove::FEED;
+    case MoveType::Plunge: return msg::ToolpathMove::PLUNGE;
   }
-  return ToolpathMoveMsg::FEED;
+  return msg::ToolpathMove::FEED;
 }
 
 MoveType from_move_type_msg(uint8_t t, const std::string& where) {
   switch (t) {
-    case ToolpathMoveMsg::RAPID: return MoveType::Rapid;
-    case ToolpathMoveMsg::FEED: return MoveType::Feed;
-    case ToolpathMoveMsg::PLUNGE: return MoveType::Plunge;
+    case msg::ToolpathMove::RAPID: return MoveType::Rapid;
+    case msg::ToolpathMove::FEED: return MoveType::Feed;
+    case msg::ToolpathMove::PLUNGE: return MoveType::Plunge;
   }
   throw Error(where, "unknown move_type " + std::to_string(t));
 }
@@ -209,8 +209,8 @@ geometry_msgs::Quaternion to_quaternion_msg(const Eigen::Quaterniond& q) {
 
 }  // namespace
 
-ToolpathMsg to_toolpath_msg(const Toolpath& tp, const SetupFrame& setup) {
-  ToolpathMsg m;
+msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup) {
+  msg::Toolpath m;
   m.strategy = tp.strategy;
   m.setup = setup.name;
   m.tool_axis = to_direction_msg(setup.tool_axis);
@@ -221,8 +221,8 @@ ToolpathMsg to_toolpath_msg(const Toolpath& tp, const SetupFrame& setup) {
   m.start = to_point_msg(tp.start);
   m.passes.resize(tp.passes.size());
   for (size_t p = 0; p < tp.passes.size(); ++p) {
-    const ToolpathPass& pass = tp.passes[p];
-    ToolpathPassMsg& out = m.passes[p];
+    const core::ToolpathPass& pass = tp.passes[p];
+    msg::ToolpathPass& out = m.passes[p];
     out.name = pass.name;
     out.moves.resize(pass.moves.size());
     for (size_t i = 0; i < pass.moves.size(); ++i) {
@@ -234,8 +234,8 @@ ToolpathMsg to_toolpath_msg(const Toolpath& tp, const SetupFrame& setup) {
   return m;
 }
 
-Toolpath from_toolpath_msg(const ToolpathMsg& m, const std::string& where) {
-  Toolpath tp;
+core::Toolpath from_toolpath_msg(const msg::Toolpath& m, const std::string& where) {
+  core::Toolpath tp;
   tp.strategy = m.strategy;
   tp.tool = from_tool_msg(m.tool, where + " tool");
   tp.safe_z = to_mm(m.safe_z);
@@ -247,7 +247,7 @@ Toolpath from_toolpath_msg(const ToolpathMsg& m, const std::string& where) {
     auto& moves = tp.passes[p].moves;
     moves.resize(m.passes[p].moves.size());
     for (size_t i = 0; i < moves.size(); ++i) {
-      const ToolpathMoveMsg& in = m.passes[p].moves[i];
+      const msg::ToolpathMove& in = m.passes[p].moves[i];
       const std::string at = where + " pass " + std::to_string(p) + " move " + std::to_string(i);
       moves[i].to = from_point_msg(in.position);
       if (!moves[i].to.allFinite()) throw Error(at, "position is not finite");
@@ -260,18 +260,18 @@ Toolpath from_toolpath_msg(const ToolpathMsg& m, const std::string& where) {
   return tp;
 }
 
-ToolpathJobMsg to_job_msg(const Job& job, const SetupFrame& setup, const std_msgs::Header& header) {
-  ToolpathJobMsg m;
+msg::ToolpathJob to_job_msg(const Job& job, const SetupFrame& setup, const std_msgs::Header& header) {
+  msg::ToolpathJob m;
   m.header = header;
   m.toolpaths.reserve(job.size());
-  for (const Toolpath& tp : job) {
+  for (const core::Toolpath& tp : job) {
     m.toolpaths.push_back(to_toolpath_msg(tp, setup));
     m.toolpaths.back().header = header;
   }
   return m;
 }
 
-Job from_job_msg(const ToolpathJobMsg& m) {
+Job from_job_msg(const msg::ToolpathJob& m) {
   Job job;
   for (size_t i = 0; i < m.toolpaths.size(); ++i)
     job.push_back(from_toolpath_msg(m.toolpaths[i], "toolpath " + std::to_string(i)));
@@ -292,7 +292,7 @@ double length_field(double metres, double fallback, const char* field, bool allo
 
 }  // namespace
 
-PlanParams from_plan_parameters(const PlanParametersMsg& m, const Tool& tool, const PlanParams& defaults) {
+PlanParams from_plan_parameters(const msg::PlanParameters& m, const core::Tool& tool, const PlanParams& defaults) {
   PlanParams p = defaults;
   p.tool = tool;
   p.stepover = length_field(m.stepover, defaults.stepover, "stepover", false);
@@ -309,10 +309,10 @@ PlanParams from_plan_parameters(const PlanParametersMsg& m, const Tool& tool, co
   return p;
 }
 
-PlanStatisticsMsg to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed) {
-  PlanStatisticsMsg s;
+msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed) {
+  msg::PlanStatistics s;
   Box3 box;
-  for (const Toolpath& tp : job) {
+  for (const core::Toolpath& tp : job) {
     const ToolpathStats st = toolpath_stats(tp, rapid_feed);
     s.toolpaths += 1;
     s.passes += tp.passes.size();

@@ -81,7 +81,7 @@ void add_vertex(visualization_msgs::Marker& strip, const Vec3& p, const std_msgs
   strip.colors.push_back(c);
 }
 
-visualization_msgs::Marker pass_marker(const ToolpathPass& pass, Vec3 at, const SetupFrame& setup,
+visualization_msgs::Marker pass_marker(const core::ToolpathPass& pass, Vec3 at, const SetupFrame& setup,
                                        const std_msgs::Header& header, const std::string& ns) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::LINE_STRIP);
   m.scale.x = 0.0004;  // line width, m
@@ -101,7 +101,7 @@ visualization_msgs::Marker pass_marker(const ToolpathPass& pass, Vec3 at, const 
   return m;
 }
 
-visualization_msgs::Marker tool_marker(const Toolpath& tp, const SetupFrame& setup, const std_msgs::Header& header,
+visualization_msgs::Marker tool_marker(const core::Toolpath& tp, const SetupFrame& setup, const std_msgs::Header& header,
                                        const std::string& ns) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::CYLINDER);
   const double length = tp.tool.cutter.flute_length > 0 ? tp.tool.cutter.flute_length : 4 * tp.tool.cutter.diameter;
@@ -126,11 +126,11 @@ visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFram
   visualization_msgs::MarkerArray array;
   array.markers.push_back(delete_all_marker(header));
   for (size_t t = 0; t < job.size(); ++t) {
-    const Toolpath& tp = job[t];
+    const core::Toolpath& tp = job[t];
     const std::string prefix = "toolpath" + std::to_string(t) + "/";
     Vec3 at = tp.start;
     for (size_t p = 0; p < tp.passes.size(); ++p) {
-      const ToolpathPass& pass = tp.passes[p];
+      const core::ToolpathPass& pass = tp.passes[p];
       if (pass.moves.empty()) continue;
       const std::string name = pass.name.empty() ? "pass" + std::to_string(p) : pass.name;
       array.markers.push_back(pass_marker(pass, at, setup, header, prefix + std::to_string(p) + "_" + name));

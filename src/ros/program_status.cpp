@@ -11,32 +11,32 @@ namespace rosmill::edge {
 uint8_t status_state(control::RunState s) {
   switch (s) {
     case control::RunState::Disconnected:
-    case control::RunState::Idle: return ProgramStatusMsg::IDLE;
-    case control::RunState::Running: return ProgramStatusMsg::RUNNING;
-    case control::RunState::Paused: return ProgramStatusMsg::PAUSED;
-    case control::RunState::Finished: return ProgramStatusMsg::DONE;
+    case control::RunState::Idle: return msg::ProgramStatus::IDLE;
+    case control::RunState::Running: return msg::ProgramStatus::RUNNING;
+    case control::RunState::Paused: return msg::ProgramStatus::PAUSED;
+    case control::RunState::Finished: return msg::ProgramStatus::DONE;
     case control::RunState::Alarm:
-    case control::RunState::Error: return ProgramStatusMsg::ERROR;
+    case control::RunState::Error: return msg::ProgramStatus::ERROR;
   }
-  return ProgramStatusMsg::ERROR;
+  return msg::ProgramStatus::ERROR;
 }
 
 const char* status_state_name(uint8_t state) {
   switch (state) {
-    case ProgramStatusMsg::IDLE: return "idle";
-    case ProgramStatusMsg::CONNECTING: return "connecting";
-    case ProgramStatusMsg::RUNNING: return "running";
-    case ProgramStatusMsg::PAUSED: return "paused";
-    case ProgramStatusMsg::DONE: return "done";
-    case ProgramStatusMsg::ERROR: return "error";
-    case ProgramStatusMsg::ABORTED: return "aborted";
+    case msg::ProgramStatus::IDLE: return "idle";
+    case msg::ProgramStatus::CONNECTING: return "connecting";
+    case msg::ProgramStatus::RUNNING: return "running";
+    case msg::ProgramStatus::PAUSED: return "paused";
+    case msg::ProgramStatus::DONE: return "done";
+    case msg::ProgramStatus::ERROR: return "error";
+    case msg::ProgramStatus::ABORTED: return "aborted";
   }
   return "unknown";
 }
 
-ProgramStatusMsg to_status_msg(const control::ControllerStatus& s, uint8_t state,
+msg::ProgramStatus to_status_msg(const control::ControllerStatus& s, uint8_t state,
                                const Eigen::Isometry3d& machine_to_workpiece) {
-  ProgramStatusMsg m;
+  msg::ProgramStatus m;
   m.state = state;
   m.state_name = status_state_name(state);
   m.current_line = s.current_line;
@@ -49,7 +49,7 @@ ProgramStatusMsg to_status_msg(const control::ControllerStatus& s, uint8_t state
   return m;
 }
 
-ProgramPlacement program_placement(const ToolpathJobMsg& msg, const gcode::MachineLimits* machine) {
+ProgramPlacement program_placement(const msg::ToolpathJob& msg, const gcode::MachineLimits* machine) {
   ProgramPlacement p;
   // The program is in the setup frame (the part re-fixtured); the status shows the tool on the part as it sits.
   Eigen::Quaterniond to_setup = Eigen::Quaterniond::Identity();
@@ -61,13 +61,13 @@ ProgramPlacement program_placement(const ToolpathJobMsg& msg, const gcode::Machi
   p.machine_to_workpiece = Eigen::Isometry3d(to_setup.normalized().conjugate()) *
                            Eigen::Translation3d(machine ? Vec3(-machine->work_offset) : Vec3::Zero());
   Box3 box;
-  for (const Toolpath& tp : from_job_msg(msg)) box.add(tp.bounds());
+  for (const core::Toolpath& tp : from_job_msg(msg)) box.add(tp.bounds());
   const Vec3 centre = 0.5 * (box.min + box.max);
   p.anchor = to_point_msg(p.machine_to_workpiece.linear() * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
   return p;
 }
 
-visualization_msgs::MarkerArray status_markers(const ProgramStatusMsg& status, const geometry_msgs::Point& anchor) {
+visualization_msgs::MarkerArray status_markers(const msg::ProgramStatus& status, const geometry_msgs::Point& anchor) {
   visualization_msgs::MarkerArray array;
   visualization_msgs::Marker text =
       base_marker(status.header, "program", 0, visualization_msgs::Marker::TEXT_VIEW_FACING);
@@ -78,7 +78,7 @@ visualization_msgs::MarkerArray status_markers(const ProgramStatusMsg& status, c
   if (!status.last_error.empty()) text.text += "\n" + status.last_error.substr(0, 120);
   text.pose.position = anchor;
   text.scale.z = 0.008;  // text height, m
-  const bool bad = status.state == ProgramStatusMsg::ERROR || status.state == ProgramStatusMsg::ABORTED;
+  const bool bad = status.state == msg::ProgramStatus::ERROR || status.state == msg::ProgramStatus::ABORTED;
   text.color = bad ? rgba(1.0f, 0.3f, 0.3f) : rgba(1.0f, 1.0f, 1.0f);
   array.markers.push_back(text);
 

@@ -4,11 +4,11 @@ namespace rosmill::edge {
 
 ProgramStatusBoard::ProgramStatusBoard(::ros::NodeHandle& nh, const std::string& frame_id,
                                        const std::string& controller) {
-  status_.state = ProgramStatusMsg::IDLE;
+  status_.state = msg::ProgramStatus::IDLE;
   status_.state_name = status_state_name(status_.state);
   status_.controller = controller;
   status_.header.frame_id = frame_id;
-  status_pub_ = nh.advertise<ProgramStatusMsg>("program_status", 1, true);
+  status_pub_ = nh.advertise<msg::ProgramStatus>("program_status", 1, true);
   marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("program_markers", 1, true);
 }
 
@@ -16,7 +16,7 @@ void ProgramStatusBoard::begin(const std::string& controller, const std::string&
                                const ProgramPlacement& place) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    ProgramStatusMsg m;
+    msg::ProgramStatus m;
     m.header.frame_id = status_.header.frame_id;
     m.controller = controller;
     m.program = program;
@@ -24,21 +24,21 @@ void ProgramStatusBoard::begin(const std::string& controller, const std::string&
     status_ = m;
     placement_ = place;
   }
-  set_state(ProgramStatusMsg::CONNECTING);
+  set_state(msg::ProgramStatus::CONNECTING);
 }
 
 void ProgramStatusBoard::started() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (status_.state != ProgramStatusMsg::CONNECTING) return;
-    status_.state = ProgramStatusMsg::RUNNING;
+    if (status_.state != msg::ProgramStatus::CONNECTING) return;
+    status_.state = msg::ProgramStatus::RUNNING;
     status_.state_name = status_state_name(status_.state);
   }
   publish();
 }
 
 void ProgramStatusBoard::set_state(uint8_t state, const std::string& error) {
-  if (state == ProgramStatusMsg::ERROR) ROS_ERROR("gcode_bridge: %s", error.c_str());
+  if (state == msg::ProgramStatus::ERROR) ROS_ERROR("gcode_bridge: %s", error.c_str());
   {
     std::lock_guard<std::mutex> lock(mutex_);
     status_.state = state;
@@ -50,37 +50,37 @@ void ProgramStatusBoard::set_state(uint8_t state, const std::string& error) {
 
 void ProgramStatusBoard::update(const control::ControllerStatus& s, control::RunVerdict verdict) {
   uint8_t state = status_state(s.state);
-  if (verdict == control::RunVerdict::Failed) state = ProgramStatusMsg::ERROR;
-  if (verdict == control::RunVerdict::Finished) state = ProgramStatusMsg::DONE;
+  if (verdict == control::RunVerdict::Failed) state = msg::ProgramStatus::ERROR;
+  if (verdict == control::RunVerdict::Finished) state = msg::ProgramStatus::DONE;
   uint8_t before;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     before = status_.state;
-    ProgramStatusMsg m = to_status_msg(s, state, placement_.machine_to_workpiece);
+    msg::ProgramStatus m = to_status_msg(s, state, placement_.machine_to_workpiece);
     m.header.frame_id = status_.header.frame_id;
     m.controller = status_.controller;
     m.program = status_.program;
     status_ = m;
   }
   if (state == before) return;
-  if (state == ProgramStatusMsg::ERROR) ROS_ERROR("gcode_bridge: %s", s.error.c_str());
+  if (state == msg::ProgramStatus::ERROR) ROS_ERROR("gcode_bridge: %s", s.error.c_str());
   ROS_INFO("gcode_bridge: program %s (line %zu of %zu)", status_state_name(state), s.current_line, s.total_lines);
   publish();  // every change at once, whatever the rate
 }
 
-ProgramStatusMsg ProgramStatusBoard::copy() const {
+msg::ProgramStatus ProgramStatusBoard::copy() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return status_;
 }
 
 bool ProgramStatusBoard::running() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return status_.state == ProgramStatusMsg::CONNECTING || status_.state == ProgramStatusMsg::RUNNING ||
-         status_.state == ProgramStatusMsg::PAUSED;
+  return status_.state == msg::ProgramStatus::CONNECTING || status_.state == msg::ProgramStatus::RUNNING ||
+         status_.state == msg::ProgramStatus::PAUSED;
 }
 
 void ProgramStatusBoard::publish() {
-  ProgramStatusMsg m;
+  msg::ProgramStatus m;
   geometry_msgs::Point anchor;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -93,10 +93,10 @@ void ProgramStatusBoard::publish() {
 }
 
 void ProgramStatusBoard::diagnose(diagnostic_updater::DiagnosticStatusWrapper& d) {
-  const ProgramStatusMsg s = copy();
+  const msg::ProgramStatus s = copy();
   using diagnostic_msgs::DiagnosticStatus;
-  const uint8_t level = s.state == ProgramStatusMsg::ERROR ? DiagnosticStatus::ERROR
-                        : s.state == ProgramStatusMsg::PAUSED || s.state == ProgramStatusMsg::ABORTED
+  const uint8_t level = s.state == msg::ProgramStatus::ERROR ? DiagnosticStatus::ERROR
+                        : s.state == msg::ProgramStatus::PAUSED || s.state == msg::ProgramStatus::ABORTED
                             ? DiagnosticStatus::WARN
                             : DiagnosticStatus::OK;
   d.summary(level, s.last_error.empty() ? s.state_name : s.state_name + ": " + s.last_error);

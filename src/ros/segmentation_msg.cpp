@@ -18,9 +18,9 @@ Vec3 setup_axis(const segment::SetupFilter& f) {
 
 }  // namespace
 
-SegmentationMsg to_segmentation_msg(const segment::SetupSegmentation& seg, const std::string& setup_name,
+msg::Segmentation to_segmentation_msg(const segment::SetupSegmentation& seg, const std::string& setup_name,
                                     const std_msgs::Header& header) {
-  SegmentationMsg m;
+  msg::Segmentation m;
   m.header = header;
   m.setup = setup_name;
   m.tool_axis = to_direction_msg(setup_axis(seg.filter()));
@@ -31,7 +31,7 @@ SegmentationMsg to_segmentation_msg(const segment::SetupSegmentation& seg, const
   m.patches.resize(seg.count());
   for (size_t i = 0; i < seg.count(); ++i) {
     const segment::Segment& s = seg.segments()[i];
-    PatchMsg& p = m.patches[i];
+    msg::Patch& p = m.patches[i];
     p.label = i;
     p.surface_patch = s.patch;
     p.facet_count = s.shape.facet_count;

@@ -8,7 +8,7 @@
 
 #include "setup_steps.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 
 void finish_segment(Segment& seg, uint32_t patch, double reachable_area) {
   seg.patch = patch;
@@ -133,4 +133,4 @@ void assemble_segments(const SurfacePatches& patches, const std::vector<Verdict>
   link_across_patches(patches.mesh(), split, number, labels, segments);
 }
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

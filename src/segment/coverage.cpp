@@ -2,7 +2,7 @@
 
 #include "rosmill/segment/setup_segmentation.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 namespace {
 
 // Area of the facets marked in `reached`.
@@ -58,4 +58,4 @@ std::vector<SetupFilter> greedy_axis_cover(const EgiSet& egis) {
   return cover;
 }
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

@@ -9,7 +9,7 @@
 
 #include "labelling.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 namespace {
 
 // The corner of face f whose edge (corner -> next corner) is e.
@@ -160,4 +160,4 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
   }
 }
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

@@ -11,7 +11,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 namespace {
 
 Vec3 direction(double polar, double azimuth) {
@@ -196,4 +196,4 @@ EgiSet::EgiSet(const SurfacePatches& patches, const EgiBins& bins) : patches_(&p
   }
 }
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

@@ -8,7 +8,7 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 
 // Renumbers labels 0..count-1 in the order of their first facet; returns count.
 uint32_t compact_labels(std::vector<uint32_t>& labels, uint32_t label_bound);
@@ -76,4 +76,4 @@ inline double edge_length(const Mesh& mesh, uint32_t e) {
 // True when facet f has an area (and so a normal).
 inline bool has_area(const Mesh& mesh, size_t f) { return mesh.areas[f] > 0.0; }
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

@@ -3,7 +3,7 @@
 // memory and costs a few passes over its facets.
 #include "patch_parts.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 namespace {
 
 // The part graph: the lengths the parts share, summed per pair.
@@ -181,4 +181,4 @@ void split_patch(const SurfacePatches& patches, const Patch& patch, const std::v
   trace_borders(mesh, order, inner, base, s, out);
 }
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

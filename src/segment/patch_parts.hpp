@@ -9,7 +9,7 @@
 
 #include "labelling.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 
 struct PatchParts {
   uint32_t patch = 0;
@@ -51,4 +51,4 @@ uint32_t flood_patch(const SurfacePatches& patches, const Patch& patch, const st
 void split_patch(const SurfacePatches& patches, const Patch& patch, const std::vector<uint8_t>& reach,
                  const SizeRule& rule, PartsScratch& scratch, PatchParts& out);
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

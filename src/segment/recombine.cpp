@@ -5,7 +5,7 @@
 #include "labelling.hpp"
 #include "union_find.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 
 // Pairs come one per border edge (tens of thousands): they are summed in an open-addressing table sized to them.
 void sum_equal_pairs(std::vector<LabelPair>& pairs) {
@@ -185,4 +185,4 @@ uint32_t recombine(const Mesh& mesh, std::vector<uint32_t>& labels, uint32_t cou
   return final_count;
 }
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

@@ -7,7 +7,7 @@
 #include "patch_parts.hpp"
 #include "setup_steps.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 namespace {
 
 // Labels the connected parts of equal reachability, part by part (so without a union-find over every facet): a
@@ -64,4 +64,4 @@ void segment_across_patches(const SurfacePatches& patches, const std::vector<uin
   }
 }
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

@@ -5,7 +5,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 namespace {
 
 // Slack on the dot-product tests so that a wall whose normal is perpendicular to the tool axis up to rounding
@@ -77,4 +77,4 @@ const std::vector<SetupFilter>& axis_setups() {
   return setups;
 }
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

@@ -6,7 +6,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 SetupFrame direction_setup(const Vec3& direction, const std::string& where) {
   if (!direction.allFinite() || direction.norm() < 1e-9)
@@ -85,4 +85,4 @@ PointCloud cloud_in_setup(const PointCloud& cloud, const SetupFrame& setup) {
   return out;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

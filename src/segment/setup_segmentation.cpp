@@ -15,7 +15,7 @@
 #include "patch_parts.hpp"
 #include "setup_steps.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 namespace {
 
 using detail::Verdict;
@@ -170,4 +170,4 @@ SetupSegmentation segment_setup(const EgiSet& egis, const SetupFilter& filter, c
   return out;
 }
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

@@ -8,7 +8,7 @@
 #include "patch_parts.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 
 // A patch's verdict from its EGI: every occupied bin inside the setup's reach, outside it, or some of each.
 enum class Verdict : uint8_t { Unreachable = 0, Reachable = 1, Mixed = 2 };
@@ -29,4 +29,4 @@ void assemble_segments(const SurfacePatches& patches, const std::vector<Verdict>
                        std::vector<PatchParts>& split, std::vector<uint32_t>& labels,
                        std::vector<uint32_t>& facet_order, std::vector<Segment>& segments);
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

@@ -14,7 +14,7 @@
 #include "rosmill/error.hpp"
 #include "union_find.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 namespace {
 
 using detail::has_area;
@@ -211,4 +211,4 @@ SurfacePatches segment_surface(const Mesh& mesh, const SegmentOptions& options) 
   return out;
 }
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

@@ -5,7 +5,7 @@
 #include <numeric>
 #include <vector>
 
-namespace rosmill::segment::detail {
+namespace rosmill::core::segment::detail {
 
 class UnionFind {
  public:
@@ -42,4 +42,4 @@ class UnionFind {
   std::vector<uint32_t> parent_;
 };
 
-}  // namespace rosmill::segment::detail
+}  // namespace rosmill::core::segment::detail

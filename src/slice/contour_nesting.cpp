@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-namespace rosmill::slice_detail {
+namespace rosmill::core::slice_detail {
 namespace {
 
 struct Box2 {
@@ -87,4 +87,4 @@ void orient_and_nest(std::vector<Contour>& contours) {
   }
 }
 
-}  // namespace rosmill::slice_detail
+}  // namespace rosmill::core::slice_detail

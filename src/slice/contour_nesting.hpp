@@ -5,7 +5,7 @@
 
 #include "rosmill/slice/slicer.hpp"
 
-namespace rosmill::slice_detail {
+namespace rosmill::core::slice_detail {
 
 // Sets area, hole and parent of every closed contour of `contours` and reverses those whose direction disagrees
 // with their depth (even depth: outer, counter-clockwise; odd depth: hole, clockwise). Open chains are left as
@@ -16,4 +16,4 @@ void orient_and_nest(std::vector<Contour>& contours);
 // Crossing-number test; a point exactly on the boundary may go either way.
 bool point_in_polygon(const Vec2& p, const std::vector<Vec2>& polygon);
 
-}  // namespace rosmill::slice_detail
+}  // namespace rosmill::core::slice_detail

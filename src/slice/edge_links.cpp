@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-namespace rosmill::slice_detail {
+namespace rosmill::core::slice_detail {
 namespace {
 
 struct Fan {
@@ -96,4 +96,4 @@ std::vector<uint32_t> build_edge_links(const Mesh& mesh) {
   return links;
 }
 
-}  // namespace rosmill::slice_detail
+}  // namespace rosmill::core::slice_detail

@@ -8,7 +8,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill::slice_detail {
+namespace rosmill::core::slice_detail {
 
 // Manifold edges link their two faces. At a non-manifold edge the faces are sorted by angle around the edge and
 // paired across the wedges of material (between a face whose normal points back and the next one whose normal
@@ -16,4 +16,4 @@ namespace rosmill::slice_detail {
 // alternate, neighbours in angle are paired. Both keep the chains closed and as few as the topology allows.
 std::vector<uint32_t> build_edge_links(const Mesh& mesh);
 
-}  // namespace rosmill::slice_detail
+}  // namespace rosmill::core::slice_detail

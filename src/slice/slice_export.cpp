@@ -5,7 +5,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/slice/slicer.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 double signed_area(const std::vector<Vec2>& p) {
   double twice = 0.0;
@@ -39,4 +39,4 @@ void write_slices_dat(const std::string& path, const std::vector<SliceLayer>& la
   if (std::ferror(f.get())) throw Error(path, "write failed");
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

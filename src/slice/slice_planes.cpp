@@ -5,7 +5,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/slice/slicer.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 void check_mesh(const Mesh& mesh, const std::string& where) {
@@ -62,4 +62,4 @@ std::vector<double> planes_from_list(std::vector<double> z, const std::string& w
   return z;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -9,7 +9,7 @@
 #include "contour_nesting.hpp"
 #include "edge_links.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 using slice_detail::build_edge_links;
@@ -252,4 +252,4 @@ std::vector<SliceLayer> slice_mesh(const Mesh& mesh, const std::vector<double>& 
   return layers;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -1,6 +1,6 @@
 #include "rosmill/toolpath/toolpath.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 size_t Toolpath::move_count() const {
   size_t n = 0;
@@ -15,4 +15,4 @@ Box3 Toolpath::bounds() const {
   return b;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

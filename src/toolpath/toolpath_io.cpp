@@ -6,7 +6,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 using nlohmann::json;
@@ -153,4 +153,4 @@ std::vector<Toolpath> read_toolpath_file(const std::string& path) {
   return job;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -1,6 +1,6 @@
 #include "rosmill/toolpath/toolpath_stats.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 ToolpathStats toolpath_stats(const Toolpath& tp, double rapid_feed) {
   ToolpathStats s;
@@ -21,4 +21,4 @@ ToolpathStats toolpath_stats(const Toolpath& tp, double rapid_feed) {
   return s;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -1,6 +1,6 @@
 #include "bitmap_font.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 struct Glyph {
@@ -45,4 +45,4 @@ const char* glyph_rows(char c) {
   return nullptr;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -2,7 +2,7 @@
 // signs numbers and units need). Private to src/verify.
 #pragma once
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 constexpr int kGlyphWidth = 5, kGlyphHeight = 9;
 
@@ -10,4 +10,4 @@ constexpr int kGlyphWidth = 5, kGlyphHeight = 9;
 // (drawn as a space). Upper-case letters use the lower-case glyphs.
 const char* glyph_rows(char c);
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

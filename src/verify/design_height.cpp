@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 std::vector<float> design_heights(const Mesh& mesh, const GridSpec& g, double floor) {
   const float none = -std::numeric_limits<float>::infinity();
@@ -66,4 +66,4 @@ std::vector<float> design_heights(const PointCloud& cloud, const GridSpec& g, in
   return z;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -5,7 +5,7 @@
 
 #include "rosmill/cutter/contact.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 constexpr double kFlatSlope = 0.2;  // about 11 degrees
@@ -116,4 +116,4 @@ DeviationReport compare(const Stock& stock, const std::vector<float>& design, co
   return r;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

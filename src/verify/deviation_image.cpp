@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 constexpr int kMapPixels = 800, kMargin = 16, kLegendWidth = 430, kScale = 2;
@@ -93,4 +93,4 @@ void write_deviation_png(const std::string& path, const DeviationGrid& grid, con
   write_png(path, deviation_image(grid, report));
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

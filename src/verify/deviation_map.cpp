@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 // Four gouge bands (deepest first), on the design, four rest bands (least first), not cut, no design.
@@ -80,4 +80,4 @@ std::vector<DeviationPoint> deviation_points(const DeviationGrid& grid, size_t m
   return points;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

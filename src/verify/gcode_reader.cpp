@@ -8,7 +8,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 using gcode::Block;
@@ -224,4 +224,4 @@ ToolSetup tool_setup(const std::vector<std::string>& specs, const ToolTable* tab
   return setup;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

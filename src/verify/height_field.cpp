@@ -7,7 +7,7 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells) {
   if (!(cell > 0) || !std::isfinite(cell))
@@ -48,4 +48,4 @@ Stock Stock::box(const GridSpec& grid, double bottom_z, double top_z) {
   return s;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -24,7 +24,7 @@
 // which the whole sweep before covered). The finishing trace (distance to the finishing path) is kept the same
 // way with the nearest point for lead. SimulationOptions::prune = false sweeps every move whole: the reference.
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 using namespace sweep;
@@ -389,4 +389,4 @@ double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, doub
   return best;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -7,7 +7,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/verify/rgb_image.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 void put32(std::string& out, uint32_t v) {
@@ -52,4 +52,4 @@ void write_png(const std::string& path, const RgbImage& image) {
   if (!file) throw Error(path, "cannot write the image");
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -4,7 +4,7 @@
 
 #include "bitmap_font.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 RgbImage::RgbImage(int w, int h, Rgb background) : width(w), height(h), pixels(static_cast<size_t>(w) * h * 3) {
   fill(0, 0, w, h, background);
@@ -61,4 +61,4 @@ int RgbImage::text(int x, int y, const std::string& s, int scale, Rgb c) {
   return at_x - x;
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

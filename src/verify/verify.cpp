@@ -10,7 +10,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/verify/design_height.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -42,7 +42,7 @@ VerifyResult run(const Design& design, const Box3& bounds, const MachineProgram&
   const auto start = Clock::now();
   Stock stock = make_stock(spec, bounds, options.resolution, options.max_cells);
   std::vector<float> heights;
-  if constexpr (std::is_same_v<Design, rosmill::Mesh>) heights = design_heights(design, stock.grid, floor);
+  if constexpr (std::is_same_v<Design, rosmill::core::Mesh>) heights = design_heights(design, stock.grid, floor);
   else heights = design_heights(design, stock.grid);
   SimulationOptions so = options.simulation;
   if (!(so.trace_radius > 0)) so.trace_radius = scallop_window(program, options.compare, stock.grid.cell);
@@ -76,7 +76,7 @@ StockSpec StockSpec::parse_box(const std::string& text, const std::string& where
   return s;
 }
 
-VerifyResult verify_program(const rosmill::Mesh& design, const MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const rosmill::core::Mesh& design, const MachineProgram& program, const StockSpec& stock,
                             const VerifyOptions& options) {
   return run(design, design.bbox, program, stock, options, design.bbox.min.z());
 }
@@ -86,4 +86,4 @@ VerifyResult verify_program(const PointCloud& design, const MachineProgram& prog
   return run(design, design.bbox, program, stock, options, design.bbox.min.z());
 }
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

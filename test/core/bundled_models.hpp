@@ -3,7 +3,7 @@
 #pragma once
 #include "rosmill/units.hpp"
 
-namespace rosmill::test_data {
+namespace rosmill::core::test_data {
 
 struct BundledModel {
   const char* file;
@@ -18,4 +18,4 @@ inline constexpr BundledModel kBundledModels[] = {
     {"counter.unitsmm.STL", Units::Millimetre, false},  {"demo2.stl.gz", Units::Millimetre, false},
 };
 
-}  // namespace rosmill::test_data
+}  // namespace rosmill::core::test_data

@@ -28,7 +28,7 @@
 #include <thread>
 #include <vector>
 
-namespace rosmill::test {
+namespace rosmill::core::test {
 
 // How the simulation drops a connection.
 enum class GrblDrop {
@@ -289,4 +289,4 @@ class GrblSimulation {
   double pos_[3] = {0, 0, 0}, feed_ = 0;
 };
 
-}  // namespace rosmill::test
+}  // namespace rosmill::core::test

@@ -8,7 +8,7 @@
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 
-namespace rosmill::test {
+namespace rosmill::core::test {
 
 inline const PresetTable& package_presets() {
   static const PresetTable table = read_presets(ROSMILL_SOURCE_DIR "/config/presets.yaml");
@@ -41,4 +41,4 @@ inline Job plan_named(const PlanName& n, const Mesh& mesh, const PointCloud& clo
   return plan(r);
 }
 
-}  // namespace rosmill::test
+}  // namespace rosmill::core::test

@@ -9,8 +9,8 @@
 #include "rosmill/gcode/post.hpp"
 #include "test_post_jobs.hpp"
 
-using namespace rosmill;
-using namespace rosmill::gcode;
+using namespace rosmill::core;
+using namespace rosmill::core::gcode;
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include "rosmill/toolpath/toolpath_io.hpp"
 
 using nlohmann::json;
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

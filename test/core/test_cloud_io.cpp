@@ -9,7 +9,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/io/cloud_io.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

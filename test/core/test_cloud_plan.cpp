@@ -20,7 +20,7 @@
 #include "plan_names.hpp"
 #include "test_cloud_support.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include "rosmill/cloud/cloud_prep.hpp"
 #include "rosmill/error.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

@@ -16,9 +16,9 @@
 
 namespace cloudtest {
 
-using rosmill::Cutter;
-using rosmill::Vec2;
-using rosmill::Vec3;
+using rosmill::core::Cutter;
+using rosmill::core::Vec2;
+using rosmill::core::Vec3;
 
 struct Sampling {
   std::vector<Vec3> pts;
@@ -31,7 +31,7 @@ struct Sampling {
 // within s/sqrt(3) of one of its corners: an acute triangle's farthest point from its corners is the
 // circumcentre, at a/(2 sin A) <= a/sqrt(3) (a the longest side, its angle A between 60 and 90 degrees); a right
 // or obtuse triangle's farthest point lies on the longest side, at most a/2 from a corner.
-inline Sampling sample_mesh(const rosmill::Mesh& m, double s) {
+inline Sampling sample_mesh(const rosmill::core::Mesh& m, double s) {
   Sampling out;
   out.covering = s / std::sqrt(3.0);
   for (size_t f = 0; f < m.face_count(); ++f) {
@@ -60,7 +60,7 @@ inline double add_noise(std::vector<Vec3>& pts, double sigma, unsigned seed = 7)
 // The cutter eroded by r (every point at least r inside it), tip raised by r: a ball or flat end mill of radius
 // R - r. Used only for ball and flat cutters.
 inline Cutter eroded(const Cutter& c, double r) {
-  return c.type == rosmill::CutterType::BallEnd ? Cutter::ball(c.diameter - 2 * r) : Cutter::flat(c.diameter - 2 * r);
+  return c.type == rosmill::core::CutterType::BallEnd ? Cutter::ball(c.diameter - 2 * r) : Cutter::flat(c.diameter - 2 * r);
 }
 
 // The sampling bound of a cloud's drop against the mesh it was sampled from. The points lie within `eta` of the
@@ -75,13 +75,13 @@ struct Bound {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   bool misses = false;  // the grown cutter misses the mesh: the cloud's cutter touches nothing
 };
-inline Bound sampling_bound(const rosmill::MeshSurface& mesh, const rosmill::CloudSurface& cloud, const Cutter& c,
+inline Bound sampling_bound(const rosmill::core::MeshSurface& mesh, const rosmill::core::CloudSurface& cloud, const Cutter& c,
                             double rho, double eta, double x, double y) {
   Bound b;
   const double r = rho + eta;
-  const rosmill::Drop lo = mesh.drop(eroded(c, r), x, y);
+  const rosmill::core::Drop lo = mesh.drop(eroded(c, r), x, y);
   if (lo.touched) b.lo = lo.z - r;
-  const rosmill::Drop hi = mesh.drop(rosmill::offset_cutter(cloud.supported(c), eta), x, y);
+  const rosmill::core::Drop hi = mesh.drop(rosmill::core::offset_cutter(cloud.supported(c), eta), x, y);
   if (hi.touched) b.hi = hi.z + eta;
   b.misses = !hi.touched;
   return b;
@@ -92,12 +92,12 @@ inline Bound sampling_bound(const rosmill::MeshSurface& mesh, const rosmill::Clo
 // touch there at its tip) and, lying on a level facet, a level edge or a corner, it has a sample at z0 within
 // rho in plan view. With noise the cloud's drop is then within [z0 - eta - h_S(rho + eta), z0 + eta] (h_S: the
 // height of S's underside at that distance). Ball cutters only; returns false where the ground is not level.
-inline bool level_ground(const rosmill::MeshSurface& mesh, const rosmill::CloudSurface& cloud, const Cutter& c,
+inline bool level_ground(const rosmill::core::MeshSurface& mesh, const rosmill::core::CloudSurface& cloud, const Cutter& c,
                          double rho, double eta, double x, double y, Bound& b) {
   const Cutter s = cloud.supported(c);
-  const rosmill::CutterProfile sp(s);
-  if (c.type != rosmill::CutterType::BallEnd || rho + eta > sp.R) return false;
-  const rosmill::Drop d = mesh.drop(c, x, y), f = mesh.drop(Cutter::flat(s.diameter + 2 * eta), x, y);
+  const rosmill::core::CutterProfile sp(s);
+  if (c.type != rosmill::core::CutterType::BallEnd || rho + eta > sp.R) return false;
+  const rosmill::core::Drop d = mesh.drop(c, x, y), f = mesh.drop(Cutter::flat(s.diameter + 2 * eta), x, y);
   if (!d.touched || !f.touched || std::abs(d.z - f.z) > 1e-9) return false;
   b.lo = d.z - eta - sp.height(std::min(rho + eta, sp.R));
   b.hi = d.z + eta;
@@ -116,7 +116,7 @@ class SortedPoints {
   // How far the cutter with its tip at `tip` goes into the points: the largest z_p - (height of the cutter's
   // underside above p) over the points under its footprint; <= 0: clear. -inf when none is under it.
   double penetration(const Cutter& c, const Vec3& tip) const {
-    const rosmill::CutterProfile cp(c);
+    const rosmill::core::CutterProfile cp(c);
     auto lo = std::lower_bound(pts_.begin(), pts_.end(), tip.x() - cp.R, [](const Vec3& p, double x) { return p.x() < x; });
     double worst = -std::numeric_limits<double>::infinity();
     for (auto p = lo; p != pts_.end() && p->x() <= tip.x() + cp.R; ++p) {
@@ -132,12 +132,12 @@ class SortedPoints {
 
 // Cutting positions of a toolpath: every feed or plunge move's end (the cutter locations) or, with per_move > 1,
 // also per_move - 1 points inside each such move.
-inline std::vector<Vec3> cut_positions(const rosmill::Toolpath& tp, int per_move) {
+inline std::vector<Vec3> cut_positions(const rosmill::core::Toolpath& tp, int per_move) {
   std::vector<Vec3> out;
   Vec3 at = tp.start;
   for (const auto& pass : tp.passes)
     for (const auto& m : pass.moves) {
-      if (m.type != rosmill::MoveType::Rapid)
+      if (m.type != rosmill::core::MoveType::Rapid)
         for (int i = 1; i <= per_move; ++i) out.push_back(at + (m.to - at) * (double(i) / per_move));
       at = m.to;
     }
@@ -146,11 +146,11 @@ inline std::vector<Vec3> cut_positions(const rosmill::Toolpath& tp, int per_move
 
 // The cutter locations of a toolpath's feed moves (the ends of its cutting moves, approaches and retracts
 // excluded).
-inline std::vector<Vec3> feed_locations(const rosmill::Toolpath& tp) {
+inline std::vector<Vec3> feed_locations(const rosmill::core::Toolpath& tp) {
   std::vector<Vec3> out;
   for (const auto& pass : tp.passes)
     for (const auto& m : pass.moves)
-      if (m.type == rosmill::MoveType::Feed) out.push_back(m.to);
+      if (m.type == rosmill::core::MoveType::Feed) out.push_back(m.to);
   return out;
 }
 

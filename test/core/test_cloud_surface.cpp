@@ -15,7 +15,7 @@
 #include "rosmill/planner/plan_request.hpp"
 #include "test_cloud_support.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

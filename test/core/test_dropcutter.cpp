@@ -8,12 +8,12 @@
 #include <random>
 
 #include "rosmill/cutter/contact.hpp"
-#include "rosmill/cutter/reference_drop.hpp"
+#include "rosmill/testing/reference_drop.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

@@ -12,8 +12,8 @@
 #include "rosmill/gcode/rs274_check.hpp"
 #include "test_post_jobs.hpp"
 
-using namespace rosmill;
-using namespace rosmill::gcode;
+using namespace rosmill::core;
+using namespace rosmill::core::gcode;
 
 namespace {
 

@@ -12,10 +12,10 @@
 #include "rosmill/control/transport.hpp"
 #include "rosmill/error.hpp"
 
-using namespace rosmill;
-using namespace rosmill::control;
-using rosmill::test::GrblDrop;
-using rosmill::test::GrblSimulation;
+using namespace rosmill::core;
+using namespace rosmill::core::control;
+using rosmill::core::test::GrblDrop;
+using rosmill::core::test::GrblSimulation;
 
 namespace {
 

@@ -22,8 +22,8 @@
 #include "rosmill/gcode/post.hpp"
 #include "test_post_jobs.hpp"
 
-using namespace rosmill;
-using namespace rosmill::control;
+using namespace rosmill::core;
+using namespace rosmill::core::control;
 
 namespace {
 

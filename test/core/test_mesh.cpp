@@ -7,9 +7,9 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/mesh_report.hpp"
 #include "rosmill/geometry/primitives.hpp"
-#include "rosmill/geometry/wavy_solid.hpp"
+#include "rosmill/testing/wavy_solid.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 TEST(Mesh, TetrahedronIsClosedAndConsistent) {
   const Vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);

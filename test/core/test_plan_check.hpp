@@ -14,11 +14,11 @@
 
 #include <tbb/parallel_for.h>
 
-#include "rosmill/cutter/reference_drop.hpp"
+#include "rosmill/testing/reference_drop.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/toolpath/toolpath.hpp"
 
-namespace rosmill::test {
+namespace rosmill::core::test {
 
 // Feed moves and rapids are sampled at most this far apart (mm), besides their end points.
 constexpr double kAlongMoveStep = 0.1;
@@ -111,4 +111,4 @@ inline void expect_no_gouge(const Toolpath& tp, const Mesh& mesh, double allowan
   std::printf("  %s: %s\n", what.c_str(), r.str().c_str());
 }
 
-}  // namespace rosmill::test
+}  // namespace rosmill::core::test

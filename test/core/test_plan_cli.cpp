@@ -15,11 +15,11 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "rosmill/cutter/reference_drop.hpp"
+#include "rosmill/testing/reference_drop.hpp"
 #include "rosmill/io/stl.hpp"
 
 using nlohmann::json;
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include "rosmill/plan/mesh_surface.hpp"
 #include "test_plan_check.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

@@ -16,8 +16,8 @@
 #include "rosmill/toolpath/toolpath_stats.hpp"
 #include "test_plan_check.hpp"
 
-using namespace rosmill;
-using namespace rosmill::test;
+using namespace rosmill::core;
+using namespace rosmill::core::test;
 
 namespace {
 

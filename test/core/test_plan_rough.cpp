@@ -13,8 +13,8 @@
 #include "rosmill/plan/rough.hpp"
 #include "test_plan_check.hpp"
 
-using namespace rosmill;
-using namespace rosmill::test;
+using namespace rosmill::core;
+using namespace rosmill::core::test;
 
 namespace {
 

@@ -22,7 +22,7 @@
 #include "rosmill/toolpath/toolpath_stats.hpp"
 #include "test_plan_check.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 
@@ -36,7 +36,7 @@ Job plan_rough(const Mesh& part, const PlanParams& p) {
 }
 
 }  // namespace
-using namespace rosmill::test;
+using namespace rosmill::core::test;
 
 namespace {
 

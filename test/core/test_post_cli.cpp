@@ -16,7 +16,7 @@
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "test_post_jobs.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 namespace fs = std::filesystem;
 
 namespace {

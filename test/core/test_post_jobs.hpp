@@ -5,7 +5,7 @@
 
 #include "rosmill/toolpath/job.hpp"
 
-namespace rosmill::test {
+namespace rosmill::core::test {
 
 inline Tool test_tool(int id, double d) {
   Tool t;
@@ -77,4 +77,4 @@ inline Toolpath dome_contours() {
   return revolution_contours("dome", [](double z) { return std::sqrt(std::max(0.0, 2500 - z * z)); }, 50, 2.5, 30);
 }
 
-}  // namespace rosmill::test
+}  // namespace rosmill::core::test

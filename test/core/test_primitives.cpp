@@ -8,7 +8,7 @@
 #include "rosmill/geometry/mesh_report.hpp"
 #include "rosmill/geometry/primitives.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

@@ -12,9 +12,10 @@
 #include "rosmill/control/program_run.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 #include "test_post_jobs.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 namespace fs = std::filesystem;
 
 namespace {
@@ -146,6 +147,48 @@ TEST(ProgramPipelineCli, PlanToGcodeIsCheckedAgainstTheMachine) {
   // From a folder without config/, the package's machine is found and checked (the cube fits in it).
   EXPECT_EQ(run_rosmill_in(dir, plan + "-o fits.ngc").status, 0);
   EXPECT_TRUE(fs::exists(dir + "/fits.ngc"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+
+namespace {
+
+// The highest cutter location of the feed moves in a toolpath file.
+double top_feed_z(const std::string& path) {
+  double top = -1e300;
+  for (const Toolpath& tp : read_toolpath_file(path))
+    for (const ToolpathPass& pass : tp.passes)
+      for (const Move& m : pass.moves)
+        if (m.type == MoveType::Feed) top = std::max(top, m.to.z());
+  return top;
+}
+
+// `rosmill plan --setup`: the part is turned so that the setup's tool axis points up. The seed cylinder (r 25,
+// h 60 on z = 0) seen from +Z has its top at 60; from +X its side at x = 25 becomes the top.
+TEST(PlanSetupCli, TheToolpathIsPlannedOnThePartTurnedForTheSetup) {
+  char tmpl[] = "/tmp/rosmill-plan-setup-XXXXXX";
+  ASSERT_NE(::mkdtemp(tmpl), nullptr);
+  const std::string dir = tmpl;
+  ASSERT_EQ(run_rosmill_in(dir, "primitive cylinder -o cyl.stl").status, 0);
+  const std::string plan = "plan cyl.stl --strategy raster --tool flat:10 --stepover 8 --json ";
+  CliRun r = run_rosmill_in(dir, plan + "-o z.json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("\"name\":\"+Z\""), std::string::npos) << r.out;
+  EXPECT_NEAR(top_feed_z(dir + "/z.json"), 60.0, 1e-6);
+  r = run_rosmill_in(dir, plan + "--setup +x -o x.json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("\"name\":\"+X\""), std::string::npos) << r.out;
+  EXPECT_NEAR(top_feed_z(dir + "/x.json"), 25.0, 0.05);
+  r = run_rosmill_in(dir, plan + "--setup 1,0,0 -o d.json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NEAR(top_feed_z(dir + "/d.json"), 25.0, 0.05);
+  r = run_rosmill_in(dir, plan + "--setup +W 2>&1");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("--setup"), std::string::npos) << r.out;
+  r = run_rosmill_in(dir, plan + "--setup 0,0,0 2>&1");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.out.find("finite non-zero"), std::string::npos) << r.out;
   fs::remove_all(dir);
 }
 

@@ -13,8 +13,8 @@
 #include "rosmill/io/stl.hpp"
 #include "bundled_models.hpp"
 
-using namespace rosmill;
-using namespace rosmill::gcode;
+using namespace rosmill::core;
+using namespace rosmill::core::gcode;
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 
-using namespace rosmill;
-using namespace rosmill::segment;
+using namespace rosmill::core;
+using namespace rosmill::core::segment;
 
 namespace {
 

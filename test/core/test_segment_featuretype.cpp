@@ -19,8 +19,8 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 
-using namespace rosmill;
-using namespace rosmill::segment;
+using namespace rosmill::core;
+using namespace rosmill::core::segment;
 
 namespace {
 

@@ -15,8 +15,8 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 
-using namespace rosmill;
-using namespace rosmill::segment;
+using namespace rosmill::core;
+using namespace rosmill::core::segment;
 
 namespace {
 

@@ -13,8 +13,8 @@
 #include "rosmill/segment/coverage.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 
-using namespace rosmill;
-using namespace rosmill::segment;
+using namespace rosmill::core;
+using namespace rosmill::core::segment;
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include "rosmill/slice/slicer.hpp"
 #include "test_slice_meshes.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 using slice_test::box_corners;
 using slice_test::outward;
 

@@ -9,7 +9,7 @@
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/plan/contour_toolpath.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

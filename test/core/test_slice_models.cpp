@@ -10,7 +10,7 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/slice/slicer.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

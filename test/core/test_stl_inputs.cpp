@@ -15,7 +15,7 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

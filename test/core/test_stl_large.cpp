@@ -13,10 +13,10 @@
 #include <string>
 
 #include "rosmill/error.hpp"
-#include "rosmill/geometry/wavy_solid.hpp"
+#include "rosmill/testing/wavy_solid.hpp"
 #include "rosmill/io/stl.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

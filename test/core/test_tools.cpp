@@ -5,7 +5,7 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 
-using namespace rosmill;
+using namespace rosmill::core;
 
 namespace {
 

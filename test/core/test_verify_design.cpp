@@ -11,8 +11,8 @@
 #include "rosmill/verify/verify.hpp"
 #include "test_verify_programs.hpp"
 
-using namespace rosmill;
-using namespace rosmill::verify;
+using namespace rosmill::core;
+using namespace rosmill::core::verify;
 using namespace verify_test;
 
 namespace {

@@ -7,8 +7,8 @@
 #include "rosmill/gcode/canon_arc.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 
-using namespace rosmill;
-using namespace rosmill::verify;
+using namespace rosmill::core;
+using namespace rosmill::core::verify;
 
 namespace {
 

@@ -10,8 +10,8 @@
 
 namespace verify_test {
 
-using namespace rosmill;
-using namespace rosmill::verify;
+using namespace rosmill::core;
+using namespace rosmill::core::verify;
 
 inline StockSpec box(double x0, double y0, double z0, double x1, double y1, double z1) {
   StockSpec s;

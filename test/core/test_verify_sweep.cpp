@@ -9,8 +9,8 @@
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/material_removal.hpp"
 
-using namespace rosmill;
-using namespace rosmill::verify;
+using namespace rosmill::core;
+using namespace rosmill::core::verify;
 
 namespace {
 

@@ -7,7 +7,7 @@
 
 #include "rosmill/geometry/vertex_welder.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 FloatWelder::Key float_key(float x, float y, float z) { return {weld_word(x), weld_word(y), weld_word(z)}; }
@@ -68,4 +68,4 @@ TEST(VertexWelder, GrowsFarBeyondItsExpectedSize) {
 }
 
 }  // namespace
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -19,7 +19,7 @@ cmake --install "$build" --prefix "$prefix" >"$work/install.log" || { cat "$work
 for f in bin/rosmill lib/rosmill/gcode_bridge lib/rosmill/toolpath_planner lib/rosmill/stl_loader \
          share/rosmill/package.xml share/rosmill/launch/bridge.launch share/rosmill/launch/demo.launch \
          share/rosmill/config/machine.yaml share/rosmill/config/tools.yaml share/rosmill/config/rosmill.rviz \
-         include/rosmill/gcode/prepare_program.hpp share/rosmill/msg/ProgramStatusMsg.msg \
+         include/rosmill/gcode/prepare_program.hpp share/rosmill/msg/ProgramStatus.msg \
          share/rosmill/action/RunProgram.action; do
   [ -e "$prefix/$f" ] || fail "the install has no $f"
 done

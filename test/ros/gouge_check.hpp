@@ -1,4 +1,4 @@
-// Independent gouge checks for the rostests: the cutter is swept along a published ToolpathMsg in small steps and
+// Independent gouge checks for the rostests: the cutter is swept along a published msg::Toolpath in small steps and
 // compared with the known shape directly (point-triangle distances, cloud points in the cutter), not with the
 // planner's own drop-cutter. Millimetres inside; the message is converted with the ROS edge's functions.
 #pragma once
@@ -6,12 +6,15 @@
 #include <string>
 #include <vector>
 
-#include "rosmill/ToolpathMsg.h"
+#include "rosmill/ros/namespaces.hpp"
+#include "rosmill/Toolpath.h"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/ros/convert.hpp"
 
 namespace rosmill::rostest {
+using namespace ::rosmill::core;
+namespace msg = ::rosmill;
 
 struct Gouge {
   double depth = 0.0;      // mm the cutter reaches into the shape (0: none)
@@ -42,7 +45,7 @@ inline Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, con
 
 // Tool tip positions every `step` mm along all moves of the toolpath (rapids included: a rapid through material
 // is a defect too), in the toolpath's own (setup) frame.
-inline std::vector<Vec3> swept_tips(const ToolpathMsg& tp, double step) {
+inline std::vector<Vec3> swept_tips(const msg::Toolpath& tp, double step) {
   std::vector<Vec3> tips;
   Vec3 at = edge::from_point_msg(tp.start);
   tips.push_back(at);
@@ -95,7 +98,7 @@ class FaceGrid {
 
 // A ball-end cutter of radius r (tip at the bottom of the ball) against a mesh in the same frame: how far the
 // ball reaches inside the surface (r - distance from its centre to the nearest triangle).
-inline Gouge ball_gouge(const Mesh& mesh, const ToolpathMsg& tp, double step = 0.25) {
+inline Gouge ball_gouge(const Mesh& mesh, const msg::Toolpath& tp, double step = 0.25) {
   const double r = edge::to_mm(tp.tool.diameter) / 2;
   const FaceGrid grid(mesh, 2 * r);
   Gouge g;
@@ -114,9 +117,9 @@ inline Gouge ball_gouge(const Mesh& mesh, const ToolpathMsg& tp, double step = 0
 
 // A flat-end or ball-end cutter of radius r against cloud points (the surface the scan saw): a point is cut when
 // it lies inside the cutter body, i.e. within r of the axis and above the cutter's bottom at that radius.
-inline Gouge cloud_gouge(const PointCloud& cloud, const ToolpathMsg& tp, double step = 0.5) {
+inline Gouge cloud_gouge(const PointCloud& cloud, const msg::Toolpath& tp, double step = 0.5) {
   const double r = edge::to_mm(tp.tool.diameter) / 2;
-  const bool ball = tp.tool.cutter_type == ToolMsg::BALL_END;
+  const bool ball = tp.tool.cutter_type == msg::Tool::BALL_END;
   Gouge g;
   for (const Vec3& tip : swept_tips(tp, step)) {
     ++g.samples;

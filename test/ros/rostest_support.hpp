@@ -7,12 +7,16 @@
 #include <xmlrpcpp/XmlRpcClient.h>
 #include <sys/stat.h>
 
+#include "rosmill/ros/namespaces.hpp"
+
 #include <boost/function.hpp>
 #include <cstdlib>
 #include <mutex>
 #include <string>
 
 namespace rosmill::rostest {
+using namespace ::rosmill::core;
+namespace msg = ::rosmill;
 
 // Keeps the last message of a topic; wait() returns it or nullptr after `timeout` seconds.
 template <typename M>

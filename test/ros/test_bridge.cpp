@@ -9,14 +9,15 @@
 #include <fstream>
 #include <vector>
 
-#include "rosmill/ProgramStatusMsg.h"
+#include "rosmill/ProgramStatus.h"
 #include "rosmill/RunProgramAction.h"
-#include "rosmill/ToolpathJobMsg.h"
+#include "rosmill/ToolpathJob.h"
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rostest_support.hpp"
 
 using namespace rosmill;
+using namespace rosmill::edge;
 using rosmill::rostest::Latest;
 using rosmill::rostest::node_answers;
 using Client = actionlib::SimpleActionClient<RunProgramAction>;
@@ -25,8 +26,8 @@ using State = actionlib::SimpleClientGoalState;
 namespace {
 
 // A 20 mm square cut 1 mm deep with the 10 mm flat end mill, about 7 s on the simulator (mm, mm/min).
-ToolpathJobMsg square_job(double depth = -1.0) {
-  Toolpath tp;
+msg::ToolpathJob square_job(double depth = -1.0) {
+  core::Toolpath tp;
   tp.strategy = "test-square";
   tp.tool.id = 1;
   tp.tool.name = "10 mm flat end mill";
@@ -36,7 +37,7 @@ ToolpathJobMsg square_job(double depth = -1.0) {
   tp.safe_z = 5;
   tp.clearance_z = 20;
   tp.start = Vec3(0, 0, 20);
-  ToolpathPass pass;
+  core::ToolpathPass pass;
   pass.name = "square";
   pass.moves = {{Vec3(0, 0, 5), MoveType::Rapid, 0},      {Vec3(0, 0, depth), MoveType::Plunge, 300},
                 {Vec3(20, 0, depth), MoveType::Feed, 1200}, {Vec3(20, 20, depth), MoveType::Feed, 1200},
@@ -73,7 +74,7 @@ std::string simulator_uri(double timeout_s) {
 }
 
 // Waits until the latest status has `state`.
-bool wait_state(Latest<ProgramStatusMsg>& status, uint8_t state, double timeout_s) {
+bool wait_state(Latest<msg::ProgramStatus>& status, uint8_t state, double timeout_s) {
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (ros::WallTime::now() < end) {
     auto s = status.wait(0.1);
@@ -149,7 +150,7 @@ TEST_F(Bridge, RunIntoAFolder) {
   ASSERT_EQ(run(client, goal), State::SUCCEEDED) << client.getResult()->message;
   auto result = client.getResult();
   EXPECT_TRUE(result->success);
-  EXPECT_EQ(result->status.state, ProgramStatusMsg::DONE);
+  EXPECT_EQ(result->status.state, msg::ProgramStatus::DONE);
   EXPECT_EQ(result->acknowledged_line, result->lines);
   const std::vector<std::string> written = gcode::read_program_lines(folder + "/rosmill.ngc");
   const std::vector<std::string> posted = gcode::read_program_lines(result->program);
@@ -163,8 +164,8 @@ TEST_F(Bridge, RunIntoAFolder) {
 // Status messages of one run, with their arrival times.
 struct StatusLog {
   std::mutex mutex;
-  std::vector<std::pair<double, ProgramStatusMsg>> entries;
-  void add(const ProgramStatusMsg& m) {
+  std::vector<std::pair<double, msg::ProgramStatus>> entries;
+  void add(const msg::ProgramStatus& m) {
     std::lock_guard<std::mutex> lock(mutex);
     entries.emplace_back(ros::WallTime::now().toSec(), m);
   }
@@ -176,9 +177,9 @@ TEST_F(Bridge, StreamsToTheLinuxcncSimulator) {
   const std::string uri = simulator_uri(150.0);
   ASSERT_EQ(uri.rfind("linuxcnc://", 0), 0u) << uri;
   StatusLog log;
-  ros::Subscriber sub = nh.subscribe<ProgramStatusMsg>(
-      "/program_status", 50, boost::function<void(const ProgramStatusMsg::ConstPtr&)>(
-                                 [&log](const ProgramStatusMsg::ConstPtr& m) { log.add(*m); }));
+  ros::Subscriber sub = nh.subscribe<msg::ProgramStatus>(
+      "/program_status", 50, boost::function<void(const msg::ProgramStatus::ConstPtr&)>(
+                                 [&log](const msg::ProgramStatus::ConstPtr& m) { log.add(*m); }));
   RunProgramGoal goal;
   goal.job = square_job();
   goal.controller = uri;
@@ -187,7 +188,7 @@ TEST_F(Bridge, StreamsToTheLinuxcncSimulator) {
   ASSERT_TRUE(client.waitForResult(ros::Duration(90.0)));
   ASSERT_EQ(client.getState(), State::SUCCEEDED) << client.getResult()->message;
   auto result = client.getResult();
-  EXPECT_EQ(result->status.state, ProgramStatusMsg::DONE);
+  EXPECT_EQ(result->status.state, msg::ProgramStatus::DONE);
   EXPECT_EQ(result->acknowledged_line, result->lines);
   EXPECT_GT(result->duration, 4.0);  // 80 mm at 1200 mm/min and a 6 mm plunge at 300 take 5.2 s
   EXPECT_TRUE(result->status.position_known);
@@ -202,7 +203,7 @@ TEST_F(Bridge, StreamsToTheLinuxcncSimulator) {
   std::vector<double> running;
   uint32_t last_line = 0, lines_seen = 0;
   for (const auto& [t, m] : log.entries) {
-    if (m.state != ProgramStatusMsg::RUNNING) continue;
+    if (m.state != msg::ProgramStatus::RUNNING) continue;
     running.push_back(t);
     EXPECT_GE(m.current_line, last_line) << "the line went back";
     if (m.current_line != last_line) ++lines_seen;
@@ -223,17 +224,17 @@ TEST_F(Bridge, StreamsToTheLinuxcncSimulator) {
 TEST_F(Bridge, PauseResumeAbortAndCancelOnTheSimulator) {
   const std::string uri = simulator_uri(150.0);
   ASSERT_EQ(uri.rfind("linuxcnc://", 0), 0u) << uri;
-  Latest<ProgramStatusMsg> status(nh, "/program_status");
+  Latest<msg::ProgramStatus> status(nh, "/program_status");
   RunProgramGoal goal;
   goal.job = square_job();
   goal.controller = uri;
   client.sendGoal(goal);
-  ASSERT_TRUE(wait_state(status, ProgramStatusMsg::RUNNING, 30.0))
+  ASSERT_TRUE(wait_state(status, msg::ProgramStatus::RUNNING, 30.0))
       << (client.waitForResult(ros::Duration(5.0)) ? client.getResult()->message : "no result");
   ros::WallDuration(1.5).sleep();  // into the square
   std_srvs::Trigger pause = trigger("pause");
   ASSERT_TRUE(pause.response.success) << pause.response.message;
-  ASSERT_TRUE(wait_state(status, ProgramStatusMsg::PAUSED, 3.0));
+  ASSERT_TRUE(wait_state(status, msg::ProgramStatus::PAUSED, 3.0));
   ros::WallDuration(0.5).sleep();
   auto held = status.wait(1.0);
   ros::WallDuration(1.0).sleep();
@@ -241,11 +242,11 @@ TEST_F(Bridge, PauseResumeAbortAndCancelOnTheSimulator) {
   ASSERT_TRUE(held && still && held->position_known);
   EXPECT_NEAR(held->position.x, still->position.x, 1e-6);
   EXPECT_NEAR(held->position.y, still->position.y, 1e-6);
-  EXPECT_EQ(still->state, ProgramStatusMsg::PAUSED);
+  EXPECT_EQ(still->state, msg::ProgramStatus::PAUSED);
 
   std_srvs::Trigger resume = trigger("resume");
   ASSERT_TRUE(resume.response.success) << resume.response.message;
-  ASSERT_TRUE(wait_state(status, ProgramStatusMsg::RUNNING, 3.0));
+  ASSERT_TRUE(wait_state(status, msg::ProgramStatus::RUNNING, 3.0));
   std_srvs::Trigger again = trigger("start");  // one program at a time
   EXPECT_FALSE(again.response.success);
   std_srvs::Trigger abort = trigger("abort");
@@ -253,17 +254,17 @@ TEST_F(Bridge, PauseResumeAbortAndCancelOnTheSimulator) {
   ASSERT_TRUE(client.waitForResult(ros::Duration(10.0)));
   EXPECT_EQ(client.getState(), State::ABORTED);
   auto result = client.getResult();
-  EXPECT_EQ(result->status.state, ProgramStatusMsg::ABORTED);
+  EXPECT_EQ(result->status.state, msg::ProgramStatus::ABORTED);
   EXPECT_LT(result->acknowledged_line, result->lines);
 
   // A cancelled goal aborts the program on the controller.
   client.sendGoal(goal);
-  ASSERT_TRUE(wait_state(status, ProgramStatusMsg::RUNNING, 30.0));
+  ASSERT_TRUE(wait_state(status, msg::ProgramStatus::RUNNING, 30.0));
   ros::WallDuration(1.0).sleep();
   client.cancelGoal();
   ASSERT_TRUE(client.waitForResult(ros::Duration(10.0)));
   EXPECT_EQ(client.getState(), State::PREEMPTED);
-  EXPECT_EQ(client.getResult()->status.state, ProgramStatusMsg::ABORTED);
+  EXPECT_EQ(client.getResult()->status.state, msg::ProgramStatus::ABORTED);
   EXPECT_TRUE(node_answers("/gcode_bridge"));
 }
 
@@ -271,15 +272,15 @@ TEST_F(Bridge, PauseResumeAbortAndCancelOnTheSimulator) {
 TEST_F(Bridge, StartRunsTheLastPublishedJob) {
   std::string folder;
   ASSERT_TRUE(ros::param::get("~folder", folder));
-  ros::Publisher pub = nh.advertise<ToolpathJobMsg>("/toolpath", 1, true);
+  ros::Publisher pub = nh.advertise<msg::ToolpathJob>("/toolpath", 1, true);
   pub.publish(square_job(-2.0));
   ros::WallDuration(1.0).sleep();
   // The node's controller parameter is the folder: the program lands there.
   std::filesystem::create_directories(folder);
   std_srvs::Trigger start = trigger("start");
   ASSERT_TRUE(start.response.success) << start.response.message;
-  Latest<ProgramStatusMsg> status(nh, "/program_status");
-  ASSERT_TRUE(wait_state(status, ProgramStatusMsg::DONE, 10.0));
+  Latest<msg::ProgramStatus> status(nh, "/program_status");
+  ASSERT_TRUE(wait_state(status, msg::ProgramStatus::DONE, 10.0));
   const std::vector<std::string> lines = gcode::read_program_lines(status.wait(1.0)->program);
   bool deeper = false;
   for (const std::string& l : lines) deeper = deeper || l.find("Z-2") != std::string::npos;

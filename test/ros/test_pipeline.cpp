@@ -10,22 +10,23 @@
 #include "gouge_check.hpp"
 #include "rosmill/LoadMesh.h"
 #include "rosmill/Plan.h"
-#include "rosmill/SegmentationMsg.h"
+#include "rosmill/Segmentation.h"
 #include "rosmill/SetSetup.h"
-#include "rosmill/SlicesMsg.h"
-#include "rosmill/ToolpathJobMsg.h"
+#include "rosmill/Slices.h"
+#include "rosmill/ToolpathJob.h"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/ros/markers.hpp"
 #include "rostest_support.hpp"
 
 using namespace rosmill;
+using namespace rosmill::edge;
 using rosmill::rostest::Latest;
 using rosmill::rostest::node_answers;
 
 namespace {
 
 constexpr double kRadius = 0.050;  // m
-constexpr double kGougeTolerance = 0.02;  // mm: the planner's tolerance (0.01) and the sampling of the check
+constexpr double kGougeTolerance = 0.02;  // mm: the planner's tolerance (at most 0.01) and the sampling of the check
 
 void expect_all_nodes_up() {
   for (const char* node : {"/stl_loader", "/segmenter", "/slicer", "/toolpath_planner"})
@@ -43,7 +44,7 @@ class Pipeline : public testing::Test {
 };
 
 // Whether each facet lies in a patch the setup can machine.
-std::vector<bool> reachable_facets(const SegmentationMsg& s) {
+std::vector<bool> reachable_facets(const msg::Segmentation& s) {
   std::vector<bool> r(s.facet_labels.size());
   for (size_t f = 0; f < r.size(); ++f) r[f] = s.patches.at(s.facet_labels[f]).reachable;
   return r;
@@ -85,7 +86,7 @@ TEST_F(Pipeline, MeshIsPublishedInMetres) {
 // +Z and -X see different faces of the dome: the bottom disc only from the side, the +X flank only from above.
 TEST_F(Pipeline, SegmentationsOfPlusZAndMinusXDiffer) {
   const Mesh dome = make_primitive("dome");
-  Latest<SegmentationMsg> seg(nh, "segmentation");
+  Latest<msg::Segmentation> seg(nh, "segmentation");
   auto z = seg.wait(20.0);
   ASSERT_TRUE(z) << "no segmentation";
   EXPECT_EQ(z->setup, "+Z");
@@ -156,7 +157,7 @@ TEST_F(Pipeline, InvalidSetupsAreRefused) {
 }
 
 TEST_F(Pipeline, SlicesAreClosedCirclesOfTheDome) {
-  Latest<SlicesMsg> slices(nh, "slices");
+  Latest<msg::Slices> slices(nh, "slices");
   auto s = slices.wait(20.0);
   ASSERT_TRUE(s) << "no slices";
   EXPECT_NEAR(s->interval, 0.002, 1e-12);
@@ -188,7 +189,7 @@ TEST_F(Pipeline, SlicesAreClosedCirclesOfTheDome) {
   for (size_t i = 1; i < mk->markers.size(); ++i) EXPECT_EQ(mk->markers[i].type, visualization_msgs::Marker::LINE_LIST);
 }
 
-void expect_within_reach(const ToolpathMsg& tp, const Mesh& part_in_setup) {
+void expect_within_reach(const msg::Toolpath& tp, const Mesh& part_in_setup) {
   const double r = edge::to_mm(tp.tool.diameter) / 2, margin = 5.0;  // planner/stock_margin
   const Box3& box = part_in_setup.bbox;
   for (const auto& pass : tp.passes)
@@ -203,7 +204,7 @@ void expect_within_reach(const ToolpathMsg& tp, const Mesh& part_in_setup) {
     }
 }
 
-size_t move_count(const ToolpathMsg& tp) {
+size_t move_count(const msg::Toolpath& tp) {
   size_t n = 0;
   for (const auto& pass : tp.passes) n += pass.moves.size();
   return n;
@@ -213,14 +214,14 @@ size_t move_count(const ToolpathMsg& tp) {
 // of the part and free of gouges against the part's own facets in its setup frame, and different from each other.
 TEST_F(Pipeline, ToolpathsForPlusZAndMinusXDoNotGouge) {
   const Mesh dome = make_primitive("dome");
-  Latest<ToolpathJobMsg> job(nh, "toolpath");
+  Latest<msg::ToolpathJob> job(nh, "toolpath");
   auto z = job.wait(30.0);
   ASSERT_TRUE(z) << "no toolpath";
   ASSERT_EQ(z->toolpaths.size(), 1u);
-  const ToolpathMsg& tz = z->toolpaths[0];
+  const msg::Toolpath& tz = z->toolpaths[0];
   EXPECT_EQ(tz.setup, "+Z");
   EXPECT_EQ(tz.strategy, "raster");
-  EXPECT_EQ(tz.tool.cutter_type, ToolMsg::BALL_END);
+  EXPECT_EQ(tz.tool.cutter_type, msg::Tool::BALL_END);
   EXPECT_NEAR(tz.tool.diameter, 0.006, 1e-12);
   EXPECT_GT(move_count(tz), 200u);
   expect_within_reach(tz, dome);
@@ -229,7 +230,7 @@ TEST_F(Pipeline, ToolpathsForPlusZAndMinusXDoNotGouge) {
   EXPECT_GT(gz.samples, 1000u);
   std::cout << "+Z raster: deepest approach " << gz.depth << " mm over " << gz.samples << " cutter positions\n";
   // The check itself: the same toolpath 0.5 mm lower must be caught (about 0.5 mm deep on the dome's top).
-  ToolpathMsg lowered = tz;
+  msg::Toolpath lowered = tz;
   for (auto& pass : lowered.passes)
     for (auto& move : pass.moves) move.position.z -= 0.0005;
   EXPECT_NEAR(rostest::ball_gouge(dome, lowered).depth, 0.5, 0.05);
@@ -242,7 +243,7 @@ TEST_F(Pipeline, ToolpathsForPlusZAndMinusXDoNotGouge) {
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   auto x = job.wait(10.0, count);
   ASSERT_TRUE(x);
-  const ToolpathMsg& tx = x->toolpaths.at(0);
+  const msg::Toolpath& tx = x->toolpaths.at(0);
   EXPECT_EQ(tx.setup, "-X");
   EXPECT_EQ(srv.response.statistics.moves, move_count(tx));
   // The positions are in the setup frame: the dome turned so that -X points up.
@@ -329,9 +330,9 @@ TEST_F(Pipeline, BadLoadsAreRefusedAndTheNodesStayUp) {
 
 // A real model through the whole chain: every node takes the new mesh.
 TEST_F(Pipeline, ARealModelReachesEveryNode) {
-  Latest<SegmentationMsg> seg(nh, "segmentation");
-  Latest<SlicesMsg> slices(nh, "slices");
-  Latest<ToolpathJobMsg> job(nh, "toolpath");
+  Latest<msg::Segmentation> seg(nh, "segmentation");
+  Latest<msg::Slices> slices(nh, "slices");
+  Latest<msg::ToolpathJob> job(nh, "toolpath");
   ASSERT_TRUE(seg.wait(5.0) && slices.wait(5.0) && job.wait(5.0));
   const size_t s0 = seg.count(), l0 = slices.count(), j0 = job.count();
   std::string data;

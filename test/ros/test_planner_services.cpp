@@ -15,6 +15,7 @@
 #include <atomic>
 
 using namespace rosmill;
+using namespace rosmill::edge;
 using rosmill::rostest::Latest;
 
 namespace {
@@ -120,8 +121,8 @@ TEST_F(PlannerServices, InvalidRequestsGetReasons) {
   expect_alive();
 }
 
-PlanItemMsg item(const std::string& setup, const std::string& strategy = "", int tool_id = 0) {
-  PlanItemMsg i;
+msg::PlanItem item(const std::string& setup, const std::string& strategy = "", int tool_id = 0) {
+  msg::PlanItem i;
   i.setup = setup;
   i.strategy = strategy;
   i.tool_id = tool_id;
@@ -210,7 +211,7 @@ TEST_F(PlannerServices, ActionCancelKeepsFinishedItems) {
   goal.preview = true;
   goal.items.push_back(item("+Z", "raster", 2));
   // A long one: the 3 mm ball at a 0.05 mm stepover over the whole dome takes far longer than the test waits.
-  PlanItemMsg slow = item("+Z", "raster", 3);
+  msg::PlanItem slow = item("+Z", "raster", 3);
   slow.parameters.stepover = 0.00005;
   goal.items.push_back(slow);
   goal.items.push_back(item("-X", "raster", 2));
@@ -241,7 +242,7 @@ TEST_F(PlannerServices, ActionCancelKeepsFinishedItems) {
 TEST_F(PlannerServices, PreviewDoesNotPublish) {
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
   pub.publish(edge::to_mesh_msg(make_primitive("cone")));
-  Latest<ToolpathJobMsg> published(nh, "toolpath");
+  Latest<msg::ToolpathJob> published(nh, "toolpath");
   ASSERT_TRUE(published.wait(10.0));
   ros::WallDuration(1.0).sleep();
   const size_t before = published.count();

@@ -5,11 +5,12 @@
 
 #include "gouge_check.hpp"
 #include "rosmill/Plan.h"
-#include "rosmill/ToolpathJobMsg.h"
+#include "rosmill/ToolpathJob.h"
 #include "rosmill/io/cloud_io.hpp"
 #include "rostest_support.hpp"
 
 using namespace rosmill;
+using namespace rosmill::edge;
 using rosmill::rostest::Latest;
 using rosmill::rostest::node_answers;
 using rosmill::rostest::play_bag;
@@ -58,7 +59,7 @@ PointCloud dome_points() {
   return c;
 }
 
-void expect_above_the_scan(const ToolpathMsg& tp, const PointCloud& scan, double step, const char* what) {
+void expect_above_the_scan(const msg::Toolpath& tp, const PointCloud& scan, double step, const char* what) {
   const rostest::Gouge g = rostest::cloud_gouge(scan, tp, step);
   EXPECT_LE(g.depth, kGougeTolerance) << what << ": the cutter reaches " << g.depth << " mm into the scan at "
                                       << g.at.transpose();
@@ -66,7 +67,7 @@ void expect_above_the_scan(const ToolpathMsg& tp, const PointCloud& scan, double
 }
 
 // Every cutter location over the scan's box (grown by the stock margin and the radius) and not below its lowest point.
-void expect_within_reach(const ToolpathMsg& tp, const PointCloud& scan) {
+void expect_within_reach(const msg::Toolpath& tp, const PointCloud& scan) {
   const double reach = 5.0 + edge::to_mm(tp.tool.diameter) / 2 + 1e-6;
   for (const auto& pass : tp.passes)
     for (const auto& move : pass.moves) {
@@ -113,14 +114,14 @@ TEST_F(ScanBags, CloudInAFrameWithoutTransformIsRefused) {
 // The dome seen by a scanner 0.3 m above it: after tf2 it sits on z = 0 again, and the roughing toolpath
 // published for it stays above every scanned point.
 TEST_F(ScanBags, DomeScanGivesAToolpathAboveTheDome) {
-  Latest<ToolpathJobMsg> job(nh, "toolpath");
+  Latest<msg::ToolpathJob> job(nh, "toolpath");
   ASSERT_EQ(play_bag(param("bags") + "/dome_scan.bag"), 0);
   auto j = job.wait(30.0);
   ASSERT_TRUE(j) << "no toolpath for the dome scan";
   ASSERT_EQ(j->toolpaths.size(), 1u);
-  const ToolpathMsg& tp = j->toolpaths[0];
+  const msg::Toolpath& tp = j->toolpaths[0];
   EXPECT_EQ(tp.strategy, "cloud-rough");
-  EXPECT_EQ(tp.tool.cutter_type, ToolMsg::FLAT_END);
+  EXPECT_EQ(tp.tool.cutter_type, msg::Tool::FLAT_END);
   EXPECT_NEAR(tp.tool.diameter, 0.010, 1e-12);
   EXPECT_EQ(j->header.frame_id, "workpiece");
   size_t moves = 0;
@@ -131,7 +132,7 @@ TEST_F(ScanBags, DomeScanGivesAToolpathAboveTheDome) {
   expect_within_reach(tp, dome);
   expect_above_the_scan(tp, dome, 0.5, "dome");
   // The check itself: 2 mm lower, the cutter is in the dome (roughing leaves 0.5 mm and its steps).
-  ToolpathMsg lowered = tp;
+  msg::Toolpath lowered = tp;
   for (auto& pass : lowered.passes)
     for (auto& move : pass.moves) move.position.z -= 0.002;
   EXPECT_GT(rostest::cloud_gouge(dome, lowered, 0.5).depth, 1.0);
@@ -139,7 +140,7 @@ TEST_F(ScanBags, DomeScanGivesAToolpathAboveTheDome) {
   double lowest = 1e9;
   for (const auto& pass : tp.passes)
     for (const auto& move : pass.moves)
-      if (move.move_type == ToolpathMoveMsg::FEED) lowest = std::min(lowest, edge::to_mm(move.position.z));
+      if (move.move_type == msg::ToolpathMove::FEED) lowest = std::min(lowest, edge::to_mm(move.position.z));
   EXPECT_LT(lowest, 5.0);
 
   Plan srv = plan_cloud();
@@ -148,7 +149,7 @@ TEST_F(ScanBags, DomeScanGivesAToolpathAboveTheDome) {
 }
 
 TEST_F(ScanBags, BunnyScanGivesAToolpathAboveTheBunny) {
-  Latest<ToolpathJobMsg> job(nh, "toolpath");
+  Latest<msg::ToolpathJob> job(nh, "toolpath");
   ASSERT_TRUE(job.wait(5.0));
   const size_t before = job.count();
   ASSERT_EQ(play_bag(param("bags") + "/bunny_scan.bag"), 0);
@@ -162,7 +163,7 @@ TEST_F(ScanBags, BunnyScanGivesAToolpathAboveTheBunny) {
 
 // A real part scanned in a robot cell, 0.8 m from the cell's origin: tf2 brings it onto the workpiece origin.
 TEST_F(ScanBags, RealPartScanInTheCellFrame) {
-  Latest<ToolpathJobMsg> job(nh, "toolpath");
+  Latest<msg::ToolpathJob> job(nh, "toolpath");
   ASSERT_TRUE(job.wait(5.0));
   const size_t before = job.count();
   ASSERT_EQ(play_bag(param("bags") + "/part_scan.bag"), 0);
@@ -173,7 +174,7 @@ TEST_F(ScanBags, RealPartScanInTheCellFrame) {
   part.recompute_bbox();
   Plan srv = plan_cloud(0.020);  // 20 mm levels keep the check quick; the published job used the tool's 2 mm
   ASSERT_TRUE(srv.response.success) << srv.response.message;
-  const ToolpathMsg& tp = srv.response.job.toolpaths.at(0);
+  const msg::Toolpath& tp = srv.response.job.toolpaths.at(0);
   EXPECT_NEAR(srv.response.statistics.bounds_max.z, edge::to_metres(part.bbox.max.z() + 5.0), 0.002);
   expect_within_reach(tp, part);
   expect_above_the_scan(tp, part, 2.0, "part scan");

@@ -11,7 +11,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct GridPoint {
   double x, y, z;
@@ -80,4 +80,4 @@ double spacing_quantile(const CloudGrid& grid, double q, size_t samples = 20000)
 // has radius p/sqrt 2); on random samples of density λ about 0.47/sqrt(λ) at q = 0.5. 0 when no cell qualifies.
 double sampling_radius(const CloudGrid& grid, const CloudGrid& coarse, double q = 0.95, size_t samples = 8000);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -14,7 +14,7 @@
 
 #include "rosmill/cloud/cloud_grid.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // The default hole-detection cell: kHoleCellRadii x the cloud's median empty-circle radius (sampling_radius at
 // q = 0.5, measured by area so that dense parts do not hide sparse ones). On a randomly sampled surface a cell of
@@ -63,4 +63,4 @@ class HoleMap {
   size_t empty_cells_ = 0, outside_cells_ = 0;
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

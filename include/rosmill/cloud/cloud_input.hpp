@@ -8,7 +8,7 @@
 #include "rosmill/cloud/cloud_holes.hpp"
 #include "rosmill/cloud/cloud_prep.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct CloudInputOptions {
   std::string orient = "none";    // none | ransac (fit the base plane) | lowest (fit the lowest points)
@@ -26,4 +26,4 @@ HolePolicy cloud_hole_policy(const CloudInputOptions& options, const std::string
 PointCloud prepare_input_cloud(const std::vector<Vec3>& points, const CloudInputOptions& options,
                                const std::string& prefix, CloudPrepReport* report = nullptr);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

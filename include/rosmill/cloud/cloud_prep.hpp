@@ -22,7 +22,7 @@
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/units.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 enum class Orientation { AsIs, Transform, Ransac, LowestFit };
 
@@ -70,4 +70,4 @@ inline PointCloud prepare_cloud(const PointCloud& cloud, const CloudPrepOptions&
 // The report as text, one fact a line (for the command line and logs).
 std::string format_prep_report(const CloudPrepReport& r);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -25,13 +25,13 @@
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/plan/surface.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct CloudSurfaceOptions {
   double cell = 0.0;       // index cell (mm); 0: about four points per cell
   double hole_cell = 0.0;  // hole-detection cell (mm); 0: auto_hole_cell()
   bool detect_holes = true;
-  double sampling_radius = NAN;  // ρ (mm); NaN: estimated (rosmill::sampling_radius); 0: the bare formula always
+  double sampling_radius = NAN;  // ρ (mm); NaN: estimated (rosmill::core::sampling_radius); 0: the bare formula always
   double max_sink = 0.01;        // s (mm): how far a cutter may sink between points on level ground
   HolePolicy holes = HolePolicy::Bridge;  // Skip: skips() is true where a footprint reaches a hole
 };
@@ -76,4 +76,4 @@ class CloudSurface : public Surface {
   HolePolicy hole_policy_ = HolePolicy::Bridge;
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

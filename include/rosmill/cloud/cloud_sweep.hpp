@@ -6,7 +6,7 @@
 #pragma once
 #include "rosmill/cloud/cloud_surface.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 
 // The cutter moving with its tip from a to b, against the points themselves (the support discs of sparse regions
@@ -16,4 +16,4 @@ namespace rosmill {
 SweepHit sweep_depth(const CloudSurface& surface, const Cutter& cutter, const Vec3& a, const Vec3& b,
                      double floor = 0.0);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -14,7 +14,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 
 enum class RunState { Disconnected, Idle, Running, Paused, Alarm, Error, Finished };
 const char* run_state_name(RunState s);
@@ -77,4 +77,4 @@ std::vector<std::string> resumed_rest(const std::vector<std::string>& program, s
 std::vector<std::string> resumed_program(const std::vector<std::string>& program, const SendOptions& options,
                                          const std::string& dialect);
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

@@ -7,11 +7,11 @@
 #include "rosmill/control/controller.hpp"
 #include "rosmill/control/transport.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 class Error;
 }
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 
 class GrblController : public Controller {
  public:
@@ -62,4 +62,4 @@ class GrblController : public Controller {
   std::chrono::steady_clock::time_point last_heard_{}, last_status_{};
 };
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

@@ -8,7 +8,7 @@
 #include "rosmill/control/transport.hpp"
 #include "rosmill/error.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 
 class LinuxcncController : public Controller {
  public:
@@ -44,4 +44,4 @@ class LinuxcncController : public Controller {
   int file_counter_ = 0;
 };
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

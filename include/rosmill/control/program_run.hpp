@@ -15,7 +15,7 @@
 
 #include "rosmill/control/controller.hpp"
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 
 enum class RunVerdict { Going, Finished, Failed };
 
@@ -75,4 +75,4 @@ using Progress = std::function<void(const ControllerStatus&)>;
 ControllerStatus run_to_end(Controller& c, const std::vector<std::string>& program, const SendOptions& options,
                             const Progress& progress = {}, double stall_s = 60.0);
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-namespace rosmill::control {
+namespace rosmill::core::control {
 
 class Transport {
  public:
@@ -35,4 +35,4 @@ class LineReader {
   std::string buf_;
 };
 
-}  // namespace rosmill::control
+}  // namespace rosmill::core::control

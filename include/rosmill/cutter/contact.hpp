@@ -13,7 +13,7 @@
 
 #include "rosmill/cutter/cutter.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 constexpr double kNoContact = -std::numeric_limits<double>::infinity();
 
@@ -149,4 +149,4 @@ inline double triangle_contact(const CutterProfile& cp, double x, double y, cons
   return z;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-namespace rosmill {
+namespace rosmill::core {
 
 enum class CutterType { FlatEnd, BallEnd, BullNose };
 
@@ -43,4 +43,4 @@ Cutter offset_cutter(const Cutter& cutter, double allowance);
 // `where` on anything else (unknown type, missing or non-positive numbers, r > D/2).
 Cutter parse_cutter_spec(const std::string& spec, const std::string& where = "--tool");
 
-}  // namespace rosmill
+}  // namespace rosmill::core

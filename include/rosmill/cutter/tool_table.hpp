@@ -5,7 +5,7 @@
 
 #include "rosmill/cutter/cutter.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct ToolTable {
   std::string source;  // file name (for messages)
@@ -26,4 +26,4 @@ Tool default_tool(const Cutter& cutter);
 // "--tool" as a number (an id in `table`, which must then be given) or a cutter spec (ball:D, flat:D, bull:D:r).
 Tool resolve_tool(const std::string& spec, const ToolTable* table);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

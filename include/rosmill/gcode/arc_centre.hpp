@@ -4,7 +4,7 @@
 #include "rosmill/gcode/block.hpp"
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 struct ArcWords {
   Vec2 start = Vec2::Zero(), end = Vec2::Zero();  // mm, in the plane
@@ -21,4 +21,4 @@ struct ArcWords {
 // R smaller than half the chord, a zero radius, or ends at radii that differ by more than 0.01 mm + 0.1 %.
 Vec2 arc_centre(const ArcWords& words, const Place& where);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

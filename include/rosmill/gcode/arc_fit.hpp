@@ -7,7 +7,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 struct ArcFitOptions {
   double tolerance = 0.005;     // mm
@@ -33,4 +33,4 @@ std::vector<ArcPiece> fit_arcs(const std::vector<Vec3>& points, const ArcFitOpti
 // Distance from point p (XY) to the arc from `from` to `to` around `centre` in the given direction.
 double distance_to_arc(const Vec2& p, const Vec2& from, const Vec2& to, const Vec2& centre, bool clockwise);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 // Where a line is, spelled out only when an error names it: "file:12", "line 12" without a file name, or the
 // name alone when it says everything (line 0).
@@ -42,4 +42,4 @@ struct Block {
 // "G91.1" for 911.
 std::string g_name(int g10);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

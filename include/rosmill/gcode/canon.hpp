@@ -8,7 +8,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 enum class MoveShape : uint8_t { Line, ArcCW, ArcCCW };
 // The arc plane (G17, G18, G19) and its two axes in ARC_FEED's order: XY, ZX, YZ; the third axis is the helix's.
@@ -40,4 +40,4 @@ struct CanonMove {
   bool to_known() const { return known_to == 7; }
 };
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -3,7 +3,7 @@
 #pragma once
 #include "rosmill/gcode/canon.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 // Signed sweep angle of an arc move in radians: positive counter-clockwise (G3), negative clockwise (G2); a move
 // that ends where it starts in XY is a full turn (±2π).
@@ -13,4 +13,4 @@ Vec3 move_point(const CanonMove& move, double s);
 // XY bounds of the move's axis path (the arc's extreme points included).
 void move_xy_bounds(const CanonMove& move, Vec2& min, Vec2& max);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

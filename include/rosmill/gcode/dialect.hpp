@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 struct Dialect {
   std::string name;
@@ -21,4 +21,4 @@ const std::vector<Dialect>& dialects();
 // Throws Error listing the known names.
 const Dialect& find_dialect(const std::string& name);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

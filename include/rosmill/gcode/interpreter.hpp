@@ -14,7 +14,7 @@
 #include "rosmill/gcode/block.hpp"
 #include "rosmill/gcode/canon.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 struct ModalState {
   bool metric = true;         // G21 / G20
@@ -83,4 +83,4 @@ std::string work_offset_code(int work_offset);
 // The modal state after lines [0, line_count) of a program.
 ModalState state_before(const std::vector<std::string>& lines, size_t line_count);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

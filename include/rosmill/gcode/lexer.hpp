@@ -14,7 +14,7 @@
 
 #include "rosmill/gcode/block.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 // The code of one line into `code` (cleared first). Throws Error at `where` on an unclosed or nested comment.
 void code_of(std::string_view line, std::string& code, const Place& where);
@@ -28,4 +28,4 @@ Block read_words(std::string_view code, const Place& where);
 Block lex_line(std::string_view line, std::string& code, const Place& where);
 Block lex_line(std::string_view line, const Place& where);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -6,7 +6,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 // Lengths in mm, feeds in mm/min. Envelope and table are in machine coordinates; the program's coordinates are
 // the work offset's (G54), whose origin sits at `work_offset` in machine coordinates.
@@ -44,4 +44,4 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
 void require_within_limits(const std::vector<std::string>& lines, const MachineLimits& limits,
                            const LimitCheckOptions& options = {});
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 // 10^decimals, for decimals in [0, 6].
 int64_t decimal_scale(int decimals);
@@ -14,4 +14,4 @@ void append_fixed(std::string& out, int64_t fixed, int decimals);
 // Appends a word: letter then number rounded to `decimals`.
 void append_word(std::string& out, char letter, double value, int decimals);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -10,7 +10,7 @@
 #include "rosmill/gcode/dialect.hpp"
 #include "rosmill/toolpath/job.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 enum class Coolant { Off, Flood, Mist };
 
@@ -58,4 +58,4 @@ bool is_program_path(const std::string& path);
 // Reads a program file into lines (no line ends); throws Error naming the file.
 std::vector<std::string> read_program_lines(const std::string& path);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

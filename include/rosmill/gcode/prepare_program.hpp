@@ -12,7 +12,7 @@
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 // What a program is checked against. Without a machine the limits are not checked: only an explicit opt-out
 // (`--no-limits`) leaves it empty.
@@ -35,4 +35,4 @@ PreparedProgram prepare_program(const Job& job, const PostOptions& post, const P
 // is no job to compare its moves with). `source` names the program in errors.
 void check_program(const std::vector<std::string>& lines, const ProgramChecks& checks, const std::string& source);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

@@ -8,7 +8,7 @@
 #include "rosmill/gcode/canon.hpp"
 #include "rosmill/gcode/post.hpp"
 
-namespace rosmill::gcode {
+namespace rosmill::core::gcode {
 
 struct Rs274Result {
   bool ok = false;
@@ -40,4 +40,4 @@ struct VerifyReport {
 // within `arc_tolerance` (+ precision) of it, and every toolpath move is carried out.
 VerifyReport compare_with_job(const Program& program, const Job& job, const Rs274Result& rs274, double arc_tolerance);
 
-}  // namespace rosmill::gcode
+}  // namespace rosmill::core::gcode

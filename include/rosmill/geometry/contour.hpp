@@ -5,7 +5,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // One chain of the section. Closed contours are oriented counter-clockwise seen from +Z when they bound material
 // (outer) and clockwise when they bound a hole; `parent` is the index (in the layer) of the nearest contour that
@@ -19,4 +19,4 @@ struct Contour {
   int parent = -1;
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -9,7 +9,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 constexpr uint32_t kNone = 0xffffffffu;
 
@@ -85,4 +85,4 @@ Mesh mesh_from_indexed(IndexedTriangles triangles);
 // Scales vertices in place (a unit change); areas and bbox are updated, normals are unchanged.
 void scale_mesh(Mesh& mesh, double factor);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -4,7 +4,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct MeshReport {
   size_t triangles = 0;
@@ -21,4 +21,4 @@ struct MeshReport {
 
 MeshReport report(const Mesh& mesh);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -4,7 +4,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct PointCloud {
   std::vector<Vec3> points;
@@ -16,4 +16,4 @@ struct PointCloud {
   }
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -6,7 +6,7 @@
 
 #include "rosmill/geometry/contour.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // A closed cutter-location loop in XY; `around_material` is true for a loop around material (counter-clockwise
 // before the cutting direction is applied) and false for one inside a hole or pocket.
@@ -24,4 +24,4 @@ std::vector<OffsetLoop> offset_region(const std::vector<Contour>& region, double
 // same kind. Used to carry the part above a layer down to it: a flat end mill's body must clear all of it.
 std::vector<Contour> union_regions(const std::vector<Contour>& a, const std::vector<Contour>& b);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

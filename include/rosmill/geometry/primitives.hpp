@@ -6,7 +6,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Corners (3 per triangle) of each primitive; build_mesh() turns them into a Mesh.
 std::vector<Vec3> cube_corners(double size = 60.0);                         // 12 triangles, [0,size]^3
@@ -19,4 +19,4 @@ std::vector<Vec3> cavity_corners(double r = 50.0);                          // 9
 Mesh make_primitive(const std::string& name);
 const std::vector<std::string>& primitive_names();
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <limits>
 
-namespace rosmill {
+namespace rosmill::core {
 
 using Vec3 = Eigen::Vector3d;
 using Vec2 = Eigen::Vector2d;
@@ -27,4 +27,4 @@ struct Box3 {
   Vec3 size() const { return empty() ? Vec3::Zero() : Vec3(max - min); }
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -19,7 +19,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 template <class Word>
 class ExactWelder {
@@ -83,4 +83,4 @@ Vec3 key_position(const std::array<Word, 3>& key) {
   return Vec3(c[0], c[1], c[2]);
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -5,7 +5,7 @@
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/units.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct CloudReadOptions {
   Units units = Units::Metre;  // ROS custom: clouds are in metres; the cloud comes back in millimetres
@@ -26,4 +26,4 @@ bool is_cloud_path(const std::string& path);
 // header); false for a missing or unreadable file (the mesh reader then reports it).
 bool is_cloud_file(const std::string& path);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -1,12 +1,12 @@
 // STL input and output, ASCII and binary. The format is told from content and size, never from the first five
-// bytes ("solid" also starts many binary headers). Bad input throws rosmill::Error naming the file.
+// bytes ("solid" also starts many binary headers). Bad input throws rosmill::core::Error naming the file.
 #pragma once
 #include <string>
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/units.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct StlReadOptions {
   Units units = Units::Millimetre;  // what the file's numbers are; the mesh comes back in millimetres
@@ -34,4 +34,4 @@ IndexedTriangles read_stl_triangles_buffer(const char* data, size_t size, const 
 
 void write_stl(const std::string& path, const Mesh& mesh, bool ascii = false);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

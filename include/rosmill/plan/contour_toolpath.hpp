@@ -10,7 +10,7 @@
 #include "rosmill/toolpath/job.hpp"
 #include "rosmill/slice/slicer.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct ContourOptions {
   double stepdown = 1.0;        // mm between layers, from Zmax - stepdown down to Zmin
@@ -28,4 +28,4 @@ Toolpath contour_toolpath(const Mesh& mesh, const Tool& tool, const ContourOptio
 // The "contour" strategy of the strategy table (PlanParams: tool, stepdown, allowance, tolerance, safe_clearance).
 Job plan_contour(const Mesh& mesh, const PlanParams& params, const PlanProgress& progress);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -4,7 +4,7 @@
 
 #include "rosmill/plan/surface.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Points x0 + i step, y0 + j step for i < nx, j < ny, row by row (y outer, x inner).
 struct DropGrid {
@@ -21,4 +21,4 @@ DropGrid grid_over(const Box3& box, double radius, double step);
 // Tip heights of the grid's points, never below `floor` (a cutter that touches nothing stays there).
 std::vector<Vec3> drop_grid(const Surface& surface, const Cutter& cutter, const DropGrid& grid, double floor);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

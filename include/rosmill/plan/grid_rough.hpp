@@ -11,10 +11,10 @@
 #include "rosmill/plan/plan_report.hpp"
 #include "rosmill/plan/plan_support.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 Job grid_rough_on(const Surface& surface, const PlanParams& params, const PlanProgress& progress = {},
                   PlanReport* report = nullptr);
 Job grid_rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -9,7 +9,7 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/plan/surface.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 class MeshSurface : public Surface {
  public:
@@ -42,4 +42,4 @@ class MeshSurface : public Surface {
   Box3 bounds_;
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

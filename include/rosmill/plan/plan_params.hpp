@@ -8,7 +8,7 @@
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // How a line is sampled into cutter locations (raster.hpp): chord refinement to the tolerance, or the step-error
 // interpolation with the swept-move check of Muslimin et al., "Direct NC Toolpath Generation from 3D Point Cloud
@@ -37,4 +37,4 @@ struct PlanParams {
 // Progress in [0, 1]; return false to cancel (the strategy then throws Error("plan", "cancelled")).
 using PlanProgress = std::function<bool(double fraction)>;
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <string>
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct PlanReport {
   std::string strategy;
@@ -18,4 +18,4 @@ struct PlanReport {
   double sample_step = 0.0;    // mm
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

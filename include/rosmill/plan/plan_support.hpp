@@ -11,7 +11,7 @@
 #include "rosmill/plan/surface.hpp"
 #include "rosmill/toolpath/job.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Heights and parameters of one plan, resolved from PlanParams and the surface's bounds.
 struct PlanFrame {
@@ -86,4 +86,4 @@ void check_cancel(const PlanProgress& progress, double fraction);
 // part's size: a cloud read in the wrong units would otherwise run for hours.
 void check_query_count(const std::string& strategy, double queries, const Box3& part);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

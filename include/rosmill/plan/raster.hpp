@@ -9,7 +9,7 @@
 #include "rosmill/plan/plan_report.hpp"
 #include "rosmill/plan/plan_support.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct RasterOptions {
   bool zigzag = true;  // false: every line in the same direction, retracting between lines
@@ -22,4 +22,4 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
 // The strategy table's form (zigzag, no boundary, no report).
 Job raster_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

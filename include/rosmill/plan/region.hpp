@@ -7,7 +7,7 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 using Region = std::vector<std::vector<Vec2>>;
 
@@ -19,4 +19,4 @@ bool inside_region(const Region& region, const Vec2& p);
 // the patch has no closed loop.
 Region patch_region(const Mesh& mesh, const segment::Patch& patch);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

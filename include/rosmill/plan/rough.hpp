@@ -9,7 +9,7 @@
 #pragma once
 #include "rosmill/plan/plan_support.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct RoughOptions {
   double ramp_slope = 0.1;  // descent per unit of horizontal travel while ramping in (about 6 degrees)
@@ -19,4 +19,4 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
              const PlanProgress& progress = {});
 Job rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -14,7 +14,7 @@
 
 #include "rosmill/plan/plan_support.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // ε of Pi against the chord P1-P2 (positive: Pi above the chord). Pi is projected onto the chord in plan view.
 double step_error(const Vec3& p1, const Vec3& p2, const Vec3& pi);
@@ -45,4 +45,4 @@ void sample_step_error(const Surface& s, const PlanFrame& f, const Vec2& a, cons
 // The fine sampling step of the policy for the frame's cutter and tolerance.
 double step_error_spacing(const PlanFrame& f);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -11,7 +11,7 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/polygon_offset.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Throws Error("stock", ...) when the stock is empty or not closed, or (when `part` is given) when a vertex of
 // the part lies outside it (checked on at most a few thousand vertices, spread over the part).
@@ -41,4 +41,4 @@ class StockReach {
 std::vector<std::pair<double, double>> intersect_spans(const std::vector<std::pair<double, double>>& spans,
                                                        const std::vector<std::pair<double, double>>& keep);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -9,7 +9,7 @@
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct Drop {
   double z = 0.0;       // tip height of the cutter at its lowest position that touches the surface
@@ -40,4 +40,4 @@ class Surface {
   virtual bool skips(double x, double y, double radius) const;
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -9,7 +9,7 @@
 
 #include "rosmill/plan/plan_support.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct WaterlineOptions {
   std::vector<double> levels;  // heights of the tip; empty: from the top down every step-down
@@ -22,4 +22,4 @@ Job waterline_on(const Surface& surface, const PlanParams& params, const Waterli
                  const PlanProgress& progress = {}, std::vector<std::vector<Loop>>* loops_out = nullptr);
 Job waterline_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

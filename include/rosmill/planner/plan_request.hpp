@@ -1,5 +1,5 @@
 // The one entry point of planning: plan(request). The request (PlanningRequest: the ROS service Plan already
-// generates rosmill::PlanRequest) names what to plan on (a mesh, a prepared cloud with its hole policy, or a
+// generates rosmill::core::PlanRequest) names what to plan on (a mesh, a prepared cloud with its hole policy, or a
 // surface the caller built), a strategy, preset or template by name, the parameters and the progress callback.
 // plan() builds the input's Surface (a mesh's triangles, a cloud's points) and runs the strategy on it; mesh and
 // cloud differ only there and in the options that belong to the input.
@@ -17,7 +17,7 @@
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/toolpath/job.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // What to plan on (millimetres, machined side facing +Z, in the workpiece frame): exactly one of the three.
 struct PlanInput {
@@ -44,4 +44,4 @@ Job plan(const PlanningRequest& request);
 // Throws the error plan() would give for an unknown name.
 void check_plan_name(const std::string& name, const PresetTable* presets, const std::string& where);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

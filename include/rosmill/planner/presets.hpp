@@ -14,7 +14,7 @@
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/plan/plan_params.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct Preset {
   std::string name, description, strategy;
@@ -51,4 +51,4 @@ bool tool_unset(const Tool& tool);
 // allowance on top of the given one, and its sampling.
 PlanParams preset_params(const Preset& preset, const PlanParams& given);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

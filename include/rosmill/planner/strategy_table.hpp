@@ -12,7 +12,7 @@
 #include "rosmill/plan/surface.hpp"
 #include "rosmill/toolpath/job.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // What a strategy is run with: the input's surface (null for a strategy that works on the mesh itself), the mesh
 // when the input is one, the resolved parameters, progress, and where to put its report (may be null).
@@ -35,4 +35,4 @@ const std::vector<StrategyEntry>& strategies();
 // The entry named `name`, or null.
 const StrategyEntry* find_strategy(const std::string& name);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

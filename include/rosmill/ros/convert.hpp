@@ -1,7 +1,7 @@
 // The ROS edge: the ONE place where core values (millimetres, mm/min) become messages (metres, m/s, radians;
 // REP 103) and back. Nodes never scale a number themselves; they call these functions.
 //
-// Message types carry the suffix Msg (rosmill::ToolpathMsg) because catkin generates them into the package's
+// Message types carry the suffix Msg (msg::Toolpath) because catkin generates them into the package's
 // namespace, `rosmill`, where the core's own rosmill::Toolpath, rosmill::Tool, ... already live.
 #pragma once
 #include <geometry_msgs/Point.h>
@@ -12,11 +12,12 @@
 #include <Eigen/Geometry>
 #include <string>
 
-#include "rosmill/PlanParametersMsg.h"
-#include "rosmill/PlanStatisticsMsg.h"
-#include "rosmill/ToolMsg.h"
-#include "rosmill/ToolpathJobMsg.h"
-#include "rosmill/ToolpathMsg.h"
+#include "rosmill/ros/namespaces.hpp"
+#include "rosmill/PlanParameters.h"
+#include "rosmill/PlanStatistics.h"
+#include "rosmill/Tool.h"
+#include "rosmill/ToolpathJob.h"
+#include "rosmill/Toolpath.h"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/plan/plan_params.hpp"
@@ -38,7 +39,7 @@ double to_metres(double mm);
 double to_mm(double metres);
 
 // Mesh (mm) <-> shape_msgs/Mesh (m). The message keeps the welded vertices and the face order, so a facet index
-// means the same facet on both sides (SegmentationMsg.facet_labels relies on it).
+// means the same facet on both sides (msg::Segmentation.facet_labels relies on it).
 shape_msgs::Mesh to_mesh_msg(const Mesh& mesh);
 Mesh from_mesh_msg(const shape_msgs::Mesh& msg, const std::string& where = "mesh message");
 
@@ -50,17 +51,17 @@ PointCloud from_cloud_msg(const sensor_msgs::PointCloud2& msg,
 // PointCloud (mm) -> PointCloud2 (m, float32 x y z, dense): recorded bags and benchmarks.
 sensor_msgs::PointCloud2 to_cloud_msg(const PointCloud& cloud, const std::string& frame_id);
 
-ToolMsg to_tool_msg(const Tool& tool);
-Tool from_tool_msg(const ToolMsg& msg, const std::string& where = "tool");
+msg::Tool to_tool_msg(const core::Tool& tool);
+core::Tool from_tool_msg(const msg::Tool& msg, const std::string& where = "tool");
 
-// Toolpath (mm, setup frame) <-> message. The setup names the frame the positions are in (see ToolpathMsg).
-ToolpathMsg to_toolpath_msg(const Toolpath& tp, const SetupFrame& setup);
-Toolpath from_toolpath_msg(const ToolpathMsg& msg, const std::string& where = "toolpath message");
-ToolpathJobMsg to_job_msg(const Job& job, const SetupFrame& setup, const std_msgs::Header& header);
-Job from_job_msg(const ToolpathJobMsg& msg);
+// Toolpath (mm, setup frame) <-> message. The setup names the frame the positions are in (see msg::Toolpath).
+msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup);
+core::Toolpath from_toolpath_msg(const msg::Toolpath& msg, const std::string& where = "toolpath message");
+msg::ToolpathJob to_job_msg(const Job& job, const SetupFrame& setup, const std_msgs::Header& header);
+Job from_job_msg(const msg::ToolpathJob& msg);
 
 // Planning parameters of a request on top of the tool's; throws Error naming the bad field.
-PlanParams from_plan_parameters(const PlanParametersMsg& msg, const Tool& tool, const PlanParams& defaults);
-PlanStatisticsMsg to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed_mm_per_min);
+PlanParams from_plan_parameters(const msg::PlanParameters& msg, const core::Tool& tool, const PlanParams& defaults);
+msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed_mm_per_min);
 
 }  // namespace rosmill::edge

@@ -5,6 +5,7 @@
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "rosmill/ros/namespaces.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/toolpath/job.hpp"
 #include "rosmill/segment/setup_frame.hpp"

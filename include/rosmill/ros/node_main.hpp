@@ -5,6 +5,7 @@
 
 #include <exception>
 
+#include "rosmill/ros/namespaces.hpp"
 #include "rosmill/heap_reuse.hpp"
 
 namespace rosmill::edge {

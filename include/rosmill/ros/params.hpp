@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "rosmill/ros/namespaces.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/plan/plan_params.hpp"
 

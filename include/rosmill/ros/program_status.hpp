@@ -1,12 +1,13 @@
-// The controller's status (core, mm, machine coordinates) as a ProgramStatusMsg (m, program coordinates) and as an
+// The controller's status (core, mm, machine coordinates) as a msg::ProgramStatus (m, program coordinates) and as an
 // rviz view: the tool where the controller says it is and a line of text with the state and the line.
 #pragma once
 #include <visualization_msgs/MarkerArray.h>
 
 #include <Eigen/Geometry>
 
-#include "rosmill/ProgramStatusMsg.h"
-#include "rosmill/ToolpathJobMsg.h"
+#include "rosmill/ros/namespaces.hpp"
+#include "rosmill/ProgramStatus.h"
+#include "rosmill/ToolpathJob.h"
 #include "rosmill/control/controller.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 
@@ -18,7 +19,7 @@ const char* status_state_name(uint8_t state);
 
 // `machine_to_workpiece` (mm) takes the controller's machine position to the workpiece frame: minus the work
 // offset (config/machine.yaml), then back from the setup frame the program was posted in.
-ProgramStatusMsg to_status_msg(const control::ControllerStatus& status, uint8_t state,
+msg::ProgramStatus to_status_msg(const control::ControllerStatus& status, uint8_t state,
                                const Eigen::Isometry3d& machine_to_workpiece);
 
 // Where a posted job sits for the status view: the transform from the controller's machine position (mm) to the
@@ -28,10 +29,10 @@ struct ProgramPlacement {
   Eigen::Isometry3d machine_to_workpiece = Eigen::Isometry3d::Identity();
   geometry_msgs::Point anchor;
 };
-ProgramPlacement program_placement(const ToolpathJobMsg& msg, const gcode::MachineLimits* machine);
+ProgramPlacement program_placement(const msg::ToolpathJob& msg, const gcode::MachineLimits* machine);
 
 // Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") above `anchor` (m) and, when the
 // position is known, a SPHERE at the tool tip.
-visualization_msgs::MarkerArray status_markers(const ProgramStatusMsg& status, const geometry_msgs::Point& anchor);
+visualization_msgs::MarkerArray status_markers(const msg::ProgramStatus& status, const geometry_msgs::Point& anchor);
 
 }  // namespace rosmill::edge

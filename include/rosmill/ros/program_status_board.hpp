@@ -1,5 +1,5 @@
 // The bridge's view of the program it runs, shared between the run's worker, the services, the action and the
-// timer: the ProgramStatusMsg under one lock, published with its rviz view on every change of state and at the
+// timer: the msg::ProgramStatus under one lock, published with its rviz view on every change of state and at the
 // status rate, and summarised as a diagnostic.
 #pragma once
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -8,7 +8,8 @@
 #include <mutex>
 #include <string>
 
-#include "rosmill/ProgramStatusMsg.h"
+#include "rosmill/ros/namespaces.hpp"
+#include "rosmill/ProgramStatus.h"
 #include "rosmill/control/program_run.hpp"
 #include "rosmill/ros/program_status.hpp"
 
@@ -27,14 +28,14 @@ class ProgramStatusBoard {
   // A polled controller status and the run's verdict on it.
   void update(const control::ControllerStatus& s, control::RunVerdict verdict);
 
-  ProgramStatusMsg copy() const;
+  msg::ProgramStatus copy() const;
   bool running() const;  // connecting, running or paused
   void publish();
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& d);
 
  private:
   mutable std::mutex mutex_;
-  ProgramStatusMsg status_;
+  msg::ProgramStatus status_;
   ProgramPlacement placement_;
   ::ros::Publisher status_pub_, marker_pub_;
 };

@@ -3,13 +3,14 @@
 #include <std_msgs/Header.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include "rosmill/SegmentationMsg.h"
+#include "rosmill/ros/namespaces.hpp"
+#include "rosmill/Segmentation.h"
 #include "rosmill/segment/setup_segmentation.hpp"
 
 namespace rosmill::edge {
 
 // `setup_name` is how the setup was asked for ("+Z", "4axis:x", "custom").
-SegmentationMsg to_segmentation_msg(const segment::SetupSegmentation& seg, const std::string& setup_name,
+msg::Segmentation to_segmentation_msg(const segment::SetupSegmentation& seg, const std::string& setup_name,
                                     const std_msgs::Header& header);
 
 // One TRIANGLE_LIST per patch (id = label): reachable patches in namespace "reachable", each in its own label

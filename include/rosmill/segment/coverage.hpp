@@ -5,7 +5,7 @@
 #include "rosmill/segment/egi.hpp"
 #include "rosmill/segment/setup_filter.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 
 // Area reached by at least one of the setups over the part's area (0 for a part without area).
 double coverage(const EgiSet& egis, const std::vector<SetupFilter>& setups);
@@ -15,4 +15,4 @@ double coverage(const EgiSet& egis, const std::vector<SetupFilter>& setups);
 // axis_setups()), so the list is small but not proven smallest.
 std::vector<SetupFilter> greedy_axis_cover(const EgiSet& egis);
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

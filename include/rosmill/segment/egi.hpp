@@ -10,7 +10,7 @@
 
 #include "rosmill/segment/surface_patches.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 
 class EgiBins {
  public:
@@ -117,4 +117,4 @@ class EgiSet {
   std::vector<PatchEgi> egis_;
 };
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

@@ -12,7 +12,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 
 struct SetupFilter {
   enum class Kind { ThreeAxis, FourAxis, FiveAxis };
@@ -53,4 +53,4 @@ std::vector<SetupFilter> parse_setups(const std::string& list);
 // The six 3-axis setups in the order +z, -z, +x, -x, +y, -y.
 const std::vector<SetupFilter>& axis_setups();
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

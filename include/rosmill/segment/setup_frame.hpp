@@ -9,7 +9,7 @@
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/segment/setup_filter.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct SetupFrame {
   std::string name;                 // "+Z", "-X", ... or "custom"
@@ -38,4 +38,4 @@ segment::SetupFilter setup_filter_of(const std::string& name, const Vec3& direct
 Mesh mesh_in_setup(const Mesh& mesh, const SetupFrame& setup);
 PointCloud cloud_in_setup(const PointCloud& cloud, const SetupFrame& setup);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -13,7 +13,7 @@
 #include "rosmill/segment/setup_filter.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 
 struct Segment {
   Patch shape;               // facets (into SetupSegmentation::facet_order), area, normal, neighbours, loops
@@ -56,4 +56,4 @@ std::vector<uint8_t> reachable_facets(const EgiSet& egis, const SetupFilter& fil
 // Phase 2 for one setup. `small` defaults to the phase 1 rule.
 SetupSegmentation segment_setup(const EgiSet& egis, const SetupFilter& filter, const SizeRule* small = nullptr);
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

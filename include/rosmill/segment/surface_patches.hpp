@@ -16,7 +16,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill::segment {
+namespace rosmill::core::segment {
 
 // When a patch (or a phase 2 segment) counts as too small to machine on its own.
 struct SizeRule {
@@ -104,4 +104,4 @@ class SurfacePatches {
 // or a negative size.
 SurfacePatches segment_surface(const Mesh& mesh, const SegmentOptions& options = {});
 
-}  // namespace rosmill::segment
+}  // namespace rosmill::core::segment

@@ -14,7 +14,7 @@
 #include "rosmill/geometry/contour.hpp"
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 struct SliceLayer {
   double z = 0.0;
@@ -54,4 +54,4 @@ void write_slices_dat(const std::string& path, const std::vector<SliceLayer>& la
 // Signed area of a closed polygon (positive when counter-clockwise).
 double signed_area(const std::vector<Vec2>& polygon);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

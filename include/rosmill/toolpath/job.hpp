@@ -5,8 +5,8 @@
 
 #include "rosmill/toolpath/toolpath.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 using Job = std::vector<Toolpath>;
 
-}  // namespace rosmill
+}  // namespace rosmill::core

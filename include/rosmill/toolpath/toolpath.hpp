@@ -7,7 +7,7 @@
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 enum class MoveType : uint8_t {
   Rapid,   // G0, no cutting, only above the clearance height or along a known-free retract
@@ -39,4 +39,4 @@ struct Toolpath {
   Box3 bounds() const;
 };
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -11,7 +11,7 @@
 
 #include "rosmill/toolpath/toolpath.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 nlohmann::json toolpath_to_json(const Toolpath& tp);
 // Throws Error naming `where` and the offending field on a malformed toolpath object.
@@ -23,4 +23,4 @@ std::vector<Toolpath> read_toolpath_file(const std::string& path);
 nlohmann::json tool_to_json(const Tool& tool);
 Tool tool_from_json(const nlohmann::json& j, const std::string& where);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

@@ -4,7 +4,7 @@
 
 #include "rosmill/toolpath/toolpath.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Figures of a toolpath: lengths in mm, time in seconds at the moves' feeds (rapids at `rapid_feed`).
 struct ToolpathStats {
@@ -15,4 +15,4 @@ struct ToolpathStats {
 };
 ToolpathStats toolpath_stats(const Toolpath& tp, double rapid_feed = 5000.0);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

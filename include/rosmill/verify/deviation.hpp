@@ -8,7 +8,7 @@
 #include "rosmill/verify/material_removal.hpp"
 #include "rosmill/verify/program.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 struct CompareOptions {
   double tolerance = 0.01;  // mm: deviations within ±tolerance count as on the design
@@ -64,4 +64,4 @@ DeviationReport compare(const Stock& stock, const std::vector<float>& design, co
                         const SimulationResult& sim, const CompareOptions& options = {},
                         DeviationGrid* grid = nullptr);
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

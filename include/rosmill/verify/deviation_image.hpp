@@ -7,11 +7,11 @@
 #include "rosmill/verify/deviation.hpp"
 #include "rosmill/verify/rgb_image.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 // The map is drawn at a whole number of pixels a cell (up to 8) for small grids, and in blocks of cells (each its
 // worst cell, so a gouge stays visible) for grids larger than 800 pixels.
 RgbImage deviation_image(const DeviationGrid& grid, const DeviationReport& report);
 void write_deviation_png(const std::string& path, const DeviationGrid& grid, const DeviationReport& report);
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -8,7 +8,7 @@
 
 #include "rosmill/verify/deviation.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 struct Rgb {
   uint8_t r = 0, g = 0, b = 0;
@@ -41,4 +41,4 @@ std::vector<DeviationPoint> deviation_points(const DeviationGrid& grid, size_t m
 // the deepest gouge if any, else the most material left; -1 when no cell of the block has a design height.
 long worst_cell(const DeviationGrid& grid, int i, int j, int step);
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

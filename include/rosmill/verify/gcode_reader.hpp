@@ -15,7 +15,7 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/verify/program.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 // The tools a program may call by T number, and the one in the spindle when it starts (used until its first M6).
 // Without a loaded tool, a move before any M6 is an error, unless the setup holds exactly one tool.
@@ -39,4 +39,4 @@ constexpr size_t kMaxProgramMoves = 20'000'000;
 MachineProgram parse_gcode(const std::string& text, const std::string& name, const ToolSetup& tools);
 MachineProgram read_gcode(const std::string& path, const ToolSetup& tools);
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

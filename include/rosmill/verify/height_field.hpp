@@ -8,7 +8,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 // The largest grid the verifier allocates (about 32 bytes a cell for the stock, the design, the deviation and the
 // trace): a larger one is refused with a message, never allocated from what an input asks for.
@@ -57,4 +57,4 @@ struct Stock {
   static Stock box(const GridSpec& grid, double bottom_z, double top_z);
 };
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -16,7 +16,7 @@
 #include "rosmill/verify/height_field.hpp"
 #include "rosmill/verify/program.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 struct SimulationOptions {
   double arc_tolerance = 0.001;  // mm: largest distance between a helical arc and its chords
@@ -46,4 +46,4 @@ SimulationResult simulate(const MachineProgram& program, Stock& stock, const Sim
 // cutter never covers it. The slow, obvious reference of what simulate() computes (tests compare the two).
 double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, double x, double y, int samples = 20000);
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -7,7 +7,7 @@
 
 #include "rosmill/verify/deviation_map.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 struct RgbImage {
   int width = 0, height = 0;
@@ -29,4 +29,4 @@ struct RgbImage {
 // Throws Error naming the path when it cannot be written.
 void write_png(const std::string& path, const RgbImage& image);
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

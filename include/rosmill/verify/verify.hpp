@@ -9,14 +9,14 @@
 #include "rosmill/verify/material_removal.hpp"
 #include "rosmill/verify/program.hpp"
 
-namespace rosmill::verify {
+namespace rosmill::core::verify {
 
 // The stock before the program: the design's bounding box (default), an explicit box, or a stock mesh whose
 // top surface is the starting height (cells it does not cover hold no material: they start at its floor).
 struct StockSpec {
   enum class Kind { DesignBounds, Box, Mesh } kind = Kind::DesignBounds;
   Box3 box;
-  const rosmill::Mesh* mesh = nullptr;
+  const rosmill::core::Mesh* mesh = nullptr;
 
   // "box" (the design's bounds) or "x0,y0,z0,x1,y1,z1" (mm). A file name is left to the caller (kind Mesh).
   static StockSpec parse_box(const std::string& text, const std::string& where = "--stock");
@@ -37,9 +37,9 @@ struct VerifyResult {
   double seconds = 0.0;  // the whole verification (grid, design heights, simulation, comparison)
 };
 
-VerifyResult verify_program(const rosmill::Mesh& design, const MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const rosmill::core::Mesh& design, const MachineProgram& program, const StockSpec& stock,
                             const VerifyOptions& options = {});
 VerifyResult verify_program(const PointCloud& design, const MachineProgram& program, const StockSpec& stock,
                             const VerifyOptions& options = {});
 
-}  // namespace rosmill::verify
+}  // namespace rosmill::core::verify

@@ -1,9 +1,9 @@
-#include "rosmill/geometry/wavy_solid.hpp"
+#include "rosmill/testing/wavy_solid.hpp"
 
 #include <cmath>
 #include <utility>
 
-namespace rosmill {
+namespace rosmill::core {
 
 std::vector<Vec3> wavy_solid_corners(int n, double length) {
   auto height = [&](int i, int j) {
@@ -40,4 +40,4 @@ std::vector<Vec3> wavy_solid_corners(int n, double length) {
   return c;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core

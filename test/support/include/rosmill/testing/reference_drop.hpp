@@ -14,7 +14,7 @@
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/mesh.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Highest tip height at axis (x, y) over the triangle (a, b, c); -infinity when no point of it lies under the
 // footprint (horizontal distance <= the radius).
@@ -45,4 +45,4 @@ enum class ReferenceCheck {
 ReferenceCheck check_drop(const Cutter& cutter, const Mesh& mesh, double x, double y, double z, double floor,
                           double tolerance);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

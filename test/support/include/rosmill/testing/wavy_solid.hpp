@@ -5,7 +5,7 @@
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill {
+namespace rosmill::core {
 
 // Corners (3 per triangle, counter-clockwise from outside) of a block [0, length]^2 in XY whose top is
 // z = 10 + 7.5 sin(10 pi i / n) cos(8 pi j / n) on an n x n grid (2 n^2 triangles), closed by one row of wall
@@ -13,4 +13,4 @@ namespace rosmill {
 // 2,012,000 for n = 1000. Vertices shared between triangles are bit-identical, so an exact weld closes it.
 std::vector<Vec3> wavy_solid_corners(int n = 1000, double length = 200.0);
 
-}  // namespace rosmill
+}  // namespace rosmill::core

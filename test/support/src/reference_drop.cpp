@@ -1,4 +1,4 @@
-#include "rosmill/cutter/reference_drop.hpp"
+#include "rosmill/testing/reference_drop.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-namespace rosmill {
+namespace rosmill::core {
 namespace {
 
 constexpr double kNothing = -std::numeric_limits<double>::infinity();
@@ -229,4 +229,4 @@ ReferenceCheck check_drop(const Cutter& cutter, const Mesh& mesh, double x, doub
   return ReferenceCheck::Differs;
 }
 
-}  // namespace rosmill
+}  // namespace rosmill::core
