@@ -75,8 +75,9 @@ void face_geometry(Mesh& mesh, size_t f) {
   }
 }
 
-// Both cores from 20,000 faces on, one half each: a range no longer than its grain is not split, so smaller
-// meshes stay on the calling thread (below that the threads' start costs more than they save).
+// Both cores from 20,000 faces on: a range no longer than its grain is not split, so smaller meshes stay on the
+// calling thread (below that the threads' start costs more than they save). Pieces are taken on demand rather
+// than one half per core, so the calling thread goes on while a sleeping worker wakes.
 void compute_face_geometry(Mesh& mesh) {
   const size_t n = mesh.faces.size();
   mesh.normals.resize(n);
@@ -86,7 +87,7 @@ void compute_face_geometry(Mesh& mesh) {
       [&](const tbb::blocked_range<size_t>& r) {
         for (size_t f = r.begin(); f < r.end(); ++f) face_geometry(mesh, f);
       },
-      tbb::static_partitioner());
+      tbb::auto_partitioner());
 }
 
 // Edges by a counting sort of the half-edges on their lower vertex, then on the higher one within each vertex's

@@ -90,23 +90,24 @@ void weld_range(const char* data, size_t first, size_t last, const std::string& 
   }
 }
 
-// Loops over vertices and faces split in one half per core from `grain` items on (a range no longer than its
-// grain is not split: shorter ones stay on the calling thread, whose start costs less than the threads' would).
+// Loops over vertices and faces on both cores from `grain` items on (a range no longer than its grain is not
+// split: shorter ones stay on the calling thread, whose start costs less than the threads' would), in pieces
+// taken on demand, so that the calling thread goes on while a sleeping worker wakes.
 template <typename Body>
-void for_halves(int64_t first, int64_t last, int64_t grain, const Body& body) {
+void for_each_item(int64_t first, int64_t last, int64_t grain, const Body& body) {
   tbb::parallel_for(
       tbb::blocked_range<int64_t>(first, last, grain),
       [&](const tbb::blocked_range<int64_t>& r) {
         for (int64_t i = r.begin(); i < r.end(); ++i) body(i);
       },
-      tbb::static_partitioner());
+      tbb::auto_partitioner());
 }
 
 constexpr int64_t kParallelVertices = 100000;
 
 // The welder's vertex positions into vertices[0, size).
 void write_positions(const FloatWelder& welder, Vec3* vertices) {
-  for_halves(0, int64_t(welder.size()), kParallelVertices,
+  for_each_item(0, int64_t(welder.size()), kParallelVertices,
              [&](int64_t v) { vertices[v] = key_position(welder.keys()[v]); });
 }
 
@@ -119,7 +120,7 @@ std::vector<uint32_t> merged_ids(const FloatWelder& first, const FloatWelder& se
   const int64_t n = int64_t(second.size());
   constexpr int64_t kChunk = 4096;  // keys looked up together (the welder prefetches their slots at once)
   std::vector<uint32_t> ids(static_cast<size_t>(n));
-  for_halves(0, (n + kChunk - 1) / kChunk, 1, [&](int64_t k) {
+  for_each_item(0, (n + kChunk - 1) / kChunk, 1, [&](int64_t k) {
     const int64_t c = k * kChunk;
     first.find_many(second.keys() + c, size_t(std::min(kChunk, n - c)), ids.data() + c);
   });
@@ -179,10 +180,10 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
   const std::vector<uint32_t> ids = merged_ids(first, second, vertex_count);
   out.vertices.resize(vertex_count);
   write_positions(first, out.vertices.data());
-  for_halves(0, int64_t(ids.size()), kParallelVertices, [&](int64_t v) {
+  for_each_item(0, int64_t(ids.size()), kParallelVertices, [&](int64_t v) {
     if (ids[v] >= first.size()) out.vertices[ids[v]] = key_position(second.keys()[v]);
   });
-  for_halves(int64_t(half), int64_t(count), 1, [&](int64_t t) {
+  for_each_item(int64_t(half), int64_t(count), 1, [&](int64_t t) {
     for (uint32_t& v : out.faces[t]) v = ids[v];
   });
 }

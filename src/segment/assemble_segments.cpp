@@ -49,9 +49,9 @@ Numbering number_segments(const SurfacePatches& patches, const std::vector<Verdi
   return out;
 }
 
-// Labels: the whole patches in one pass over the facets (both cores, one half each, from 20,000 facets on: a
-// range no longer than its grain stays on the calling thread), then the split patches' parts. (Copied from the
-// patch labels and renumbered in place: a vector's zero-filling resize is a slow loop for 32-bit words.)
+// Labels: the whole patches in one pass over the facets (both cores from 20,000 facets on, in pieces taken on
+// demand: a range no longer than its grain stays on the calling thread), then the split patches' parts. (Copied
+// from the patch labels and renumbered in place: a vector's zero-filling resize is a slow loop for 32-bit words.)
 void write_labels(const SurfacePatches& patches, const std::vector<PatchParts>& split, const Numbering& number,
                   std::vector<uint32_t>& labels) {
   labels = patches.labels();
@@ -62,7 +62,7 @@ void write_labels(const SurfacePatches& patches, const std::vector<PatchParts>& 
       [&](const tbb::blocked_range<size_t>& r) {
         for (size_t f = r.begin(); f < r.end(); ++f) label[f] = of_patch[label[f]];
       },
-      tbb::static_partitioner());
+      tbb::auto_partitioner());
   for (uint32_t s = 0; s < split.size(); ++s)
     for (const Patch& part : split[s].parts)
       for (uint32_t i = part.first_facet; i < part.first_facet + part.facet_count; ++i)

@@ -78,8 +78,8 @@ void reach_of_facets(size_t first, size_t last, const uint32_t* label, const Ver
   }
 }
 
-// Per facet reachability: the patch's verdict, or the exact test for the facets of mixed patches. Both cores,
-// one half each, from 20,000 facets on (a range no longer than its grain stays on the calling thread).
+// Per facet reachability: the patch's verdict, or the exact test for the facets of mixed patches. Both cores
+// from 20,000 facets on (a range no longer than its grain stays on the calling thread), in pieces taken on demand.
 template <typename Test>
 void fill_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict, const Test& test,
                 std::vector<uint8_t>& reach) {
@@ -90,7 +90,7 @@ void fill_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdi
         reach_of_facets(r.begin(), r.end(), patches.labels().data(), verdict.data(), mesh.normals.data(), test,
                         reach.data());
       },
-      tbb::static_partitioner());
+      tbb::auto_partitioner());
 }
 
 std::vector<uint8_t> facet_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict,

@@ -29,8 +29,9 @@ void check_options(const SegmentOptions& o) {
     throw Error("parameter min_area_fraction", "must be in [0, 1), got " + std::to_string(o.small.min_area_fraction));
 }
 
-// Loops over edges and facets run on both cores, one half each, from 20,000 items on (a range no longer than
-// its grain is not split, so smaller meshes stay on the calling thread: their threads' start would cost more).
+// Loops over edges and facets run on both cores from 20,000 items on (a range no longer than its grain is not
+// split, so smaller meshes stay on the calling thread: their threads' start would cost more), in pieces taken on
+// demand rather than one half per core: a worker woken from sleep starts late, and the calling thread goes on.
 constexpr size_t kParallelFrom = 20000;
 
 // The open, non-manifold and inconsistent edges of a range of edges.
@@ -76,7 +77,7 @@ std::vector<uint8_t> soft_edges(const Mesh& mesh, double threshold, MeshNotes& n
       [&](const tbb::blocked_range<size_t>& r, const EdgeCounts& c) {
         return c + classify_edges(mesh, t2, r.begin(), r.end(), soft.data());
       },
-      std::plus<EdgeCounts>(), tbb::static_partitioner());
+      std::plus<EdgeCounts>(), tbb::auto_partitioner());
   notes.open_edges = counts.open;
   notes.nonmanifold_edges = counts.nonmanifold;
   notes.inconsistent_edges = counts.inconsistent;
@@ -166,10 +167,10 @@ std::vector<std::array<uint32_t, 3>> inner_neighbours(const Mesh& mesh, const st
     for (int k = 0; k < 3; ++k)
       if (mesh.face_edges[f][k] == e) inner[position[f]][k] = to;
   };
-  // Both loops in halves when the facets are many (the edges, about 1.5 per facet, follow the facets' choice).
+  // Both loops on both cores when the facets are many (the edges, about 1.5 per facet, follow the facets' choice).
   auto each = [parallel = n > int64_t(kParallelFrom)](int64_t count, const auto& body) {
     if (parallel)
-      tbb::parallel_for(int64_t(0), count, body, tbb::static_partitioner());
+      tbb::parallel_for(int64_t(0), count, body, tbb::auto_partitioner());
     else
       for (int64_t i = 0; i < count; ++i) body(i);
   };
