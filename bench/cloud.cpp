@@ -120,7 +120,7 @@ int main(int argc, char** argv) {
   rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  std::printf("threads %d; seed defaults (rough flat 10, d 2, delta 0.5; semi ball 5 stepover 2; finish ball 3 "
+  std::printf("threads %d; the paper's defaults (rough flat 10, d 2, delta 0.5; semi ball 5 stepover 2; finish ball 3 "
               "stepover 0.3; tolerance 0.01); median of 3 runs\n", threads);
   PointCloud relief;
   relief.points = relief_cloud(300000);

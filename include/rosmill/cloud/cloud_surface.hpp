@@ -1,4 +1,5 @@
-// The point-cloud Surface (seed 004): drop-cutter straight against scanned points, no surface reconstruction.
+// The point-cloud Surface (Muslimin et al., "Direct NC Toolpath Generation from 3D Point Cloud Datasets"):
+// drop-cutter straight against scanned points, no surface reconstruction.
 //
 // For a cutter of radius R and corner radius r (flat r = 0, ball r = R, bull in between; Rf = R - r), a point p
 // at plan distance d from the cutter axis holds the tip up at

@@ -1,4 +1,5 @@
-// Contour toolpaths from slices (seed 000's machining from its slices): at each layer the section is offset by
+// Contour toolpaths from slices (the machining from slices of "Tool Path Generation for CNC Milling based on STL
+// Files"): at each layer the section is offset by
 // the radius of a flat end mill, outwards around material and inwards in holes and pockets, so that the cutter
 // touches the part without cutting into it. Offsetting: geometry/polygon_offset.hpp.
 #pragma once
