@@ -138,15 +138,14 @@ void run(const Options& o) {
   }
   // A setup turns the part over so that its tool axis becomes +Z: the toolpath is in the turned part's frame.
   const SetupFrame setup = setup_of(o.setup);
-  if (input.mesh) mesh = mesh_in_setup(mesh, setup);
-  if (input.cloud) cloud = cloud_in_setup(cloud, setup);
+  input.setup = setup;
   Mesh stock;
   if (!o.stock.empty()) {
     if (o.strategy != "rough") throw Error("--stock", "a stock mesh is used by --strategy rough only");
     StlReadOptions ro;
     if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
     try {
-      stock = mesh_in_setup(read_stl(o.stock, ro), setup);
+      stock = read_stl(o.stock, ro);
       check_stock_mesh(stock, input.mesh);
     } catch (const Error& e) {
       throw Error("--stock " + o.stock, e.what());

@@ -215,16 +215,10 @@ class ToolpathPlanner {
 
     const ::ros::WallTime t0 = ::ros::WallTime::now();
     PlanInput& input = request.input;
-    Mesh mesh_in_frame;
-    PointCloud cloud_in_frame;
-    if (mesh) {
-      mesh_in_frame = mesh_in_setup(*mesh, out.setup);
-      input.mesh = &mesh_in_frame;
-    } else {
-      cloud_in_frame = cloud_in_setup(*cloud, out.setup);
-      input.cloud = &cloud_in_frame;
-      input.holes = cloud_hole_policy(cloud_input_, option_prefix_);
-    }
+    input.setup = out.setup;  // plan() turns the part for the setup
+    input.mesh = mesh.get();
+    input.cloud = cloud.get();
+    if (cloud) input.holes = cloud_hole_policy(cloud_input_, option_prefix_);
     out.job = plan(request);
     std_msgs::Header header;
     header.frame_id = frame_id_;

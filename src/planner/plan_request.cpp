@@ -82,7 +82,26 @@ void check_plan_name(const std::string& name, const PresetTable* presets, const 
   throw Error(where, "unknown strategy '" + name + "' (known: " + known_names(presets) + ")");
 }
 
+namespace {
+
+// The request on copies of the part (and stock) turned for the setup.
+Job plan_turned(const PlanningRequest& r) {
+  if (r.input.surface)
+    throw Error("setup " + r.input.setup.name, "a surface the caller built is planned as it is: turn it first");
+  PlanningRequest turned = r;
+  turned.input.setup = SetupFrame{};
+  Mesh mesh, stock;
+  PointCloud cloud;
+  if (r.input.mesh) turned.input.mesh = &(mesh = mesh_in_setup(*r.input.mesh, r.input.setup));
+  if (r.input.cloud) turned.input.cloud = &(cloud = cloud_in_setup(*r.input.cloud, r.input.setup));
+  if (r.params.stock_mesh) turned.params.stock_mesh = &(stock = mesh_in_setup(*r.params.stock_mesh, r.input.setup));
+  return plan(turned);
+}
+
+}  // namespace
+
 Job plan(const PlanningRequest& r) {
+  if (!r.input.setup.identity()) return plan_turned(r);
   const int given = (r.input.mesh != nullptr) + (r.input.cloud != nullptr) + (r.input.surface != nullptr);
   if (given != 1) throw Error("strategy " + r.strategy, given ? "give one input, not several" : "nothing to plan on");
   check_plan_name(r.strategy, r.presets, "strategy");

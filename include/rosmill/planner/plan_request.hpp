@@ -15,6 +15,7 @@
 #include "rosmill/plan/plan_report.hpp"
 #include "rosmill/plan/surface.hpp"
 #include "rosmill/planner/presets.hpp"
+#include "rosmill/segment/setup_frame.hpp"
 #include "rosmill/toolpath/job.hpp"
 
 namespace rosmill::core {
@@ -26,6 +27,9 @@ struct PlanInput {
   const Surface* surface = nullptr;       // built by the caller, used as it is
   HolePolicy holes = HolePolicy::Bridge;  // cloud: over missing data, bridge on lids or skip
   double max_sink = NAN;                  // cloud: sink allowed between points (mm); NaN: the plan's tolerance
+  // The setup: plan() turns the part (and a stock mesh) so that the setup's tool axis points up, and the toolpath
+  // is in the turned part's frame. A surface the caller built is planned as it is (only +Z).
+  SetupFrame setup;
 };
 
 struct PlanningRequest {
