@@ -49,13 +49,32 @@ done
 machine=$("${clean_env[@]}" rosparam get /gcode_bridge/machine)
 [ "$machine" = "$prefix/share/rosmill/config/machine.yaml" ] || fail "machine parameter is '$machine', not the install's"
 
+# Every node stops within 2 s of SIGINT (roslaunch escalates to SIGTERM otherwise). Prints the milliseconds taken.
+stop_within_2s() {
+  local name="$1" pid="$2" start ms
+  start=$(date +%s%N)
+  kill -INT "$pid"
+  for _ in $(seq 1 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.05; done
+  kill -0 "$pid" 2>/dev/null && fail "$name still runs 5 s after SIGINT"
+  ms=$(( ($(date +%s%N) - start) / 1000000 ))
+  [ "$ms" -le 2000 ] || fail "$name took $ms ms to stop after SIGINT (limit 2000)"
+  echo "$ms"
+}
+
+# The installed planner, run by hand against the same master with the installed tool table.
+(cd "$work" && exec "${clean_env[@]}" "$prefix/lib/rosmill/toolpath_planner" \
+   _tool_table:="$prefix/share/rosmill/config/tools.yaml" >"$work/planner.log" 2>&1) &
+planner_pid=$!
+for _ in $(seq 1 150); do
+  "${clean_env[@]}" rosservice list 2>/dev/null | grep -qx /plan && break
+  kill -0 "$planner_pid" 2>/dev/null || { cat "$work/planner.log"; fail "the installed planner stopped"; }
+  sleep 0.2
+done
+planner_ms=$(stop_within_2s toolpath_planner "$planner_pid")
+
 node_pid=$(pgrep -f "$prefix/lib/rosmill/gcode_bridge" | head -1)
 [ -n "$node_pid" ] || fail "no gcode_bridge process from the install"
-start=$(date +%s%N)
-kill -INT "$node_pid"
-for _ in $(seq 1 100); do kill -0 "$node_pid" 2>/dev/null || break; sleep 0.05; done
-kill -0 "$node_pid" 2>/dev/null && fail "gcode_bridge still runs 5 s after SIGINT"
-ms=$(( ($(date +%s%N) - start) / 1000000 ))
-[ "$ms" -le 2000 ] || fail "gcode_bridge took $ms ms to stop after SIGINT (limit 2000)"
+bridge_ms=$(stop_within_2s gcode_bridge "$node_pid")
 kill -INT "$launch_pid"; wait "$launch_pid" 2>/dev/null || true; launch_pid=""
-echo "install test: installed into $prefix, roslaunch found it, the bridge stopped $ms ms after SIGINT"
+echo "install test: installed into $prefix, roslaunch found it; after SIGINT the planner stopped in $planner_ms ms," \
+     "the bridge in $bridge_ms ms"
