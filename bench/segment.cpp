@@ -1,6 +1,7 @@
 // Segmentation speed on the table: phase 1 (flood + recombination + patch records) and phase 2 for one
 // setup (+Z: EGI of every patch, pruning, recombination, segment records), median of 3 after a first run, the
-// mesh already loaded, threshold 0.4 (23.07 degrees). Models: every STL of ../shared/data/stl and a generated 2,012,000-
+// mesh already loaded, threshold 0.4 (23.07 degrees). Models: every STL of ../shared/data/stl and a generated
+// 2,012,000-
 // triangle closed wavy solid. Usage: bench_segment [threads]
 #include <tbb/global_control.h>
 

@@ -1,7 +1,8 @@
 # catkin: the ROS interface of the package (messages, services, actions). The nodes, the conversion library and
 # the rostests are in ros_targets.cmake, included after the core library exists.
 #
-# Only the C++ and Python generators run (ROS_LANG_DISABLE; the only other one installed is Lisp): Lisp would cost build time for
+# Only the C++ and Python generators run (ROS_LANG_DISABLE; the only other one installed is Lisp): Lisp would cost build
+# time for
 # nothing. Python messages are kept for rostest scripts and rosbag tooling written in Python.
 # rosbag pulls in pluginlib, which runs ament's templates with the first python3 on PATH (a pyenv one
 # without the ROS modules): point it at the system interpreter catkin uses.

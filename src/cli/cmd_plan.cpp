@@ -213,18 +213,23 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--allowance", o->allowance, "stock to leave, mm");
   auto* tolerance = cmd->add_option("--tolerance", o->tolerance, "chord and gouge tolerance, mm");
   cmd->add_option("--angle", o->angle, "raster direction, degrees");
-  cmd->add_option("--setup", o->setup,
-                  "setup: the tool direction in the part's frame, +Z, -Z, +X, -X, +Y, -Y or x,y,z; the part is turned so "
-                  "that it points up, and the toolpath is in the turned part's frame")->capture_default_str();
-  cmd->add_option("--stock", o->stock, "rough: stock STL (closed, containing the part; same --units) instead of the box");
+  cmd->add_option(
+         "--setup", o->setup,
+         "setup: the tool direction in the part's frame, +Z, -Z, +X, -X, +Y, -Y or x,y,z; the part is turned so "
+         "that it points up, and the toolpath is in the turned part's frame")
+      ->capture_default_str();
+  cmd->add_option("--stock", o->stock,
+                  "rough: stock STL (closed, containing the part; same --units) instead of the box");
   cmd->add_option("--units", o->units, "units of the file: mm, inch, m (STL default mm, clouds m)");
   cmd->add_flag("--json", o->json, "print one JSON object");
   cmd->add_option("-o,--out", o->out, "write toolpath.json, or a G-code program when it ends in .ngc, .nc or .gcode");
   cmd->add_option("--dialect", o->dialect, "G-code dialect for -o prog.ngc: linuxcnc or grbl")->capture_default_str();
-  cmd->add_option("--machine", o->machine,
-                  "-o prog.ngc: machine limits the program must keep (default config/machine.yaml here, else the package's)");
+  cmd->add_option(
+      "--machine", o->machine,
+      "-o prog.ngc: machine limits the program must keep (default config/machine.yaml here, else the package's)");
   cmd->add_flag("--no-limits", o->no_limits, "-o prog.ngc: write the program without checking the machine's limits");
-  cmd->add_option("--orient", o->cloud.orient, "cloud: none, ransac (fit the base plane) or lowest (fit the lowest points)");
+  cmd->add_option("--orient", o->cloud.orient,
+                  "cloud: none, ransac (fit the base plane) or lowest (fit the lowest points)");
   cmd->add_option("--origin", o->cloud.origin, "cloud: corner (program origin at the stock corner) or keep");
   cmd->add_option("--voxel", o->cloud.voxel, "cloud: voxel downsampling leaf, mm (0: off)");
   cmd->add_option("--outliers", o->cloud.outliers, "cloud: statistical outlier removal over K neighbours (0: off)");

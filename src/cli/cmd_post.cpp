@@ -35,8 +35,10 @@ void write_map(const std::string& path, const gcode::Program& p) {
     lines.push_back({i + 1, o.toolpath, o.pass, o.first_move, o.last_move});
   }
   std::ofstream out(path);
-  out << nlohmann::json{{"format", "rosmill-gcode-map"}, {"columns", {"line", "toolpath", "pass", "first_move", "last_move"}},
-                        {"lines", lines}}.dump()
+  out << nlohmann::json{{"format", "rosmill-gcode-map"},
+                        {"columns", {"line", "toolpath", "pass", "first_move", "last_move"}},
+                        {"lines", lines}}
+             .dump()
       << '\n';
   if (!out) throw Error(path, "cannot write the line map");
 }
@@ -61,7 +63,8 @@ void run(const PostArgs& a) {
   }
   if (checks.machine) report["machine"] = machine_file(a.machine);
   if (prepared.rs274)
-    report["rs274"] = {{"canon_moves", prepared.rs274->canon_moves}, {"max_deviation_mm", prepared.rs274->max_deviation}};
+    report["rs274"] = {{"canon_moves", prepared.rs274->canon_moves},
+                       {"max_deviation_mm", prepared.rs274->max_deviation}};
   gcode::write_program(a.output, p);
   if (!a.map.empty()) write_map(a.map, p);
   std::printf("%s\n", report.dump().c_str());

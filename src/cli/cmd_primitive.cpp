@@ -1,4 +1,5 @@
-// rosmill primitive NAME -o FILE.stl [--ascii]: writes a test primitive of "Tool Path Generation for CNC Milling based on STL Files" (Eng. & Tech. Journal 33(A) 2, 2015).
+// rosmill primitive NAME -o FILE.stl [--ascii]: writes a test primitive of "Tool Path Generation for CNC Milling based
+// on STL Files" (Eng. & Tech. Journal 33(A) 2, 2015).
 #include <cstdio>
 #include <memory>
 
@@ -17,7 +18,8 @@ struct PrimitiveArgs {
 
 CommandRegistration registration([](CLI::App& app) {
   auto args = std::make_shared<PrimitiveArgs>();
-  auto* cmd = app.add_subcommand("primitive", "write a test primitive of the STL slicing paper (cube, cylinder, dome, cone, cavity) as STL");
+  auto* cmd = app.add_subcommand(
+      "primitive", "write a test primitive of the STL slicing paper (cube, cylinder, dome, cone, cavity) as STL");
   cmd->add_option("NAME", args->name, "cube | cylinder | dome | cone | cavity")
       ->required()
       ->check(CLI::IsMember(primitive_names()));

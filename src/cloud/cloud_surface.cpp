@@ -30,9 +30,13 @@ double corner_radius(const Cutter& c) {
 
 }  // namespace
 
-CloudSurface::CloudSurface(const PointCloud& cloud, const CloudSurfaceOptions& options) { build(cloud.points, options); }
+CloudSurface::CloudSurface(const PointCloud& cloud, const CloudSurfaceOptions& options) {
+  build(cloud.points, options);
+}
 
-CloudSurface::CloudSurface(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) { build(points, options); }
+CloudSurface::CloudSurface(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) {
+  build(points, options);
+}
 
 void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOptions& options) {
   if (points.empty()) throw Error("cloud surface", "the cloud has no points");
@@ -45,8 +49,9 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   Box3 box;
   for (const Vec3& p : points) box.add(p);
   const Vec3 size = box.size();
-  const double cell = options.cell > 0 ? options.cell
-                                       : kQueryCellScale * auto_grid_cell(points.size(), std::max(size.x() * size.y(), 1e-6));
+  const double cell = options.cell > 0
+                          ? options.cell
+                          : kQueryCellScale * auto_grid_cell(points.size(), std::max(size.x() * size.y(), 1e-6));
   grid_ = CloudGrid(points, cell);
   spacing_ = rosmill::core::mean_spacing(grid_);
   max_sink_ = options.max_sink;
@@ -56,7 +61,8 @@ void CloudSurface::build(const std::vector<Vec3>& points, const CloudSurfaceOpti
   if (!std::isnan(options.sampling_radius)) {
     sampling_radius_ = options.sampling_radius;
   } else if (spacing_ > 0) {
-    sampling_radius_ = rosmill::core::sampling_radius(grid_, options.detect_holes ? holes_.grid() : CloudGrid(points, hole_cell));
+    sampling_radius_ =
+        rosmill::core::sampling_radius(grid_, options.detect_holes ? holes_.grid() : CloudGrid(points, hole_cell));
   }
 }
 

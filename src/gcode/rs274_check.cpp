@@ -208,7 +208,8 @@ Rs274Result run_rs274(const std::vector<std::string>& lines, const std::string& 
   pid_t pid;
   const int rc = posix_spawnp(&pid, executable.c_str(), &actions, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw Error("rs274", "cannot start '" + executable + "' (package linuxcnc-uspace): " + std::strerror(rc));
+  if (rc != 0)
+    throw Error("rs274", "cannot start '" + executable + "' (package linuxcnc-uspace): " + std::strerror(rc));
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
@@ -283,7 +284,8 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
       const Move& last = moves[o.last_move];
       const double dev = (m.to - last.to).cwiseAbs().maxCoeff();
       rep.max_deviation = std::max(rep.max_deviation, dev);
-      if (dev > precision) return fail(i, "ends " + std::to_string(dev) + " mm from the toolpath point (" + where(o) + ")");
+      if (dev > precision)
+        return fail(i, "ends " + std::to_string(dev) + " mm from the toolpath point (" + where(o) + ")");
       const bool rapid = last.type == MoveType::Rapid;
       if (rapid != m.rapid) return fail(i, "rapid/feed kind differs from " + where(o));
       if (!rapid && std::abs(m.feed - last.feed) > 0.05 + 1e-9)
@@ -291,7 +293,8 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
       if (m.is_arc()) {
         if (!std::isfinite(at.x())) return fail(i, "arc from an unknown position");
         for (int k = o.first_move; k < o.last_move; ++k) {
-          const double d = distance_to_arc(moves[k].to.head<2>(), at.head<2>(), m.to.head<2>(), m.centre, m.clockwise());
+          const double d =
+              distance_to_arc(moves[k].to.head<2>(), at.head<2>(), m.to.head<2>(), m.centre, m.clockwise());
           rep.max_deviation = std::max(rep.max_deviation, d);
           if (d > arc_tolerance + 2 * precision || std::abs(moves[k].to.z() - m.to.z()) > precision)
             return fail(i, "the arc passes " + std::to_string(d) + " mm from toolpath move " + std::to_string(k));
@@ -304,7 +307,8 @@ VerifyReport compare_with_job(const Program& program, const Job& job, const Rs27
     at = m.to;
   }
   if (c != rs.moves.size()) {
-    rep.problem = "rs274 produced " + std::to_string(rs.moves.size() - c) + " more moves than the program has motion lines";
+    rep.problem =
+        "rs274 produced " + std::to_string(rs.moves.size() - c) + " more moves than the program has motion lines";
     return rep;
   }
   // Moves shorter than the precision are left out of the program; any other toolpath move must be there.

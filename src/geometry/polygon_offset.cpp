@@ -17,7 +17,8 @@ constexpr double kScale = 1e6;
 cl::Path to_path(const std::vector<Vec2>& pts) {
   cl::Path p;
   p.reserve(pts.size());
-  for (const Vec2& v : pts) p.emplace_back(cl::cInt(std::llround(v.x() * kScale)), cl::cInt(std::llround(v.y() * kScale)));
+  for (const Vec2& v : pts)
+    p.emplace_back(cl::cInt(std::llround(v.x() * kScale)), cl::cInt(std::llround(v.y() * kScale)));
   return p;
 }
 

@@ -83,11 +83,11 @@ class GcodeBridge {
   }
 
   // The job through the program pipeline into program_dir; returns the file's path.
-  std::string write_program(const msg::ToolpathJob& msg, gcode::Program& program) {
-    if (msg.toolpaths.empty()) throw Error("job", "has no toolpath (none received on the toolpath topic yet?)");
+  std::string write_program(const msg::ToolpathJob& msg, const Job& job, gcode::Program& program) {
+    if (job.empty()) throw Error("job", "has no toolpath (none received on the toolpath topic yet?)");
     gcode::PostOptions options = post_;
     options.title = "rosmill gcode_bridge: " + msg.toolpaths[0].strategy + ", setup " + msg.toolpaths[0].setup;
-    program = gcode::prepare_program(from_job_msg(msg), options, checks_).program;
+    program = gcode::prepare_program(job, options, checks_).program;
     const std::string path = program_dir_ + "/rosmill-" + std::to_string(::ros::WallTime::now().sec) + "-" +
                              std::to_string(++program_counter_) + ".ngc";
     gcode::write_program(path, program);
@@ -102,15 +102,17 @@ class GcodeBridge {
     run_.reset();
     const std::string url = uri.empty() ? controller_ : uri;
     try {
+      const Job core_job = from_job_msg(job);
       gcode::Program program;
-      const std::string path = write_program(job, program);
+      const std::string path = write_program(job, core_job, program);
       control::SendOptions send;
       send.from_line = std::max<uint32_t>(from_line, 1);
       if (send.from_line > program.lines.size())
         throw Error("from_line", std::to_string(send.from_line) + " is past the program's " +
                                      std::to_string(program.lines.size()) + " lines");
       auto controller = control::open_controller(url, controller_options_);
-      board_.begin(url, path, program.lines.size(), program_placement(job, checks_.machine ? &*checks_.machine : nullptr));
+      const gcode::MachineLimits* machine = checks_.machine ? &*checks_.machine : nullptr;
+      board_.begin(url, path, program.lines.size(), program_placement(job, core_job, machine));
       run_ = std::make_unique<control::ProgramRun>(
           std::move(controller), program.lines, send, stall_timeout_,
           [this](const control::ControllerStatus& s, control::RunVerdict v) { board_.update(s, v); });

@@ -1,4 +1,5 @@
-// segmenter: segments the part for machining (Lefebvre & Lauwers). On every mesh (`mesh`, from stl_loader) it runs phase 1
+// segmenter: segments the part for machining (Lefebvre & Lauwers). On every mesh (`mesh`, from stl_loader) it runs
+// phase 1
 // (sharp-edge surface flooding and recombination, kept per mesh) and phase 2 for the current setup, and publishes
 // the msg::Segmentation latched on `segmentation` and the coloured patches on `segmentation_markers`. The
 // `set_setup` service re-runs only phase 2 for another setup.

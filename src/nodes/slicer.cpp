@@ -1,4 +1,5 @@
-// slicer: cuts every mesh (`mesh`, from stl_loader) by planes z = const (the STL slicing paper) and publishes the contours
+// slicer: cuts every mesh (`mesh`, from stl_loader) by planes z = const (the STL slicing paper) and publishes the
+// contours
 // latched on `slices` (msg::Slices) and as lines on `slice_markers`. The planes are every `interval` mm from the
 // mesh's lowest point, or `layers` evenly spaced planes when that parameter is above 0.
 #include <ros/ros.h>

@@ -2,7 +2,8 @@
 // stl_loader) or from a scan (`cloud_topic` PointCloud2, brought into the workpiece frame with tf2, waiting at most
 // tf_timeout for the transform, then prepared by the same input step as `rosmill plan`: parameters orient, origin,
 // voxel, outliers, holes, named after its options; origin defaults to keep, the frame tf gave). Strategies, presets
-// and templates by name (`presets`: the preset table, default presets.yaml next to the tool table). Publishes the job latched on `toolpath` (msg::ToolpathJob) and its view on `toolpath_markers`;
+// and templates by name (`presets`: the preset table, default presets.yaml next to the tool table). Publishes the job
+// latched on `toolpath` (msg::ToolpathJob) and its view on `toolpath_markers`;
 // replans on the `plan` service and the `plan_toolpath` action (several items, per-item results, progress
 // feedback, cancel) for another setup, strategy or tool. An input it rejects (no points, no transform, a broken
 // mesh) is logged and its reason is what a later plan request for that source is answered with.
@@ -136,7 +137,8 @@ class ToolpathPlanner {
       const PointCloud raw = from_cloud_msg(*msg, to_workpiece(msg->header), where);
       if (raw.points.empty()) throw Error(where, "has no finite points");
       CloudPrepReport report;
-      auto cloud = std::make_shared<const PointCloud>(prepare_input_cloud(raw.points, cloud_input_, option_prefix_, &report));
+      auto cloud =
+          std::make_shared<const PointCloud>(prepare_input_cloud(raw.points, cloud_input_, option_prefix_, &report));
       ROS_DEBUG("toolpath_planner: cloud prepared:\n%s", format_prep_report(report).c_str());
       accept(cloud_, cloud, "cloud");
       ROS_INFO("toolpath_planner: cloud of %zu points in %s", cloud->points.size(), frame_id_.c_str());
@@ -180,8 +182,8 @@ class ToolpathPlanner {
   static std::shared_ptr<const T> require(const Input<T>& input, const char* source) {
     if (input.value) return input.value;
     if (!input.rejected.empty())
-      throw Error("source " + std::string(source), "no usable " + std::string(source) + ": the last one was rejected: " +
-                                                       input.rejected);
+      throw Error("source " + std::string(source),
+                  "no usable " + std::string(source) + ": the last one was rejected: " + input.rejected);
     throw Error("source " + std::string(source), "no " + std::string(source) + " has been received");
   }
 

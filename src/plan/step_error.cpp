@@ -89,7 +89,8 @@ void sample_step_error(const Surface& s, const PlanFrame& f, const Vec2& a, cons
   // Never below the floor (the part's lowest point): a ball that touches the last of the surface with its side
   // would otherwise hang its tip below it, beyond the part.
   std::vector<Vec3> cl(n + 1);
-  for (size_t i = 0; i <= n; ++i) cl[i] = Vec3(xy[i].x(), xy[i].y(), std::max(drops[i].z, f.part.min.z()) + f.allowance);
+  for (size_t i = 0; i <= n; ++i)
+    cl[i] = Vec3(xy[i].x(), xy[i].y(), std::max(drops[i].z, f.part.min.z()) + f.allowance);
   std::vector<uint8_t> corner(n + 1, 0);
   corner[0] = corner[n] = 1;
   std::vector<uint32_t> kept;

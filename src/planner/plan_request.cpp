@@ -49,7 +49,8 @@ class InputSurface {
 Job run(const StrategyEntry& entry, const std::string& name, const PlanningRequest& r, InputSurface& surface,
         const PlanParams& params, const PlanProgress& progress) {
   if (entry.needs_mesh && !r.input.mesh)
-    throw Error("strategy " + name, "needs a mesh (an STL file), got a " + std::string(r.input.cloud ? "cloud" : "surface"));
+    throw Error("strategy " + name,
+                "needs a mesh (an STL file), got a " + std::string(r.input.cloud ? "cloud" : "surface"));
   PlanReport report;
   const StrategyCall call{entry.needs_mesh ? nullptr : &surface.get(), r.input.mesh, params, progress, &report};
   Job job = entry.function(call);
@@ -114,7 +115,8 @@ Job plan(const PlanningRequest& r) {
     const StrategyEntry& e = *find_strategy(r.strategy);
     return run(e, e.name, r, surface, r.params, r.progress);
   }
-  if (!tmpl) return run(entry_of(*preset, *r.presets), preset->name, r, surface, preset_params(*preset, r.params), r.progress);
+  if (!tmpl)
+    return run(entry_of(*preset, *r.presets), preset->name, r, surface, preset_params(*preset, r.params), r.progress);
   // A template: its stages in order, each with its preset's tool, progress weighted by the stages' shares.
   if (!tool_unset(r.params.tool))
     throw Error("template " + tmpl->name, "runs its presets' tools; give a tool to one of its stages instead");

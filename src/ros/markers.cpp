@@ -101,8 +101,8 @@ visualization_msgs::Marker pass_marker(const core::ToolpathPass& pass, Vec3 at, 
   return m;
 }
 
-visualization_msgs::Marker tool_marker(const core::Toolpath& tp, const SetupFrame& setup, const std_msgs::Header& header,
-                                       const std::string& ns) {
+visualization_msgs::Marker tool_marker(const core::Toolpath& tp, const SetupFrame& setup,
+                                       const std_msgs::Header& header, const std::string& ns) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::CYLINDER);
   const double length = tp.tool.cutter.flute_length > 0 ? tp.tool.cutter.flute_length : 4 * tp.tool.cutter.diameter;
   // The cylinder's centre sits half a flute above the tip; its axis is the setup's tool axis.

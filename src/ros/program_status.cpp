@@ -49,7 +49,8 @@ msg::ProgramStatus to_status_msg(const control::ControllerStatus& s, uint8_t sta
   return m;
 }
 
-ProgramPlacement program_placement(const msg::ToolpathJob& msg, const gcode::MachineLimits* machine) {
+ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
+                                   const gcode::MachineLimits* machine) {
   ProgramPlacement p;
   // The program is in the setup frame (the part re-fixtured); the status shows the tool on the part as it sits.
   Eigen::Quaterniond to_setup = Eigen::Quaterniond::Identity();
@@ -61,7 +62,7 @@ ProgramPlacement program_placement(const msg::ToolpathJob& msg, const gcode::Mac
   p.machine_to_workpiece = Eigen::Isometry3d(to_setup.normalized().conjugate()) *
                            Eigen::Translation3d(machine ? Vec3(-machine->work_offset) : Vec3::Zero());
   Box3 box;
-  for (const core::Toolpath& tp : from_job_msg(msg)) box.add(tp.bounds());
+  for (const core::Toolpath& tp : job) box.add(tp.bounds());
   const Vec3 centre = 0.5 * (box.min + box.max);
   p.anchor = to_point_msg(p.machine_to_workpiece.linear() * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
   return p;

@@ -43,7 +43,8 @@ void add_segments(visualization_msgs::Marker& lines, const core::Contour& c, dou
 
 }  // namespace
 
-msg::Slices to_slices_msg(const std::vector<core::SliceLayer>& layers, double interval_mm, const std_msgs::Header& header) {
+msg::Slices to_slices_msg(const std::vector<core::SliceLayer>& layers, double interval_mm,
+                          const std_msgs::Header& header) {
   msg::Slices m;
   m.header = header;
   m.interval = to_metres(interval_mm);
@@ -63,7 +64,8 @@ msg::Slices to_slices_msg(const std::vector<core::SliceLayer>& layers, double in
   return m;
 }
 
-visualization_msgs::MarkerArray slice_markers(const std::vector<core::SliceLayer>& layers, const std_msgs::Header& header) {
+visualization_msgs::MarkerArray slice_markers(const std::vector<core::SliceLayer>& layers,
+                                              const std_msgs::Header& header) {
   visualization_msgs::MarkerArray array;
   array.markers.push_back(delete_all_marker(header));
   for (size_t k = 0; k < layers.size(); ++k) {

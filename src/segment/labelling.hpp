@@ -37,7 +37,8 @@ std::vector<uint32_t> merge_small(std::vector<LabelPair>& graph, std::vector<dou
                                   std::vector<uint32_t> facets, const SizeRule& rule, double total_area,
                                   const std::vector<uint32_t>* group = nullptr);
 
-// Recombination (Lefebvre & Lauwers, section 3.2.2): every label smaller than the rule merges into the neighbour sharing the
+// Recombination (Lefebvre & Lauwers, section 3.2.2): every label smaller than the rule merges into the neighbour
+// sharing the
 // longest boundary with it, in rounds until none is left that has a neighbour. `group` (optional, per label)
 // makes a neighbour of the same group win over any other. Relabels compactly and returns the new count;
 // `pairs` receives the label pairs of the result (as label_pairs() would give them, in another order).

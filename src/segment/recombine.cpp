@@ -1,4 +1,5 @@
-// The recombination step of Lefebvre & Lauwers, "STL Model Segmentation for Multi-Axis Machining Operations Planning": patches too small to be machined on their own join the neighbour they
+// The recombination step of Lefebvre & Lauwers, "STL Model Segmentation for Multi-Axis Machining Operations Planning":
+// patches too small to be machined on their own join the neighbour they
 // share the longest boundary with. Works on labels, so phase 1 patches and phase 2 segments share it.
 #include <algorithm>
 

@@ -1,4 +1,5 @@
-// Phase 1 surface flooding (Lefebvre & Lauwers, section 3.2.2) as a linear pass: every manifold edge is tested once (both cores),
+// Phase 1 surface flooding (Lefebvre & Lauwers, section 3.2.2) as a linear pass: every manifold edge is tested once
+// (both cores),
 // then a union-find joins the facets across the edges that pass. A patch is then exactly the set of facets a
 // flood from any of its facets reaches, including facets first rejected through another edge (figs. 6, 7).
 #include <tbb/blocked_range.h>

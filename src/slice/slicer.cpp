@@ -142,7 +142,8 @@ class PlaneWalker {
     return entry;  // a face folded onto one edge crosses it twice
   }
 
-  // Equation 2 of the STL slicing paper for a plane z = h: S = (h - zs) / (ze - zs) from the end below to the end above.
+  // Equation 2 of the STL slicing paper for a plane z = h: S = (h - zs) / (ze - zs) from the end below to the end
+  // above.
   // A vertex on the plane is returned as is, so every chain through it meets there exactly.
   Vec2 crossing_point(uint32_t half_edge) const {
     const auto& t = mesh_.faces[half_edge / 3];

@@ -1,4 +1,5 @@
-// A 5 x 9 pixel bitmap font (7 above the baseline, 2 for descenders) for the labels of the pictures the verifier writes (digits, lower-case letters and the
+// A 5 x 9 pixel bitmap font (7 above the baseline, 2 for descenders) for the labels of the pictures the verifier writes
+// (digits, lower-case letters and the
 // signs numbers and units need). Private to src/verify.
 #pragma once
 

@@ -64,7 +64,8 @@ void refuse_unsimulated(const Block& b, const gcode::Place& where) {
       if (other >> k & 1u) throw Error(where.str(), refused_letter(static_cast<char>('A' + k)));
   for (int k = 0; k < b.g_count; ++k)
     if (!simulated_g(b.g[k]))
-      throw Error(where.str(), gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
+      throw Error(where.str(),
+                  gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
   for (int k = 0; k < b.m_count; ++k)
     if (!simulated_m(b.m[k])) refuse_m(b.m[k], where);
 }

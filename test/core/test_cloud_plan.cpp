@@ -47,7 +47,8 @@ PresetTable quick_presets() { return presets_with(2.5, 1.0); }
 constexpr double kTolerance = 0.01;  // the presets' t
 
 // The surface a plan at tolerance t builds (the sink allowed between points is t).
-CloudSurfaceOptions surface_options(double t = kTolerance, HolePolicy holes = HolePolicy::Bridge, double hole_cell = 0) {
+CloudSurfaceOptions surface_options(double t = kTolerance, HolePolicy holes = HolePolicy::Bridge,
+                                    double hole_cell = 0) {
   CloudSurfaceOptions o;
   o.max_sink = t;
   o.holes = holes;
@@ -79,7 +80,8 @@ size_t expect_rapids_above_clearance(const Toolpath& tp) {
     for (const Move& m : pass.moves) {
       if (m.type == MoveType::Rapid) {
         ++rapids;
-        EXPECT_GE(m.to.z(), tp.clearance_z - 1e-9) << tp.strategy << " " << pass.name << ": rapid to " << m.to.transpose();
+        EXPECT_GE(m.to.z(), tp.clearance_z - 1e-9)
+            << tp.strategy << " " << pass.name << ": rapid to " << m.to.transpose();
         if (m.to.head<2>() != at.head<2>()) {
           EXPECT_GE(at.z(), tp.clearance_z - 1e-9) << tp.strategy << " " << pass.name << ": sideways rapid from "
                                                     << at.transpose();

@@ -51,7 +51,8 @@ TEST(CloudPrep, RansacFindsTheBaseTableFacingUpWithTheOriginAtTheCorner) {
   CloudPrepReport r;
   const PointCloud c = prepare_cloud(scan, o, &r);
   ASSERT_EQ(c.points.size(), truth.size());
-  // PCL fits in float: positions within a micrometre. The table at z = 0, the block's top at z = 10 (normal +Z, most points above the plane).
+  // PCL fits in float: positions within a micrometre. The table at z = 0, the block's top at z = 10 (normal +Z, most
+  // points above the plane).
   size_t table = 0, top = 0;
   for (const Vec3& p : c.points) {
     ASSERT_TRUE(std::abs(p.z()) < 1e-3 || std::abs(p.z() - 10) < 1e-3) << p.transpose();

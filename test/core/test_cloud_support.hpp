@@ -60,7 +60,8 @@ inline double add_noise(std::vector<Vec3>& pts, double sigma, unsigned seed = 7)
 // The cutter eroded by r (every point at least r inside it), tip raised by r: a ball or flat end mill of radius
 // R - r. Used only for ball and flat cutters.
 inline Cutter eroded(const Cutter& c, double r) {
-  return c.type == rosmill::core::CutterType::BallEnd ? Cutter::ball(c.diameter - 2 * r) : Cutter::flat(c.diameter - 2 * r);
+  return c.type == rosmill::core::CutterType::BallEnd ? Cutter::ball(c.diameter - 2 * r)
+                                                      : Cutter::flat(c.diameter - 2 * r);
 }
 
 // The sampling bound of a cloud's drop against the mesh it was sampled from. The points lie within `eta` of the
@@ -75,8 +76,8 @@ struct Bound {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   bool misses = false;  // the grown cutter misses the mesh: the cloud's cutter touches nothing
 };
-inline Bound sampling_bound(const rosmill::core::MeshSurface& mesh, const rosmill::core::CloudSurface& cloud, const Cutter& c,
-                            double rho, double eta, double x, double y) {
+inline Bound sampling_bound(const rosmill::core::MeshSurface& mesh, const rosmill::core::CloudSurface& cloud,
+                            const Cutter& c, double rho, double eta, double x, double y) {
   Bound b;
   const double r = rho + eta;
   const rosmill::core::Drop lo = mesh.drop(eroded(c, r), x, y);
@@ -92,8 +93,8 @@ inline Bound sampling_bound(const rosmill::core::MeshSurface& mesh, const rosmil
 // touch there at its tip) and, lying on a level facet, a level edge or a corner, it has a sample at z0 within
 // rho in plan view. With noise the cloud's drop is then within [z0 - eta - h_S(rho + eta), z0 + eta] (h_S: the
 // height of S's underside at that distance). Ball cutters only; returns false where the ground is not level.
-inline bool level_ground(const rosmill::core::MeshSurface& mesh, const rosmill::core::CloudSurface& cloud, const Cutter& c,
-                         double rho, double eta, double x, double y, Bound& b) {
+inline bool level_ground(const rosmill::core::MeshSurface& mesh, const rosmill::core::CloudSurface& cloud,
+                         const Cutter& c, double rho, double eta, double x, double y, Bound& b) {
   const Cutter s = cloud.supported(c);
   const rosmill::core::CutterProfile sp(s);
   if (c.type != rosmill::core::CutterType::BallEnd || rho + eta > sp.R) return false;
@@ -117,7 +118,8 @@ class SortedPoints {
   // underside above p) over the points under its footprint; <= 0: clear. -inf when none is under it.
   double penetration(const Cutter& c, const Vec3& tip) const {
     const rosmill::core::CutterProfile cp(c);
-    auto lo = std::lower_bound(pts_.begin(), pts_.end(), tip.x() - cp.R, [](const Vec3& p, double x) { return p.x() < x; });
+    auto lo =
+        std::lower_bound(pts_.begin(), pts_.end(), tip.x() - cp.R, [](const Vec3& p, double x) { return p.x() < x; });
     double worst = -std::numeric_limits<double>::infinity();
     for (auto p = lo; p != pts_.end() && p->x() <= tip.x() + cp.R; ++p) {
       const double d2 = (p->head<2>() - tip.head<2>()).squaredNorm();

@@ -321,7 +321,8 @@ TEST(CloudSurface, RealModelCloudsWithinTheSamplingBoundOfTheMeshDropCutter) {
 }
 
 TEST(CloudSurface, EngineStrategiesRunOnACloud) {
-  // raster, waterline, rough and grid-rough through the Surface seam on a sampled dome: each gives cutting moves, and no
+  // raster, waterline, rough and grid-rough through the Surface seam on a sampled dome: each gives cutting moves, and
+  // no
   // cutter location puts the cutter into a point.
   const Mesh dome = make_primitive("dome");
   PointCloud cloud;

@@ -97,7 +97,8 @@ TEST(GcodeLexer, ErrorsNameTheLineAndWhatIsWrong) {
       {"O100 sub", "p.ngc:7: O-words"},
       {"G1 X1 $", "p.ngc:7: unexpected '$'"},
   };
-  for (const auto& [line, message] : cases) EXPECT_EQ(lex_error(line).rfind(message, 0), 0u) << line << ": " << lex_error(line);
+  for (const auto& [line, message] : cases)
+    EXPECT_EQ(lex_error(line).rfind(message, 0), 0u) << line << ": " << lex_error(line);
   try {
     lex_line("G1 X", Place{"", 3});
     ADD_FAILURE() << "accepted";

@@ -140,7 +140,8 @@ TEST(MachineLimits, WhatTheCheckCannotFollowIsRefusedWithTheLine) {
     }
     return std::string();
   };
-  EXPECT_EQ(error_of({"G1 Z-1 F100", "G18 G2 X10 Z-1 I5 K0"}), "line 6: arcs outside the XY plane (G17) are not followed");
+  EXPECT_EQ(error_of({"G1 Z-1 F100", "G18 G2 X10 Z-1 I5 K0"}),
+            "line 6: arcs outside the XY plane (G17) are not followed");
   EXPECT_EQ(error_of({"G93 G1 Z-1 F2"}), "line 5: inverse-time feed (G93) is not followed");
   EXPECT_EQ(error_of({"G1 Z-1 F100", "G2 X10 Y0 I3"}).rfind("line 6: radius to the end of the arc differs", 0), 0u);
   EXPECT_EQ(error_of({"G1 Z-1 F100 (open"}), "line 5: comment not closed with ')'");
@@ -150,7 +151,9 @@ TEST(MachineLimits, WhatTheCheckCannotFollowIsRefusedWithTheLine) {
 TEST(ModalScan, StateBeforeALineIsWhatTheControllerHas) {
   PostOptions o;
   o.arcs = true;
-  const Program p = post(Job{test::raster_toolpath(), test::revolution_contours("c", [](double) { return 20.0; }, 10, 5, 720)}, o);
+  const Program p = post(Job{test::raster_toolpath(), test::revolution_contours(
+                                                          "c", [](double) { return 20.0; }, 10, 5, 720)},
+                         o);
   size_t arc_line = 0;
   for (size_t i = 0; i < p.lines.size(); ++i)
     if (p.lines[i].rfind("G3", 0) == 0) arc_line = i;

@@ -1,5 +1,6 @@
 // Every strategy, preset and template (plan_names.hpp) on every bundled STL model of test/data (the inch models
-// read as inches, so scaled to mm), posted for LinuxCNC with arcs and for GRBL with lines: LinuxCNC's own interpreter (rs274 -g)
+// read as inches, so scaled to mm), posted for LinuxCNC with arcs and for GRBL with lines: LinuxCNC's own interpreter
+// (rs274 -g)
 // accepts each program and its canonical moves are the toolpath's within the output precision, and each program
 // keeps the bundled machine's limits (config/machine.yaml). Coarse on purpose to stay quick: a 6 mm ball (flat
 // for contour) at 6 mm stepover, 10 mm step-down, 0.1 mm tolerance; the cloud strategies take the model's

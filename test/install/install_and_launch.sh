@@ -47,7 +47,8 @@ for _ in $(seq 1 150); do
 done
 [ -n "$up" ] || { cat "$work/launch.log"; fail "the installed bridge did not come up"; }
 machine=$("${clean_env[@]}" rosparam get /gcode_bridge/machine)
-[ "$machine" = "$prefix/share/rosmill/config/machine.yaml" ] || fail "machine parameter is '$machine', not the install's"
+[ "$machine" = "$prefix/share/rosmill/config/machine.yaml" ] ||
+  fail "machine parameter is '$machine', not the install's"
 
 # Every node stops within 2 s of SIGINT (roslaunch escalates to SIGTERM otherwise). Prints the milliseconds taken.
 stop_within_2s() {

@@ -1,4 +1,5 @@
-// The test primitives of "Tool Path Generation for CNC Milling based on STL Files" (Eng. & Tech. Journal 33(A) 2, 2015), generated
+// The test primitives of "Tool Path Generation for CNC Milling based on STL Files" (Eng. & Tech. Journal 33(A) 2,
+// 2015), generated
 // with the paper's exact triangle counts: closed, consistently oriented (normals outward), in millimetres.
 #pragma once
 #include <string>

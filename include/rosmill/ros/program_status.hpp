@@ -10,6 +10,7 @@
 #include "rosmill/ToolpathJob.h"
 #include "rosmill/control/controller.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
+#include "rosmill/toolpath/job.hpp"
 
 namespace rosmill::edge {
 
@@ -29,7 +30,9 @@ struct ProgramPlacement {
   Eigen::Isometry3d machine_to_workpiece = Eigen::Isometry3d::Identity();
   geometry_msgs::Point anchor;
 };
-ProgramPlacement program_placement(const msg::ToolpathJob& msg, const gcode::MachineLimits* machine);
+// `msg` gives the setup the job was planned in, `job` (the same job, converted) its extent.
+ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
+                                   const gcode::MachineLimits* machine);
 
 // Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") above `anchor` (m) and, when the
 // position is known, a SPHERE at the tool tip.

@@ -1,4 +1,5 @@
-// The Extended Gaussian Image (Horn 1984; Lefebvre & Lauwers, section 3.3) of each surface patch: the facets' area summed per
+// The Extended Gaussian Image (Horn 1984; Lefebvre & Lauwers, section 3.3) of each surface patch: the facets' area
+// summed per
 // direction bin on the unit sphere. The bins are rings of equal polar angle cut into sectors whose count follows
 // the ring's circumference, so every bin has nearly the same area and a nearly square shape (unlike a plain
 // latitude-longitude grid, whose bins shrink to slivers at the poles).

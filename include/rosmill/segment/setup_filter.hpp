@@ -1,4 +1,5 @@
-// A setup filter (Lefebvre & Lauwers, section 3.3, fig. 9): the tool directions a workpiece setup allows, and so which facet
+// A setup filter (Lefebvre & Lauwers, section 3.3, fig. 9): the tool directions a workpiece setup allows, and so which
+// facet
 // normals it reaches. A facet is reachable when its outward normal makes at most `max_angle_deg` (90 by
 // default) with some allowed tool axis: with 90 degrees a vertical wall is reached by the cutter's side, an
 // undercut is not.

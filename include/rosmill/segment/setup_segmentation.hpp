@@ -1,4 +1,5 @@
-// Phase 2 of the segmentation (Lefebvre & Lauwers, "STL Model Segmentation for Multi-Axis Machining Operations Planning", section 3.3): each surface patch is pruned by a setup filter into the parts the
+// Phase 2 of the segmentation (Lefebvre & Lauwers, "STL Model Segmentation for Multi-Axis Machining Operations
+// Planning", section 3.3): each surface patch is pruned by a setup filter into the parts the
 // setup reaches and the parts it does not, then the recombination step runs again. The EGI decides whole
 // patches at once (every occupied bin inside or outside the filter); only patches whose EGI straddles the
 // filter's border are tested facet by facet, with the exact normal.

@@ -1,4 +1,5 @@
-// Phase 1 of the segmentation (Lefebvre & Lauwers, "STL Model Segmentation for Multi-Axis Machining Operations Planning", section 3.2.2): sharp-edge "surface flooding" of a mesh into surface
+// Phase 1 of the segmentation (Lefebvre & Lauwers, "STL Model Segmentation for Multi-Axis Machining Operations
+// Planning", section 3.2.2): sharp-edge "surface flooding" of a mesh into surface
 // patches, then the recombination step that merges patches too small to machine into their dominant neighbour.
 //
 // A facet joins its neighbour's patch across an edge when the length of the difference of the two unit normals

@@ -1,4 +1,5 @@
-// Z slicing of a mesh into closed, oriented, nested contours ("Tool Path Generation for CNC Milling based on STL Files" (Eng. & Tech. Journal 33(A) 2, 2015), "The Slicing Process").
+// Z slicing of a mesh into closed, oriented, nested contours ("Tool Path Generation for CNC Milling based on STL Files"
+// (Eng. & Tech. Journal 33(A) 2, 2015), "The Slicing Process").
 //
 // A plane z = h meets a triangle where an edge goes from below the plane to above it (the paper's equations 1 and 2
 // with the plane's normal along Z). Degenerate cases are decided by one symbolic rule, never by a tolerance: a

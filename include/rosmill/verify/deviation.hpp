@@ -40,7 +40,8 @@ struct DeviationReport {
   double mean_rest_mm = 0.0;
   // Scallop: the highest rest of the cells the finishing tool (the last tool) cut that lie within stepover/2 of its
   // path (R/2 when the stepover is unknown) where the design is nearly flat (slope under 0.2) within the cutter
-  // radius, since the theory is for a flat floor and material a cutter cannot reach by a wall is no scallop. Theory: the profile at s/2.
+  // radius, since the theory is for a flat floor and material a cutter cannot reach by a wall is no scallop. Theory:
+  // the profile at s/2.
   double scallop_mm = 0.0;
   double scallop_theory_mm = -1.0;  // -1 when the stepover is unknown
   double stepover_mm = 0.0;
