@@ -6,7 +6,10 @@
 // latched on `toolpath` (msg::ToolpathJob) and its view on `toolpath_markers`;
 // replans on the `plan` service and the `plan_toolpath` action (several items, per-item results, progress
 // feedback, cancel) for another setup, strategy or tool. An input it rejects (no points, no transform, a broken
-// mesh) is logged and its reason is what a later plan request for that source is answered with.
+// mesh) is logged, reported on /diagnostics, and its reason is what a later plan request for that source is
+// answered with. A toolpath for a setup other than +Z is stamped with the setup's frame, published on tf.
+// Planning on input is cancelled by a newer input and by shutdown; it and the plan service stop after
+// `service_time_limit` seconds (the plan_toolpath action has no limit: it reports progress and can be cancelled).
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -16,10 +19,11 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <atomic>
+#include <chrono>
+#include <filesystem>
 #include <memory>
 #include <mutex>
-
-#include <filesystem>
 
 #include "rosmill/Plan.h"
 #include "rosmill/PlanToolpathAction.h"
@@ -28,9 +32,12 @@
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/finish_goal.hpp"
+#include "rosmill/ros/input_diagnostics.hpp"
+#include "rosmill/ros/input_slot.hpp"
 #include "rosmill/ros/markers.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
+#include "rosmill/ros/setup_frames.hpp"
 
 namespace rosmill::edge {
 namespace {
@@ -77,13 +84,6 @@ PresetTable presets_param(const ::ros::NodeHandle& pnh) {
   return read_presets(path);
 }
 
-// The latest accepted input of one kind, or why the latest one was rejected.
-template <typename T>
-struct Input {
-  std::shared_ptr<const T> value;
-  std::string rejected;
-};
-
 class ToolpathPlanner {
  public:
   ToolpathPlanner(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
@@ -99,8 +99,10 @@ class ToolpathPlanner {
         option_prefix_(pnh.resolveName("") + "/"),
         tf_timeout_(double_param(pnh, "tf_timeout", 1.0, 0.0, 30.0)),
         rapid_feed_(double_param(pnh, "rapid_feed", 5000.0, 1.0, 1e6)),
+        time_limit_(double_param(pnh, "service_time_limit", 30.0, 0.001, 86400.0)),
         plan_on_input_(bool_param(pnh, "plan_on_input", true)),
         tf_listener_(tf_buffer_),
+        diagnostics_(nh),
         action_(nh, "plan_toolpath", [this](const PlanToolpathGoalConstPtr& goal) { on_goal(goal); }, false) {
     tools_.get(tool_id_);  // the default tool must exist
     named_setup(setup_, "parameter " + pnh.resolveName("setup"));
@@ -123,11 +125,11 @@ class ToolpathPlanner {
     try {
       auto mesh = std::make_shared<const Mesh>(from_mesh_msg(*msg, "mesh"));
       if (mesh->faces.empty()) throw Error("mesh", "has no triangles");
-      accept(mesh_, mesh, "mesh");
-      ROS_INFO("toolpath_planner: mesh of %zu triangles", mesh->faces.size());
-      if (plan_on_input_) plan_and_publish("mesh");
+      mesh_.accept(mesh);
+      accepted("mesh", std::to_string(mesh->faces.size()) + " triangles");
     } catch (const std::exception& e) {
-      reject(mesh_, e.what());
+      mesh_.reject(e.what());
+      rejected("mesh", e.what());
     }
   }
 
@@ -140,29 +142,30 @@ class ToolpathPlanner {
       auto cloud =
           std::make_shared<const PointCloud>(prepare_input_cloud(raw.points, cloud_input_, option_prefix_, &report));
       ROS_DEBUG("toolpath_planner: cloud prepared:\n%s", format_prep_report(report).c_str());
-      accept(cloud_, cloud, "cloud");
-      ROS_INFO("toolpath_planner: cloud of %zu points in %s", cloud->points.size(), frame_id_.c_str());
-      if (plan_on_input_) plan_and_publish("cloud");
+      cloud_.accept(cloud);
+      accepted("cloud", std::to_string(cloud->points.size()) + " points in " + frame_id_);
     } catch (const std::exception& e) {
-      reject(cloud_, e.what());
+      cloud_.reject(e.what());
+      rejected("cloud", e.what());
     }
   }
 
-  template <typename T>
-  void accept(Input<T>& input, std::shared_ptr<const T> value, const char* source) {
-    std::lock_guard<std::mutex> lock(input_mutex_);
-    input.value = std::move(value);
-    input.rejected.clear();
-    latest_ = source;
+  // A new input (accepted or not) supersedes the plan of the one before, which stops at its next progress check.
+  void accepted(const char* source, const std::string& summary) {
+    const uint64_t generation = ++inputs_;
+    {
+      std::lock_guard<std::mutex> lock(latest_mutex_);
+      latest_ = source;
+    }
+    ROS_INFO("toolpath_planner: %s of %s", source, summary.c_str());
+    diagnostics_.accepted(source, summary);
+    if (plan_on_input_) plan_and_publish(source, generation);
   }
 
-  // A rejected input replaces the one before: planning on an older scan of a part that has moved would be wrong.
-  template <typename T>
-  void reject(Input<T>& input, const std::string& why) {
+  void rejected(const char* source, const std::string& why) {
+    ++inputs_;
     ROS_ERROR("toolpath_planner: %s", why.c_str());
-    std::lock_guard<std::mutex> lock(input_mutex_);
-    input.value.reset();
-    input.rejected = why;
+    diagnostics_.rejected(source, why);
   }
 
   // The cloud frame -> workpiece frame transform, waiting at most tf_timeout for it.
@@ -178,31 +181,22 @@ class ToolpathPlanner {
                                                                std::to_string(tf_timeout_) + " s (" + why + ")");
   }
 
-  template <typename T>
-  static std::shared_ptr<const T> require(const Input<T>& input, const char* source) {
-    if (input.value) return input.value;
-    if (!input.rejected.empty())
-      throw Error("source " + std::string(source),
-                  "no usable " + std::string(source) + ": the last one was rejected: " + input.rejected);
-    throw Error("source " + std::string(source), "no " + std::string(source) + " has been received");
-  }
-
   // Plans one item (throws Error with the reason); `progress` may cancel.
   PlanOutcome plan_item(const msg::PlanItem& item, const PlanProgress& progress) {
     std::shared_ptr<const Mesh> mesh;
     std::shared_ptr<const PointCloud> cloud;
     std::string source = item.source;
-    {
-      std::lock_guard<std::mutex> lock(input_mutex_);
-      if (source.empty()) source = latest_;
-      if (source.empty()) throw Error("plan", "no input yet: publish a mesh or a cloud first");
-      if (source == "mesh")
-        mesh = require(mesh_, "mesh");
-      else if (source == "cloud")
-        cloud = require(cloud_, "cloud");
-      else
-        throw Error("source", "must be \"mesh\", \"cloud\" or empty, got \"" + source + "\"");
+    if (source.empty()) {
+      std::lock_guard<std::mutex> lock(latest_mutex_);
+      source = latest_;
     }
+    if (source.empty()) throw Error("plan", "no input yet: publish a mesh or a cloud first");
+    if (source == "mesh")
+      mesh = mesh_.require();
+    else if (source == "cloud")
+      cloud = cloud_.require();
+    else
+      throw Error("source", "must be \"mesh\", \"cloud\" or empty, got \"" + source + "\"");
     PlanOutcome out;
     out.setup = resolve_setup(item.setup, from_direction_msg(item.direction));
     const std::string strategy = !item.strategy.empty() ? item.strategy : (mesh ? strategy_ : cloud_strategy_);
@@ -222,8 +216,9 @@ class ToolpathPlanner {
     input.cloud = cloud.get();
     if (cloud) input.holes = cloud_hole_policy(cloud_input_, option_prefix_);
     out.job = plan(request);
+    // The toolpath is in the setup's frame; the markers are drawn back in the workpiece frame.
     std_msgs::Header header;
-    header.frame_id = frame_id_;
+    header.frame_id = setup_frames_.publish(frame_id_, out.setup);
     header.stamp = ::ros::Time::now();
     out.job_msg = to_job_msg(out.job, out.setup, header);
     out.statistics = to_statistics_msg(out.job, (::ros::WallTime::now() - t0).toSec(), rapid_feed_);
@@ -232,22 +227,45 @@ class ToolpathPlanner {
 
   void publish(const PlanOutcome& out) {
     job_pub_.publish(out.job_msg);
-    marker_pub_.publish(toolpath_markers(out.job, out.setup, out.job_msg.header));
+    std_msgs::Header header = out.job_msg.header;
+    header.frame_id = frame_id_;
+    marker_pub_.publish(toolpath_markers(out.job, out.setup, header));
     ROS_INFO("toolpath_planner: %u toolpaths, %u moves for setup %s in %.3f s", out.statistics.toolpaths,
              out.statistics.moves, out.setup.name.c_str(), out.statistics.planning_time);
   }
 
-  // A plan in a callback ends with the node: SIGINT cancels it (roslaunch escalates to SIGTERM after a while).
-  static bool stop_at_shutdown(double) { return ::ros::ok(); }
+  // Progress for the plans outside the action: stops at shutdown, at the time limit, and (for a plan on input)
+  // when a newer input arrives. `timed_out` tells the caller which of them it was.
+  PlanProgress limited(std::shared_ptr<std::atomic<bool>> timed_out, uint64_t generation = 0) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(time_limit_);
+    return [this, timed_out, generation, deadline](double) {
+      if (generation != 0 && inputs_.load() != generation) return false;
+      if (std::chrono::steady_clock::now() > deadline) {
+        *timed_out = true;
+        return false;
+      }
+      return ::ros::ok();
+    };
+  }
 
-  void plan_and_publish(const std::string& source) {
+  std::string over_time_limit() const {
+    return "stopped after the time limit of " + std::to_string(time_limit_) +
+           " s for plans outside the action (parameter service_time_limit): plan it with the plan_toolpath "
+           "action, which reports progress and can be cancelled";
+  }
+
+  void plan_and_publish(const std::string& source, uint64_t generation) {
     msg::PlanItem item;
     item.setup = setup_;
     item.source = source;
+    auto timed_out = std::make_shared<std::atomic<bool>>(false);
     try {
-      publish(plan_item(item, stop_at_shutdown));
+      publish(plan_item(item, limited(timed_out, generation)));
     } catch (const std::exception& e) {
-      ROS_ERROR("toolpath_planner: %s", e.what());
+      if (inputs_.load() != generation)
+        ROS_INFO("toolpath_planner: the plan of the %s before was superseded by a newer input", source.c_str());
+      else
+        ROS_ERROR("toolpath_planner: %s", *timed_out ? ("plan: " + over_time_limit()).c_str() : e.what());
     }
   }
 
@@ -257,7 +275,14 @@ class ToolpathPlanner {
 
   bool on_plan(Plan::Request& req, Plan::Response& res) {
     try {
-      PlanOutcome out = plan_item(item_of(req), stop_at_shutdown);
+      auto timed_out = std::make_shared<std::atomic<bool>>(false);
+      PlanOutcome out;
+      try {
+        out = plan_item(item_of(req), limited(timed_out));
+      } catch (const Error&) {
+        if (*timed_out) throw Error("plan", over_time_limit());
+        throw;
+      }
       if (!req.preview) publish(out);
       res.job = std::move(out.job_msg);
       res.statistics = out.statistics;
@@ -339,16 +364,19 @@ class ToolpathPlanner {
   PresetTable presets_;
   CloudInputOptions cloud_input_;
   std::string option_prefix_;
-  double tf_timeout_, rapid_feed_;
+  double tf_timeout_, rapid_feed_, time_limit_;
   bool plan_on_input_;
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
+  InputDiagnostics diagnostics_;
+  SetupFramePublisher setup_frames_;
   actionlib::SimpleActionServer<PlanToolpathAction> action_;
   ::ros::WallTime last_feedback_;
-  std::mutex input_mutex_;
-  Input<Mesh> mesh_;
-  Input<PointCloud> cloud_;
-  std::string latest_;
+  InputSlot<Mesh> mesh_{"mesh"};
+  InputSlot<PointCloud> cloud_{"cloud"};
+  std::atomic<uint64_t> inputs_{0};  // inputs received (accepted or not)
+  std::mutex latest_mutex_;
+  std::string latest_;               // the source last accepted: what a plan without `source` plans
   ::ros::Publisher job_pub_, marker_pub_;
   ::ros::Subscriber mesh_sub_, cloud_sub_;
   ::ros::ServiceServer plan_srv_;

@@ -3,6 +3,7 @@
 #include <sensor_msgs/point_cloud2_iterator.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "rosmill/error.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
@@ -75,16 +76,60 @@ const sensor_msgs::PointField* find_field(const sensor_msgs::PointCloud2& msg, c
   return nullptr;
 }
 
+size_t field_bytes(uint8_t datatype) {
+  return datatype == sensor_msgs::PointField::FLOAT32 ? 4 : datatype == sensor_msgs::PointField::FLOAT64 ? 8 : 0;
+}
+
+// Checks that every x, y and z read lies inside the message: the layout fields (point_step, row_step, offsets)
+// come from the sender and are not trusted. All products are taken in 64 bits from 32-bit factors: no overflow.
+void check_cloud_layout(const sensor_msgs::PointCloud2& msg, const std::string& where) {
+  if (msg.is_bigendian) throw Error(where, "is big-endian; only little-endian clouds are read");
+  const uint64_t row_bytes = uint64_t(msg.width) * msg.point_step;
+  if (msg.point_step == 0) throw Error(where, "has point_step 0 for " + std::to_string(msg.width) + " points a row");
+  for (const char* name : {"x", "y", "z"}) {
+    const sensor_msgs::PointField& f = *find_field(msg, name);
+    const size_t bytes = field_bytes(f.datatype);
+    if (bytes == 0)
+      throw Error(where, std::string("field ") + name + " must be float32 or float64 (datatype " +
+                             std::to_string(f.datatype) + ")");
+    if (uint64_t(f.offset) + bytes > msg.point_step)
+      throw Error(where, std::string("field ") + name + " at offset " + std::to_string(f.offset) + " (" +
+                             std::to_string(bytes) + " bytes) lies beyond point_step " +
+                             std::to_string(msg.point_step));
+  }
+  if (msg.height > 1 && msg.row_step < row_bytes)
+    throw Error(where, "has row_step " + std::to_string(msg.row_step) + ", less than width x point_step = " +
+                           std::to_string(row_bytes));
+  const uint64_t stride = msg.height > 1 ? msg.row_step : row_bytes;
+  const uint64_t needed = (uint64_t(msg.height) - 1) * stride + row_bytes;
+  if (msg.data.size() < needed)
+    throw Error(where, "holds " + std::to_string(msg.data.size()) + " bytes; " + std::to_string(msg.height) +
+                           " row(s) of " + std::to_string(msg.width) + " points of " +
+                           std::to_string(msg.point_step) + " bytes need " + std::to_string(needed));
+}
+
+template <typename T>
+double read_coordinate(const uint8_t* point, uint32_t offset) {
+  T v;
+  std::memcpy(&v, point + offset, sizeof v);
+  return double(v);
+}
+
+// Points row by row (a row may be padded past width x point_step), into `out` in the target frame, in mm.
 template <typename T>
 void read_points(const sensor_msgs::PointCloud2& msg, const Eigen::Isometry3d& to_target, PointCloud& out) {
-  sensor_msgs::PointCloud2ConstIterator<T> x(msg, "x"), y(msg, "y"), z(msg, "z");
-  const size_t n = size_t(msg.width) * msg.height;
-  out.points.reserve(n);
+  const uint32_t ox = find_field(msg, "x")->offset, oy = find_field(msg, "y")->offset,
+                 oz = find_field(msg, "z")->offset;
+  const size_t stride = msg.height > 1 ? msg.row_step : size_t(msg.width) * msg.point_step;
+  out.points.reserve(size_t(msg.width) * msg.height);
   const Eigen::Matrix3d r = to_target.linear() * kMmPerMetre;
   const Vec3 t = to_target.translation() * kMmPerMetre;
-  for (size_t i = 0; i < n; ++i, ++x, ++y, ++z) {
-    const Vec3 p{double(*x), double(*y), double(*z)};
-    if (p.allFinite()) out.points.push_back(r * p + t);
+  for (size_t row = 0; row < msg.height; ++row) {
+    const uint8_t* point = msg.data.data() + row * stride;
+    for (size_t i = 0; i < msg.width; ++i, point += msg.point_step) {
+      const Vec3 p{read_coordinate<T>(point, ox), read_coordinate<T>(point, oy), read_coordinate<T>(point, oz)};
+      if (p.allFinite()) out.points.push_back(r * p + t);
+    }
   }
 }
 
@@ -98,17 +143,13 @@ PointCloud from_cloud_msg(const sensor_msgs::PointCloud2& msg, const Eigen::Isom
   if (!fx || !fy || !fz) throw Error(where, "has no x, y and z fields");
   if (fx->datatype != fy->datatype || fx->datatype != fz->datatype)
     throw Error(where, "x, y and z fields have different types");
-  const size_t n = size_t(msg.width) * msg.height;
-  if (msg.data.size() < n * msg.point_step)
-    throw Error(where, "holds " + std::to_string(msg.data.size()) + " bytes, " + std::to_string(n) + " points of " +
-                           std::to_string(msg.point_step) + " bytes need more");
   PointCloud out;
+  if (uint64_t(msg.width) * msg.height == 0) return out;
+  check_cloud_layout(msg, where);
   if (fx->datatype == sensor_msgs::PointField::FLOAT32)
     read_points<float>(msg, to_target, out);
-  else if (fx->datatype == sensor_msgs::PointField::FLOAT64)
-    read_points<double>(msg, to_target, out);
   else
-    throw Error(where, "x, y, z must be float32 or float64 (datatype " + std::to_string(fx->datatype) + ")");
+    read_points<double>(msg, to_target, out);
   out.recompute_bbox();
   return out;
 }

@@ -1,6 +1,10 @@
 // rostest node for test/ros/planner_services.test: the toolpath planner answers bad input with errors and keeps
 // running; a mesh plans differently for the +Z and the -X setups; the PlanToolpath action reports and cancels.
 #include <actionlib/client/simple_action_client.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <shape_msgs/Mesh.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -34,6 +38,17 @@ Plan call_plan(const std::string& setup, const std::string& strategy = "", int t
   srv.request.tool_id = tool_id;
   srv.request.source = source;
   EXPECT_TRUE(ros::service::call("plan", srv)) << "the plan service is gone";
+  return srv;
+}
+
+// Asks for a plan of `source` until its answer contains `text` (the planner takes an input asynchronously).
+Plan plan_until(const std::string& source, const std::string& text, double timeout_s = 20.0) {
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  Plan srv = call_plan("+Z", "", 0, source);
+  while (srv.response.message.find(text) == std::string::npos && ros::WallTime::now() < end) {
+    ros::WallDuration(0.05).sleep();
+    srv = call_plan("+Z", "", 0, source);
+  }
   return srv;
 }
 
@@ -77,6 +92,89 @@ TEST_F(PlannerServices, CloudWithoutTransformIsRejected) {
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("no transform to 'workpiece'"), std::string::npos) << srv.response.message;
   expect_alive();
+}
+
+sensor_msgs::PointCloud2 xyz_cloud(uint32_t width, uint32_t point_step, size_t bytes) {
+  sensor_msgs::PointCloud2 m;
+  m.header.frame_id = "workpiece";
+  m.height = 1;
+  m.width = width;
+  m.point_step = point_step;
+  m.row_step = width * point_step;
+  for (const char* name : {"x", "y", "z"}) {
+    sensor_msgs::PointField f;
+    f.name = name;
+    f.offset = uint32_t(4 * m.fields.size());
+    f.datatype = sensor_msgs::PointField::FLOAT32;
+    f.count = 1;
+    m.fields.push_back(f);
+  }
+  m.data.assign(bytes, 0);
+  return m;
+}
+
+// Layouts whose reads would fall outside the message (each crashed the planner once) are rejected with the reason,
+// and the planner stays up; the rejection is on /diagnostics too.
+TEST_F(PlannerServices, HostileCloudLayoutsAreRejected) {
+  ros::Publisher pub = nh.advertise<sensor_msgs::PointCloud2>("/scan/points", 1, true);
+  Latest<diagnostic_msgs::DiagnosticArray> diagnostics(nh, "/diagnostics");
+  pub.publish(xyz_cloud(1, 0, 0));
+  Plan srv = plan_until("cloud", "point_step 0");
+  EXPECT_NE(srv.response.message.find("point_step 0"), std::string::npos) << srv.response.message;
+  expect_alive();
+
+  sensor_msgs::PointCloud2 far_field = xyz_cloud(1, 12, 12);
+  far_field.fields[2].offset = 1000000;
+  pub.publish(far_field);
+  srv = plan_until("cloud", "offset 1000000");
+  EXPECT_NE(srv.response.message.find("field z at offset 1000000 (4 bytes) lies beyond point_step 12"),
+            std::string::npos) << srv.response.message;
+  expect_alive();
+
+  sensor_msgs::PointCloud2 short_rows = xyz_cloud(4, 12, 48);
+  short_rows.height = 2;  // two rows announced, one held
+  pub.publish(short_rows);
+  srv = plan_until("cloud", "bytes;");
+  EXPECT_NE(srv.response.message.find("holds 48 bytes; 2 row(s) of 4 points of 12 bytes need 96"), std::string::npos)
+      << srv.response.message;
+
+  sensor_msgs::PointCloud2 big_endian = xyz_cloud(4, 12, 48);
+  big_endian.is_bigendian = true;
+  pub.publish(big_endian);
+  srv = plan_until("cloud", "big-endian");
+  EXPECT_NE(srv.response.message.find("big-endian"), std::string::npos) << srv.response.message;
+  expect_alive();
+
+  bool reported = false;
+  for (int i = 0; i < 200 && !reported; ++i) {
+    if (auto d = diagnostics.wait(5.0))
+      for (const auto& status : d->status)
+        reported |= status.name.find("toolpath_planner") != std::string::npos &&
+                    status.message.find("big-endian") != std::string::npos &&
+                    status.level == diagnostic_msgs::DiagnosticStatus::WARN;
+    if (!reported) ros::WallDuration(0.05).sleep();
+  }
+  EXPECT_TRUE(reported) << "no WARN diagnostic of toolpath_planner naming the rejected cloud";
+}
+
+// The plan service and planning on input stop at service_time_limit and point to the action (the `limited`
+// planner of planner_services.test has a limit of 0.05 s).
+TEST_F(PlannerServices, ServicePlansStopAtTheTimeLimit) {
+  ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/limited/mesh", 1, true);
+  pub.publish(edge::to_mesh_msg(make_primitive("dome")));
+  ASSERT_TRUE(ros::service::waitForService("/limited/plan", ros::Duration(20.0)));
+  Plan srv;
+  srv.request.setup = "+Z";
+  srv.request.source = "mesh";
+  srv.request.tool_id = 3;
+  srv.request.parameters.stepover = 0.00005;  // minutes of work at 0.05 mm over the dome
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  do {
+    ASSERT_TRUE(ros::service::call("/limited/plan", srv));
+  } while (srv.response.message.find("no mesh") != std::string::npos && ros::WallTime::now() < end);
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("plan_toolpath action"), std::string::npos) << srv.response.message;
+  EXPECT_TRUE(ros::service::waitForService("/limited/plan", ros::Duration(2.0)));
 }
 
 TEST_F(PlannerServices, InvalidRequestsGetReasons) {
@@ -276,6 +374,19 @@ TEST_F(PlannerServices, PlusZAndMinusXSetupsGiveDifferentToolpaths) {
   EXPECT_EQ(z.response.job.toolpaths[0].setup, "+Z");
   EXPECT_EQ(x.response.job.toolpaths[0].setup, "-X");
   EXPECT_NEAR(x.response.job.toolpaths[0].tool_axis.x, -1.0, 1e-9);
+  // Each is stamped with the frame it is in: +Z is the workpiece frame, -X its own frame on tf, whose +Z (the tool
+  // axis) is the workpiece's -X: the retract height lies on the -X side of the cone (radius 25 mm).
+  EXPECT_EQ(z.response.job.header.frame_id, "workpiece");
+  EXPECT_EQ(x.response.job.header.frame_id, "workpiece_setup_mx");
+  EXPECT_EQ(x.response.job.toolpaths[0].header.frame_id, "workpiece_setup_mx");
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  ASSERT_TRUE(buffer.canTransform("workpiece", "workpiece_setup_mx", ros::Time(0), ros::Duration(10.0)));
+  const Eigen::Isometry3d t =
+      tf2::transformToEigen(buffer.lookupTransform("workpiece", "workpiece_setup_mx", ros::Time(0)));
+  EXPECT_TRUE((t.linear() * Vec3::UnitZ()).isApprox(Vec3(-1, 0, 0), 1e-9));
+  const double clearance = x.response.job.toolpaths[0].clearance_z;
+  EXPECT_LT((t * Vec3(0, 0, clearance)).x(), -0.025);
   // The cone seen from the side (-X) is a triangle 50 mm wide and 60 mm tall; from above a 50 mm disc: the toolpath
   // bounds in the setup frame differ.
   const auto& bz = z.response.statistics;

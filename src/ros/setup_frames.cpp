@@ -1,0 +1,45 @@
+#include "rosmill/ros/setup_frames.hpp"
+
+#include <geometry_msgs/TransformStamped.h>
+
+#include <cctype>
+#include <cmath>
+
+namespace rosmill::edge {
+namespace {
+
+std::string thousandths(double v) {
+  const long n = std::lround(v * 1000.0);
+  return (n < 0 ? "m" : "") + std::to_string(std::labs(n));
+}
+
+}  // namespace
+
+std::string setup_frame_id(const std::string& workpiece, const SetupFrame& setup) {
+  if (setup.identity()) return workpiece;
+  const std::string& n = setup.name;
+  if (n.size() == 2 && (n[0] == '+' || n[0] == '-'))
+    return workpiece + "_setup_" + (n[0] == '+' ? "p" : "m") + char(std::tolower(static_cast<unsigned char>(n[1])));
+  const Vec3& d = setup.tool_axis;
+  return workpiece + "_setup_d" + thousandths(d.x()) + "_" + thousandths(d.y()) + "_" + thousandths(d.z());
+}
+
+std::string SetupFramePublisher::publish(const std::string& workpiece, const SetupFrame& setup) {
+  const std::string id = setup_frame_id(workpiece, setup);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (id == workpiece || !sent_.insert(id).second) return id;
+  // A point p in the setup frame is to_setup^-1 p in the workpiece frame: that rotation is the child's pose.
+  const Eigen::Quaterniond q = setup.to_setup.conjugate();
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ::ros::Time::now();
+  t.header.frame_id = workpiece;
+  t.child_frame_id = id;
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  broadcaster_.sendTransform(t);
+  return id;
+}
+
+}  // namespace rosmill::edge
