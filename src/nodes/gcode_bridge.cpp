@@ -190,7 +190,9 @@ class GcodeBridge {
     const std::string why = start_run(job, goal->controller, goal->from_line);
     if (!why.empty()) {
       result.message = why;
-      result.status = board_.copy();
+      // Not the board's status: that is the run before, which this goal did not start.
+      result.status = refused_status(goal->controller.empty() ? controller_ : goal->controller, why);
+      result.status.header.frame_id = board_.copy().header.frame_id;
       action_.setAborted(result, why);
       return;
     }

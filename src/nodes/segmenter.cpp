@@ -11,6 +11,7 @@
 #include "rosmill/SetSetup.h"
 #include "rosmill/error.hpp"
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/input_diagnostics.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 #include "rosmill/ros/segmentation_msg.hpp"
@@ -31,7 +32,8 @@ class Segmenter {
  public:
   Segmenter(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
       : frame_id_(string_param(pnh, "frame_id", "workpiece")),
-        max_angle_deg_(double_param(pnh, "max_angle_deg", 90.0, 1.0, 180.0)) {
+        max_angle_deg_(double_param(pnh, "max_angle_deg", 90.0, 1.0, 180.0)),
+        diagnostics_(nh) {
     options_.threshold = double_param(pnh, "normal_threshold", options_.threshold, 1e-6, 2.0);
     options_.small.min_area_fraction =
         double_param(pnh, "min_area_fraction", options_.small.min_area_fraction, 0.0, 0.5);
@@ -56,8 +58,11 @@ class Segmenter {
       ROS_INFO("segmenter: %zu facets, %zu surface patches in %.3f s", part_->mesh.faces.size(),
                part_->patches.count(), (::ros::WallTime::now() - t0).toSec());
       publish();
+      diagnostics_.accepted("mesh", std::to_string(part_->mesh.faces.size()) + " facets, " +
+                                        std::to_string(part_->patches.count()) + " surface patches");
     } catch (const std::exception& e) {
       ROS_ERROR("segmenter: %s", e.what());
+      diagnostics_.rejected("mesh", e.what());
     }
   }
 
@@ -77,7 +82,7 @@ class Segmenter {
 
   bool on_set_setup(SetSetup::Request& req, SetSetup::Response& res) {
     try {
-      const double max_angle_deg = req.max_angle == 0.0 ? max_angle_deg_ : req.max_angle * 180.0 / M_PI;
+      const double max_angle_deg = req.max_angle == 0.0 ? max_angle_deg_ : max_angle_in_degrees(req.max_angle);
       filter_ = setup_filter_of(req.setup, from_direction_msg(req.direction), max_angle_deg,
                                 req.setup.empty() ? "direction" : "setup");
       res.success = true;
@@ -90,12 +95,24 @@ class Segmenter {
       for (const segment::Segment& s : seg.segments()) res.reachable_patches += s.reachable ? 1 : 0;
       res.reachable_fraction = seg.reachable_fraction();
       res.message = "setup " + filter_.name + ": " + std::to_string(res.patches) + " patches";
+      diagnostics_.accepted("set_setup request", res.message);
     } catch (const std::exception& e) {  // the setup in force stays
       res.success = false;
       res.message = e.what();
       ROS_WARN("segmenter: set_setup: %s", e.what());
+      diagnostics_.rejected("set_setup request", e.what());
     }
     return true;
+  }
+
+  // The request's max_angle (radians) in degrees, in the range of the max_angle_deg parameter.
+  static double max_angle_in_degrees(double radians) {
+    constexpr double kMin = 1.0 * M_PI / 180.0;
+    if (!(radians >= kMin && radians <= M_PI))
+      throw Error("max_angle", "must be between " + std::to_string(kMin) + " and " + std::to_string(M_PI) +
+                                   " rad (1 to 180 degrees; 0: the node's max_angle_deg), got " +
+                                   std::to_string(radians) + " rad");
+    return radians * 180.0 / M_PI;
   }
 
   std::string frame_id_;
@@ -103,6 +120,7 @@ class Segmenter {
   segment::SegmentOptions options_;
   segment::SetupFilter filter_;
   std::unique_ptr<SegmentedPart> part_;
+  InputDiagnostics diagnostics_;
   ::ros::Publisher segmentation_pub_, marker_pub_;
   ::ros::Subscriber mesh_sub_;
   ::ros::ServiceServer service_;

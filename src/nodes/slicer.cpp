@@ -7,6 +7,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/input_diagnostics.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 #include "rosmill/ros/slices_msg.hpp"
@@ -20,7 +21,8 @@ class Slicer {
   Slicer(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
       : frame_id_(string_param(pnh, "frame_id", "workpiece")),
         interval_(double_param(pnh, "interval", 2.0, 1e-3, 1e4)),
-        layers_(int_param(pnh, "layers", 0, 0, 100000)) {
+        layers_(int_param(pnh, "layers", 0, 0, 100000)),
+        diagnostics_(nh) {
     slices_pub_ = nh.advertise<msg::Slices>("slices", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("slice_markers", 1, true);
     mesh_sub_ = nh.subscribe("mesh", 1, &Slicer::on_mesh, this);
@@ -44,14 +46,18 @@ class Slicer {
       const SliceSummary sum = summarize(layers);
       ROS_INFO("slicer: %zu layers, %zu contours (%zu open), %zu points in %.3f s", sum.layers, sum.contours,
                sum.open_contours, sum.points, (::ros::WallTime::now() - t0).toSec());
+      diagnostics_.accepted("mesh", std::to_string(sum.layers) + " layers, " + std::to_string(sum.contours) +
+                                        " contours");
     } catch (const std::exception& e) {
       ROS_ERROR("slicer: %s", e.what());
+      diagnostics_.rejected("mesh", e.what());
     }
   }
 
   std::string frame_id_;
   double interval_;
   int layers_;
+  InputDiagnostics diagnostics_;
   ::ros::Publisher slices_pub_, marker_pub_;
   ::ros::Subscriber mesh_sub_;
 };

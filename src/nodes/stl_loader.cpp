@@ -1,8 +1,15 @@
 // stl_loader: reads an STL part (the `path` parameter at start-up, or the load_mesh service at any time) and
-// publishes it latched as shape_msgs/Mesh on `mesh` (metres, frame `frame_id`) and as a marker on `mesh_marker`.
+// publishes it latched as shape_msgs/Mesh on `mesh` (metres) and as a marker on `mesh_marker`, both in the
+// pipeline's frame `frame_id` (the workpiece). shape_msgs/Mesh has no header, so a part whose coordinates are in
+// another frame (load_mesh's frame_id) is moved into the pipeline's frame with tf2 before it is published: every
+// node downstream (segmentation, slices, toolpaths) then sees it where it is. Loads accepted and refused are on
+// /diagnostics.
 // A path "primitive:<name>" loads a test primitive of the STL slicing paper (cube, cylinder, dome, cone, cavity).
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/Marker.h>
 
 #include "rosmill/LoadMesh.h"
@@ -10,6 +17,7 @@
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/input_diagnostics.hpp"
 #include "rosmill/ros/markers.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
@@ -22,7 +30,10 @@ class StlLoader {
   StlLoader(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
       : frame_id_(string_param(pnh, "frame_id", "workpiece")),
         units_(string_param(pnh, "units", "mm")),
-        weld_tolerance_(double_param(pnh, "weld_tolerance", 0.0, 0.0, 1.0)) {
+        weld_tolerance_(double_param(pnh, "weld_tolerance", 0.0, 0.0, 1.0)),
+        tf_timeout_(double_param(pnh, "tf_timeout", 1.0, 0.0, 30.0)),
+        tf_listener_(tf_buffer_),
+        diagnostics_(nh) {
     parse_units(units_, "parameter units");  // validate now, not at the first load
     mesh_pub_ = nh.advertise<shape_msgs::Mesh>("mesh", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::Marker>("mesh_marker", 1, true);
@@ -34,6 +45,7 @@ class StlLoader {
       load(path, units_, frame_id_);
     } catch (const std::exception& e) {
       ROS_ERROR("stl_loader: parameter %s: %s", pnh.resolveName("path").c_str(), e.what());
+      diagnostics_.rejected("part", e.what());
     }
   }
 
@@ -51,14 +63,35 @@ class StlLoader {
     else
       mesh = read_stl(path, options);
     if (mesh.faces.empty()) throw Error(path, "holds no triangles");
+    if (frame != frame_id_) mesh = transformed(mesh, to_pipeline_frame(frame));
     std_msgs::Header header;
-    header.frame_id = frame;
+    header.frame_id = frame_id_;
     header.stamp = ::ros::Time::now();
     mesh_pub_.publish(to_mesh_msg(mesh));
     marker_pub_.publish(mesh_marker(mesh, header, "part", rgba(0.7f, 0.7f, 0.75f, 1.0f)));
     ROS_INFO("stl_loader: %s: %zu triangles, %zu vertices, in %.3f s", path.c_str(), mesh.faces.size(),
              mesh.vertices.size(), (::ros::WallTime::now() - t0).toSec());
+    diagnostics_.accepted("part", path + ": " + std::to_string(mesh.faces.size()) + " triangles");
     return mesh;
+  }
+
+  // Where `frame` sits in the pipeline's frame, waiting at most tf_timeout for it.
+  Eigen::Isometry3d to_pipeline_frame(const std::string& frame) {
+    std::string why;
+    if (!tf_buffer_.canTransform(frame_id_, frame, ::ros::Time(0), ::ros::Duration(tf_timeout_), &why))
+      throw Error("frame_id '" + frame + "'", "no transform to '" + frame_id_ + "' came within " +
+                                                  std::to_string(tf_timeout_) + " s (" + why + ")");
+    return tf2::transformToEigen(tf_buffer_.lookupTransform(frame_id_, frame, ::ros::Time(0)));
+  }
+
+  // The mesh with every vertex moved by `t` (metres on tf, millimetres in the mesh).
+  static Mesh transformed(const Mesh& mesh, const Eigen::Isometry3d& t) {
+    std::vector<Vec3> corners;
+    corners.reserve(3 * mesh.faces.size());
+    const Vec3 shift = to_mm(1.0) * t.translation();
+    for (const auto& face : mesh.faces)
+      for (int i = 0; i < 3; ++i) corners.push_back(t.linear() * mesh.vertices[face[i]] + shift);
+    return build_mesh(corners);
   }
 
   bool on_load(LoadMesh::Request& req, LoadMesh::Response& res) {
@@ -75,13 +108,17 @@ class StlLoader {
       res.success = false;
       res.message = e.what();
       ROS_WARN("stl_loader: %s", e.what());
+      diagnostics_.rejected("part", e.what());
     }
     return true;
   }
 
   std::string frame_id_;
   std::string units_;
-  double weld_tolerance_;
+  double weld_tolerance_, tf_timeout_;
+  tf2_ros::Buffer tf_buffer_;
+  tf2_ros::TransformListener tf_listener_;
+  InputDiagnostics diagnostics_;
   ::ros::Publisher mesh_pub_, marker_pub_;
   ::ros::ServiceServer service_;
 };

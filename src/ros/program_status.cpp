@@ -34,6 +34,16 @@ const char* status_state_name(uint8_t state) {
   return "unknown";
 }
 
+msg::ProgramStatus refused_status(const std::string& controller, const std::string& why) {
+  msg::ProgramStatus m;
+  m.header.stamp = ::ros::Time::now();
+  m.state = msg::ProgramStatus::ERROR;
+  m.state_name = status_state_name(m.state);
+  m.controller = controller;
+  m.last_error = why;
+  return m;
+}
+
 msg::ProgramStatus to_status_msg(const control::ControllerStatus& s, uint8_t state,
                                const Eigen::Isometry3d& machine_to_workpiece) {
   msg::ProgramStatus m;

@@ -40,13 +40,13 @@ clean_env=(env -i HOME="$work" PATH="$prefix/bin:/usr/bin:/bin" ROS_PACKAGE_PATH
 launch_pid=$!
 up=""
 for _ in $(seq 1 150); do
-  if "${clean_env[@]}" rosnode list 2>/dev/null | grep -qx /gcode_bridge &&
-     "${clean_env[@]}" rosservice list 2>/dev/null | grep -qx /gcode_bridge/start; then up=1; break; fi
+  if "${clean_env[@]}" rosnode list 2>/dev/null | grep -qx /rosmill/gcode_bridge &&
+     "${clean_env[@]}" rosservice list 2>/dev/null | grep -qx /rosmill/gcode_bridge/start; then up=1; break; fi
   kill -0 "$launch_pid" 2>/dev/null || break
   sleep 0.2
 done
 [ -n "$up" ] || { cat "$work/launch.log"; fail "the installed bridge did not come up"; }
-machine=$("${clean_env[@]}" rosparam get /gcode_bridge/machine)
+machine=$("${clean_env[@]}" rosparam get /rosmill/gcode_bridge/machine)
 [ "$machine" = "$prefix/share/rosmill/config/machine.yaml" ] ||
   fail "machine parameter is '$machine', not the install's"
 
@@ -62,8 +62,9 @@ stop_within_2s() {
   echo "$ms"
 }
 
-# The installed planner, run by hand against the same master with the installed tool table.
-(cd "$work" && exec "${clean_env[@]}" "$prefix/lib/rosmill/toolpath_planner" \
+# The installed planner, started by rosrun (which finds the install's nodes) against the same master with the
+# installed tool table; rosrun execs the node, so the pid is the node's.
+(cd "$work" && exec "${clean_env[@]}" rosrun rosmill toolpath_planner \
    _tool_table:="$prefix/share/rosmill/config/tools.yaml" >"$work/planner.log" 2>&1) &
 planner_pid=$!
 for _ in $(seq 1 150); do

@@ -159,6 +159,17 @@ TEST_F(Bridge, RunIntoAFolder) {
   size_t feeds = 0;
   for (const std::string& line : posted) feeds += line.rfind("G1", 0) == 0 || line.find(" G1 ") != std::string::npos;
   EXPECT_GE(feeds, 1u);
+
+  // A goal refused after that run reports its own refusal, not the finished run's state and progress.
+  goal.controller = "nonsense://x";
+  ASSERT_EQ(run(client, goal), State::ABORTED);
+  result = client.getResult();
+  EXPECT_FALSE(result->success);
+  EXPECT_EQ(result->status.state, msg::ProgramStatus::ERROR);
+  EXPECT_EQ(result->status.progress, 0.0f);
+  EXPECT_EQ(result->status.acknowledged_line, 0u);
+  EXPECT_EQ(result->status.last_error, result->message);
+  EXPECT_NE(result->message.find("nonsense"), std::string::npos) << result->message;
 }
 
 // Status messages of one run, with their arrival times.

@@ -151,6 +151,11 @@ TEST_F(Pipeline, InvalidSetupsAreRefused) {
   SetSetup angle = set_setup("+Z", Vec3::Zero(), -1.0);
   EXPECT_FALSE(angle.response.success);
   EXPECT_NE(angle.response.message.find("angle"), std::string::npos) << angle.response.message;
+  // Sent in radians, reported in radians and named as the request's field.
+  SetSetup huge = set_setup("+Z", Vec3::Zero(), 1e9);
+  EXPECT_FALSE(huge.response.success);
+  EXPECT_EQ(huge.response.message.rfind("max_angle: ", 0), 0u) << huge.response.message;
+  EXPECT_NE(huge.response.message.find("got 1000000000.000000 rad"), std::string::npos) << huge.response.message;
   SetSetup tilted = set_setup("", Vec3(1, 0, 1));  // a valid custom direction
   EXPECT_TRUE(tilted.response.success) << tilted.response.message;
   expect_all_nodes_up();
@@ -325,6 +330,14 @@ TEST_F(Pipeline, BadLoadsAreRefusedAndTheNodesStayUp) {
   ASSERT_TRUE(ros::service::call("load_mesh", garbage));
   EXPECT_FALSE(garbage.response.success);
   EXPECT_NE(garbage.response.message.find("pcl_bunny.pcd"), std::string::npos) << garbage.response.message;
+
+  // A part in a frame tf does not know is refused: publishing it in the workpiece frame would put it elsewhere.
+  LoadMesh lost;
+  lost.request.path = "primitive:cube";
+  lost.request.frame_id = "nowhere";
+  ASSERT_TRUE(ros::service::call("load_mesh", lost));
+  EXPECT_FALSE(lost.response.success);
+  EXPECT_NE(lost.response.message.find("no transform to 'workpiece'"), std::string::npos) << lost.response.message;
   expect_all_nodes_up();
 }
 
@@ -356,6 +369,40 @@ TEST_F(Pipeline, ARealModelReachesEveryNode) {
       EXPECT_GE(move.position.z, load.response.bounds_min.z - 1e-9);
       EXPECT_LE(move.position.z, j->toolpaths[0].clearance_z + 1e-9);
     }
+  expect_all_nodes_up();
+}
+
+// A part given in another frame (the fixture, 10 mm along x from the workpiece origin in pipeline.test) is moved
+// into the workpiece frame before it is published: the toolpath that every node downstream plans is where the
+// part is, not where its file's numbers say.
+TEST_F(Pipeline, APartInAnotherFrameIsPlacedWhereItIs) {
+  Latest<msg::ToolpathJob> job(nh, "toolpath");
+  ASSERT_TRUE(job.wait(5.0));
+  const size_t j0 = job.count();
+  LoadMesh plain, moved;
+  plain.request.path = moved.request.path = "primitive:cube";
+  moved.request.frame_id = "fixture";
+  ASSERT_TRUE(ros::service::call("load_mesh", plain));
+  ASSERT_TRUE(plain.response.success) << plain.response.message;
+  ASSERT_TRUE(ros::service::call("load_mesh", moved));
+  ASSERT_TRUE(moved.response.success) << moved.response.message;
+  EXPECT_NEAR(moved.response.bounds_min.x - plain.response.bounds_min.x, 0.010, 1e-9);
+  EXPECT_NEAR(moved.response.bounds_max.x - plain.response.bounds_max.x, 0.010, 1e-9);
+  EXPECT_NEAR(moved.response.bounds_min.y, plain.response.bounds_min.y, 1e-9);
+  // The plan of the plain cube may come first (or be superseded): wait for the one centred on the moved cube.
+  auto centre_x = [](const msg::ToolpathJob& m) {
+    double lo = 1e9, hi = -1e9;
+    for (const auto& tp : m.toolpaths)
+      for (const auto& pass : tp.passes)
+        for (const auto& move : pass.moves)
+          if (move.move_type != msg::ToolpathMove::RAPID) lo = std::min(lo, move.position.x), hi = std::max(hi, move.position.x);
+    return (lo + hi) / 2;
+  };
+  boost::shared_ptr<const msg::ToolpathJob> j;
+  const double cube_x = (moved.response.bounds_min.x + moved.response.bounds_max.x) / 2;
+  for (size_t seen = j0; (j = job.wait(30.0, seen)) && std::abs(centre_x(*j) - cube_x) > 1e-3;) seen = job.count();
+  ASSERT_TRUE(j) << "no toolpath centred on the cube where the fixture holds it";
+  EXPECT_EQ(j->header.frame_id, "workpiece");
   expect_all_nodes_up();
 }
 

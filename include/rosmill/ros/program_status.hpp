@@ -18,6 +18,9 @@ namespace rosmill::edge {
 uint8_t status_state(control::RunState s);
 const char* status_state_name(uint8_t state);
 
+// The status a refused run reports: ERROR with the reason, nothing run (progress 0), whatever ran before.
+msg::ProgramStatus refused_status(const std::string& controller, const std::string& why);
+
 // `machine_to_workpiece` (mm) takes the controller's machine position to the workpiece frame: minus the work
 // offset (config/machine.yaml), then back from the setup frame the program was posted in.
 msg::ProgramStatus to_status_msg(const control::ControllerStatus& status, uint8_t state,
