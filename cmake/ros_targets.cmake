@@ -54,6 +54,12 @@ if(CATKIN_ENABLE_TESTING)
   foreach(rostest_file ${ROSMILL_ROSTESTS})
     add_rostest(${rostest_file})
   endforeach()
+  # rosrun finds the nodes of the build (through the devel/ link scripts/build makes beside build/).
+  if(CATKIN_DEVEL_PREFIX STREQUAL "${CMAKE_CURRENT_SOURCE_DIR}/build/devel")
+    add_test(NAME rosrun_finds_nodes COMMAND rosrun --prefix echo rosmill toolpath_planner)
+    set_tests_properties(rosrun_finds_nodes PROPERTIES
+      PASS_REGULAR_EXPRESSION "/devel/lib/rosmill/toolpath_planner" FAIL_REGULAR_EXPRESSION "Couldn't find")
+  endif()
   get_property(rosmill_all_tests DIRECTORY PROPERTY TESTS)
   foreach(t ${rosmill_all_tests})
     if(t MATCHES "^_ctest_rosmill_rostest_")

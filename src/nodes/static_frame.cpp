@@ -4,7 +4,6 @@
 //   parent, child   frame names (different, not empty)
 //   xyz             [x, y, z] in metres
 //   rpy             [roll, pitch, yaw] in radians (fixed axes X, then Y, then Z)
-#include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
@@ -12,6 +11,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
+#include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 
@@ -28,18 +28,7 @@ class StaticFrame {
     const Vec3 xyz = vector_param(pnh, "xyz"), rpy = vector_param(pnh, "rpy");
     const Eigen::Quaterniond q = Eigen::AngleAxisd(rpy.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(rpy.y(), Vec3::UnitY()) *
                                  Eigen::AngleAxisd(rpy.x(), Vec3::UnitX());
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = ::ros::Time::now();
-    t.header.frame_id = parent;
-    t.child_frame_id = child;
-    t.transform.translation.x = xyz.x();
-    t.transform.translation.y = xyz.y();
-    t.transform.translation.z = xyz.z();
-    t.transform.rotation.x = q.x();
-    t.transform.rotation.y = q.y();
-    t.transform.rotation.z = q.z();
-    t.transform.rotation.w = q.w();
-    broadcaster_.sendTransform(t);
+    broadcaster_.sendTransform(to_transform_msg(parent, child, q, xyz));
     ROS_INFO("static_frame: %s in %s at [%g %g %g] m, rpy [%g %g %g] rad", child.c_str(), parent.c_str(), xyz.x(),
              xyz.y(), xyz.z(), rpy.x(), rpy.y(), rpy.z());
   }

@@ -7,7 +7,6 @@
 // A path "primitive:<name>" loads a test primitive of the STL slicing paper (cube, cylinder, dome, cone, cavity).
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
-#include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/Marker.h>
@@ -21,6 +20,7 @@
 #include "rosmill/ros/markers.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
+#include "rosmill/ros/transform_wait.hpp"
 
 namespace rosmill::edge {
 namespace {
@@ -63,7 +63,9 @@ class StlLoader {
     else
       mesh = read_stl(path, options);
     if (mesh.faces.empty()) throw Error(path, "holds no triangles");
-    if (frame != frame_id_) mesh = transformed(mesh, to_pipeline_frame(frame));
+    if (frame != frame_id_)
+      mesh = transformed(mesh, wait_for_transform(tf_buffer_, frame_id_, frame, ::ros::Time(0), tf_timeout_,
+                                                  "frame_id '" + frame + "'"));
     std_msgs::Header header;
     header.frame_id = frame_id_;
     header.stamp = ::ros::Time::now();
@@ -73,15 +75,6 @@ class StlLoader {
              mesh.vertices.size(), (::ros::WallTime::now() - t0).toSec());
     diagnostics_.accepted("part", path + ": " + std::to_string(mesh.faces.size()) + " triangles");
     return mesh;
-  }
-
-  // Where `frame` sits in the pipeline's frame, waiting at most tf_timeout for it.
-  Eigen::Isometry3d to_pipeline_frame(const std::string& frame) {
-    std::string why;
-    if (!tf_buffer_.canTransform(frame_id_, frame, ::ros::Time(0), ::ros::Duration(tf_timeout_), &why))
-      throw Error("frame_id '" + frame + "'", "no transform to '" + frame_id_ + "' came within " +
-                                                  std::to_string(tf_timeout_) + " s (" + why + ")");
-    return tf2::transformToEigen(tf_buffer_.lookupTransform(frame_id_, frame, ::ros::Time(0)));
   }
 
   // The mesh with every vertex moved by `t` (metres on tf, millimetres in the mesh).

@@ -14,14 +14,12 @@
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <shape_msgs/Mesh.h>
-#include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <atomic>
 #include <chrono>
-#include <filesystem>
 #include <memory>
 #include <mutex>
 
@@ -38,6 +36,7 @@
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 #include "rosmill/ros/setup_frames.hpp"
+#include "rosmill/ros/transform_wait.hpp"
 
 namespace rosmill::edge {
 namespace {
@@ -61,28 +60,6 @@ struct PlanOutcome {
   msg::ToolpathJob job_msg;
   msg::PlanStatistics statistics;
 };
-
-// The cloud input step's options, as parameters named after the command line's.
-CloudInputOptions cloud_input_param(const ::ros::NodeHandle& pnh) {
-  CloudInputOptions o;
-  o.orient = string_param(pnh, "orient", o.orient);
-  o.origin = string_param(pnh, "origin", "keep");  // the cloud is already in the workpiece frame (tf)
-  o.voxel = double_param(pnh, "voxel", o.voxel, 0.0, 1000.0);
-  o.outliers = int_param(pnh, "outliers", o.outliers, 0, 1000);
-  o.holes = string_param(pnh, "holes", o.holes);
-  const std::string prefix = pnh.resolveName("") + "/";
-  cloud_prep_options(o, prefix);  // refuses a bad value at start-up
-  cloud_hole_policy(o, prefix);
-  return o;
-}
-
-// The preset table: the `presets` parameter, else presets.yaml next to the tool table (config/).
-PresetTable presets_param(const ::ros::NodeHandle& pnh) {
-  std::string path = string_param(pnh, "presets", "");
-  if (path.empty())
-    path = (std::filesystem::path(string_param(pnh, "tool_table", "")).parent_path() / "presets.yaml").string();
-  return read_presets(path);
-}
 
 class ToolpathPlanner {
  public:
@@ -171,14 +148,8 @@ class ToolpathPlanner {
   // The cloud frame -> workpiece frame transform, waiting at most tf_timeout for it.
   Eigen::Isometry3d to_workpiece(const std_msgs::Header& header) {
     if (header.frame_id.empty() || header.frame_id == frame_id_) return Eigen::Isometry3d::Identity();
-    std::string why;
-    if (tf_buffer_.canTransform(frame_id_, header.frame_id, header.stamp, ::ros::Duration(tf_timeout_), &why))
-      return tf2::transformToEigen(tf_buffer_.lookupTransform(frame_id_, header.frame_id, header.stamp));
-    // A cloud stamped a little after the latest transform of a fixed sensor is still usable with the latest one.
-    if (tf_buffer_.canTransform(frame_id_, header.frame_id, ::ros::Time(0), &why))
-      return tf2::transformToEigen(tf_buffer_.lookupTransform(frame_id_, header.frame_id, ::ros::Time(0)));
-    throw Error("cloud in frame '" + header.frame_id + "'", "no transform to '" + frame_id_ + "' came within " +
-                                                               std::to_string(tf_timeout_) + " s (" + why + ")");
+    return wait_for_transform(tf_buffer_, frame_id_, header.frame_id, header.stamp, tf_timeout_,
+                              "cloud in frame '" + header.frame_id + "'");
   }
 
   // Plans one item (throws Error with the reason); `progress` may cancel.

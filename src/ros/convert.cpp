@@ -23,6 +23,22 @@ geometry_msgs::Point to_point_msg(const Vec3& mm) {
 
 Vec3 from_point_msg(const geometry_msgs::Point& m) { return {to_mm(m.x), to_mm(m.y), to_mm(m.z)}; }
 
+geometry_msgs::TransformStamped to_transform_msg(const std::string& parent, const std::string& child,
+                                                 const Eigen::Quaterniond& rotation, const Vec3& translation_m) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = ::ros::Time::now();
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation.x = translation_m.x();
+  t.transform.translation.y = translation_m.y();
+  t.transform.translation.z = translation_m.z();
+  t.transform.rotation.x = rotation.x();
+  t.transform.rotation.y = rotation.y();
+  t.transform.rotation.z = rotation.z();
+  t.transform.rotation.w = rotation.w();
+  return t;
+}
+
 geometry_msgs::Vector3 to_direction_msg(const Vec3& v) {
   geometry_msgs::Vector3 m;
   m.x = v.x();

@@ -1,5 +1,7 @@
 #include "rosmill/ros/params.hpp"
 
+#include <filesystem>
+
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cmath>
@@ -78,6 +80,26 @@ PlanParams plan_defaults_param(const ::ros::NodeHandle& nh) {
   p.stock_margin = double_param(nh, "planner/stock_margin", p.stock_margin, 0.0, 500.0);
   p.safe_clearance = double_param(nh, "planner/safe_clearance", p.safe_clearance, 0.5, 500.0);
   return p;
+}
+
+CloudInputOptions cloud_input_param(const ::ros::NodeHandle& nh) {
+  CloudInputOptions o;
+  o.orient = string_param(nh, "orient", o.orient);
+  o.origin = string_param(nh, "origin", "keep");  // the cloud is already in the workpiece frame (tf)
+  o.voxel = double_param(nh, "voxel", o.voxel, 0.0, 1000.0);
+  o.outliers = int_param(nh, "outliers", o.outliers, 0, 1000);
+  o.holes = string_param(nh, "holes", o.holes);
+  const std::string prefix = nh.resolveName("") + "/";
+  cloud_prep_options(o, prefix);
+  cloud_hole_policy(o, prefix);
+  return o;
+}
+
+PresetTable presets_param(const ::ros::NodeHandle& nh) {
+  std::string path = string_param(nh, "presets", "");
+  if (path.empty())
+    path = (std::filesystem::path(string_param(nh, "tool_table", "")).parent_path() / "presets.yaml").string();
+  return read_presets(path);
 }
 
 }  // namespace rosmill::edge

@@ -1,6 +1,6 @@
 #include "rosmill/ros/setup_frames.hpp"
 
-#include <geometry_msgs/TransformStamped.h>
+#include "rosmill/ros/convert.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -29,16 +29,7 @@ std::string SetupFramePublisher::publish(const std::string& workpiece, const Set
   std::lock_guard<std::mutex> lock(mutex_);
   if (id == workpiece || !sent_.insert(id).second) return id;
   // A point p in the setup frame is to_setup^-1 p in the workpiece frame: that rotation is the child's pose.
-  const Eigen::Quaterniond q = setup.to_setup.conjugate();
-  geometry_msgs::TransformStamped t;
-  t.header.stamp = ::ros::Time::now();
-  t.header.frame_id = workpiece;
-  t.child_frame_id = id;
-  t.transform.rotation.x = q.x();
-  t.transform.rotation.y = q.y();
-  t.transform.rotation.z = q.z();
-  t.transform.rotation.w = q.w();
-  broadcaster_.sendTransform(t);
+  broadcaster_.sendTransform(to_transform_msg(workpiece, id, setup.to_setup.conjugate(), Vec3::Zero()));
   return id;
 }
 

@@ -11,6 +11,7 @@
 
 #include <boost/function.hpp>
 #include <cstdlib>
+#include <fstream>
 #include <mutex>
 #include <string>
 
@@ -71,6 +72,35 @@ inline bool node_answers(const std::string& node) {
                   int(reply[0]) == 1;
   client.close();
   return ok;
+}
+
+// The process id of a running node (its XML-RPC getPid), or 0.
+inline int node_pid(const std::string& node) {
+  XmlRpc::XmlRpcValue args, result, payload;
+  args[0] = ros::this_node::getName();
+  args[1] = node;
+  if (!ros::master::execute("lookupNode", args, result, payload, false)) return 0;
+  std::string host;
+  uint32_t port = 0;
+  if (!ros::network::splitURI(std::string(payload), host, port)) return 0;
+  XmlRpc::XmlRpcClient client(host.c_str(), int(port), "/");
+  XmlRpc::XmlRpcValue ping, reply;
+  ping[0] = ros::this_node::getName();
+  int pid = 0;
+  if (client.execute("getPid", ping, reply) && reply.getType() == XmlRpc::XmlRpcValue::TypeArray &&
+      int(reply[0]) == 1)
+    pid = int(reply[2]);
+  client.close();
+  return pid;
+}
+
+// The peak resident memory of a process in MB (VmHWM of /proc/PID/status), or -1.
+inline double peak_rss_mb(int pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
+  return -1.0;
 }
 
 // Plays a recorded bag into this test's master once every topic has a subscriber (PLATFORM_NOTES pitfall 5);

@@ -172,6 +172,33 @@ TEST_F(Bridge, RunIntoAFolder) {
   EXPECT_NE(result->message.find("nonsense"), std::string::npos) << result->message;
 }
 
+// Text from a message never becomes a block: a tool name and a strategy and pass name with newlines and G-code in
+// them (a G0 into the table) are written as inert comment text (rosmill post's sanitiser for the dialect).
+TEST_F(Bridge, NamesCannotInjectBlocks) {
+  std::string folder;
+  ASSERT_TRUE(ros::param::get("~folder", folder));
+  std::filesystem::create_directories(folder);
+  RunProgramGoal goal;
+  goal.job = square_job();
+  goal.job.toolpaths[0].tool.name = "flat\nG0 Z-40\n(";
+  goal.job.toolpaths[0].strategy = "raster)\rG0 Z-41\n";
+  goal.job.toolpaths[0].passes[0].name = "p\nG0 Z-42;x";
+  goal.controller = "file://" + folder;
+  ASSERT_EQ(run(client, goal), State::SUCCEEDED) << client.getResult()->message;
+  const std::vector<std::string> posted = gcode::read_program_lines(client.getResult()->program);
+  ASSERT_FALSE(posted.empty());
+  for (const std::string& line : posted) {
+    for (const char* injected : {"Z-40", "Z-41", "Z-42"}) {
+      const size_t at = line.find(injected);
+      if (at == std::string::npos) continue;
+      const size_t open = line.rfind('(', at);
+      EXPECT_TRUE(open != std::string::npos && line.find(')', open) > at) << "injected text outside a comment: " << line;
+    }
+    EXPECT_EQ(std::count(line.begin(), line.end(), '('), std::count(line.begin(), line.end(), ')')) << line;
+    EXPECT_EQ(line.find_first_of("\r\n;"), std::string::npos) << line;
+  }
+}
+
 // Status messages of one run, with their arrival times.
 struct StatusLog {
   std::mutex mutex;

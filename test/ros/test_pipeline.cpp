@@ -18,6 +18,9 @@
 #include "rosmill/ros/markers.hpp"
 #include "rostest_support.hpp"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
@@ -303,41 +306,36 @@ TEST_F(Pipeline, ToolpathMarkersShowPassesMoveTypesAndTool) {
   EXPECT_TRUE(used.count(0) && used.count(1)) << "rapids and feeds are both drawn";
 }
 
+// Asks stl_loader for a load that must be refused at once, with `expect` in the reason.
+void expect_refused_load(const std::string& path, const std::string& expect, const std::string& units = "",
+                         const std::string& frame_id = "") {
+  LoadMesh load;
+  load.request.path = path;
+  load.request.units = units;
+  load.request.frame_id = frame_id;
+  const ros::WallTime t0 = ros::WallTime::now();
+  ASSERT_TRUE(ros::service::call("load_mesh", load)) << "stl_loader is gone";
+  EXPECT_FALSE(load.response.success) << path;
+  EXPECT_NE(load.response.message.find(expect), std::string::npos) << load.response.message;
+  EXPECT_LT((ros::WallTime::now() - t0).toSec(), 10.0) << path << " was not refused at once";
+}
+
 TEST_F(Pipeline, BadLoadsAreRefusedAndTheNodesStayUp) {
-  LoadMesh missing;
-  missing.request.path = "/no/such/part.stl";
-  ASSERT_TRUE(ros::service::call("load_mesh", missing));
-  EXPECT_FALSE(missing.response.success);
-  EXPECT_NE(missing.response.message.find("/no/such/part.stl"), std::string::npos) << missing.response.message;
-
-  LoadMesh units;
-  units.request.path = "primitive:cube";
-  units.request.units = "furlong";
-  ASSERT_TRUE(ros::service::call("load_mesh", units));
-  EXPECT_FALSE(units.response.success);
-  EXPECT_NE(units.response.message.find("furlong"), std::string::npos) << units.response.message;
-
-  LoadMesh primitive;
-  primitive.request.path = "primitive:teapot";
-  ASSERT_TRUE(ros::service::call("load_mesh", primitive));
-  EXPECT_FALSE(primitive.response.success);
-
+  expect_refused_load("/no/such/part.stl", "/no/such/part.stl");
+  expect_refused_load("primitive:cube", "furlong", "furlong");
+  expect_refused_load("primitive:teapot", "teapot");
   // Not an STL at all: a point cloud file.
   std::string data;
   ASSERT_TRUE(ros::param::get("~data", data));
-  LoadMesh garbage;
-  garbage.request.path = data + "/pcl_bunny.pcd";
-  ASSERT_TRUE(ros::service::call("load_mesh", garbage));
-  EXPECT_FALSE(garbage.response.success);
-  EXPECT_NE(garbage.response.message.find("pcl_bunny.pcd"), std::string::npos) << garbage.response.message;
-
+  expect_refused_load(data + "/pcl_bunny.pcd", "pcl_bunny.pcd");
+  // Not files: a device and a FIFO would be read until memory runs out; they are refused at once.
+  const std::string fifo = "/tmp/rosmill-pipeline-fifo-" + std::to_string(::getpid());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_refused_load("/dev/zero", "not a regular file");
+  expect_refused_load(fifo, "not a regular file");
+  ::unlink(fifo.c_str());
   // A part in a frame tf does not know is refused: publishing it in the workpiece frame would put it elsewhere.
-  LoadMesh lost;
-  lost.request.path = "primitive:cube";
-  lost.request.frame_id = "nowhere";
-  ASSERT_TRUE(ros::service::call("load_mesh", lost));
-  EXPECT_FALSE(lost.response.success);
-  EXPECT_NE(lost.response.message.find("no transform to 'workpiece'"), std::string::npos) << lost.response.message;
+  expect_refused_load("primitive:cube", "no transform to 'workpiece'", "", "nowhere");
   expect_all_nodes_up();
 }
 

@@ -21,6 +21,8 @@
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
+using rosmill::rostest::node_pid;
+using rosmill::rostest::peak_rss_mb;
 
 namespace {
 
@@ -175,6 +177,67 @@ TEST_F(PlannerServices, ServicePlansStopAtTheTimeLimit) {
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("plan_toolpath action"), std::string::npos) << srv.response.message;
   EXPECT_TRUE(ros::service::waitForService("/limited/plan", ros::Duration(2.0)));
+}
+
+Plan plan_with(const msg::PlanParameters& parameters, const std::string& strategy = "raster") {
+  Plan srv;
+  srv.request.setup = "+Z";
+  srv.request.source = "mesh";
+  srv.request.strategy = strategy;
+  srv.request.parameters = parameters;
+  EXPECT_TRUE(ros::service::call("plan", srv)) << "the plan service is gone";
+  return srv;
+}
+
+// Work beyond the bounds is refused before anything of its size is allocated, with the estimate: a mesh a
+// thousand kilometres across (planned on arrival and on request), a micrometre stepover, step-down or tolerance;
+// and values that make no sense are refused naming the field. The planner answers each at once and its memory
+// stays bounded.
+TEST_F(PlannerServices, WorkBeyondTheBoundsIsRefusedInBoundedMemory) {
+  ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
+  const double a = 1e9;  // mm: 1e6 m
+  const Mesh huge = build_mesh({Vec3(0, 0, 0), Vec3(a, 0, 0), Vec3(0, a, 0), Vec3(0, 0, 0), Vec3(0, 0, a),
+                                Vec3(a, 0, 0), Vec3(0, 0, 0), Vec3(0, a, 0), Vec3(0, 0, a), Vec3(a, 0, 0),
+                                Vec3(0, 0, a), Vec3(0, a, 0)});
+  ASSERT_EQ(huge.faces.size(), 4u);
+  pub.publish(edge::to_mesh_msg(huge));
+  Plan srv = plan_until("mesh", "would ");
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("limit"), std::string::npos) << srv.response.message;
+
+  pub.publish(edge::to_mesh_msg(make_primitive("dome")));
+  msg::PlanParameters ok;
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (!plan_with(ok).response.success && ros::WallTime::now() < end) ros::WallDuration(0.05).sleep();
+  ASSERT_TRUE(plan_with(ok).response.success);
+  struct Case {
+    const char* field;
+    double msg::PlanParameters::*member;
+    double value;
+    const char* strategy;
+    const char* expect;
+  };
+  const Case cases[] = {
+      {"stepover", &msg::PlanParameters::stepover, 1e-9, "raster", "stepover"},
+      {"stepdown", &msg::PlanParameters::stepdown, 1e-9, "rough", "would "},
+      {"tolerance", &msg::PlanParameters::tolerance, 1e-12, "raster", "tolerance"},
+      {"allowance", &msg::PlanParameters::allowance, 1.0, "raster", "allowance"},
+      {"stock_margin", &msg::PlanParameters::stock_margin, 1e6, "raster", "stock_margin"},
+      {"angle", &msg::PlanParameters::angle, 1e9, "raster", "angle"},
+  };
+  for (const Case& c : cases) {
+    msg::PlanParameters p;
+    p.*c.member = c.value;
+    const ros::WallTime t0 = ros::WallTime::now();
+    Plan bad = plan_with(p, c.strategy);
+    EXPECT_FALSE(bad.response.success) << c.field;
+    EXPECT_NE(bad.response.message.find(c.expect), std::string::npos) << c.field << ": " << bad.response.message;
+    EXPECT_LT((ros::WallTime::now() - t0).toSec(), 10.0) << c.field << " was not refused up front";
+  }
+  const int pid = node_pid("/toolpath_planner");
+  ASSERT_GT(pid, 0);
+  EXPECT_LT(peak_rss_mb(pid), 1024.0) << "the planner's peak memory";
+  expect_alive();
 }
 
 TEST_F(PlannerServices, InvalidRequestsGetReasons) {

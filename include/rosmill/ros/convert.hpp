@@ -5,6 +5,7 @@
 // namespace, `rosmill`, where the core's own rosmill::Toolpath, rosmill::Tool, ... already live.
 #pragma once
 #include <geometry_msgs/Point.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <geometry_msgs/Vector3.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <shape_msgs/Mesh.h>
@@ -32,7 +33,10 @@ constexpr double kMmPerMetre = 1e3;
 constexpr double kMetrePerSecondPerMmPerMinute = 1e-3 / 60.0;  // feeds: mm/min -> m/s
 
 geometry_msgs::Point to_point_msg(const Vec3& mm);
-Vec3 from_point_msg(const geometry_msgs::Point& m);           // -> mm
+Vec3 from_point_msg(const geometry_msgs::Point& m);
+// `child` placed in `parent` (a point p of child is rotation * p + translation in parent; metres), stamped now.
+geometry_msgs::TransformStamped to_transform_msg(const std::string& parent, const std::string& child,
+                                                 const Eigen::Quaterniond& rotation, const Vec3& translation_m);           // -> mm
 geometry_msgs::Vector3 to_direction_msg(const Vec3& unitless);
 Vec3 from_direction_msg(const geometry_msgs::Vector3& v);
 double to_metres(double mm);

@@ -8,7 +8,9 @@
 
 #include "rosmill/ros/namespaces.hpp"
 #include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/plan/plan_params.hpp"
+#include "rosmill/planner/presets.hpp"
 
 namespace rosmill::edge {
 
@@ -24,5 +26,12 @@ ToolTable tool_table_param(const ::ros::NodeHandle& nh, const std::string& name)
 
 // The planner defaults of the `planner/*` parameters (millimetres).
 PlanParams plan_defaults_param(const ::ros::NodeHandle& nh);
+
+// The cloud input step's options (orient, origin, voxel, outliers, holes: named after the command line's options);
+// origin defaults to keep, the frame tf gave. A bad value is refused here, at start-up.
+CloudInputOptions cloud_input_param(const ::ros::NodeHandle& nh);
+
+// The preset table: the `presets` parameter, else presets.yaml next to the `tool_table` (config/).
+PresetTable presets_param(const ::ros::NodeHandle& nh);
 
 }  // namespace rosmill::edge
