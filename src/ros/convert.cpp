@@ -291,7 +291,22 @@ msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup)
   return m;
 }
 
+namespace {
+
+// The setup a toolpath message says it is in: a unit quaternion, or all zeros for none (+Z). A NaN or a scaled
+// rotation would place every status position and marker somewhere else.
+void check_setup_rotation(const geometry_msgs::Quaternion& q, const std::string& where) {
+  const Eigen::Vector4d v(q.x, q.y, q.z, q.w);
+  if (!v.allFinite() || (!v.isZero() && std::abs(v.norm() - 1.0) > 1e-6))
+    throw Error(where + " setup_rotation", "must be a unit quaternion (or all zeros for +Z), got (" +
+                                               std::to_string(q.x) + ", " + std::to_string(q.y) + ", " +
+                                               std::to_string(q.z) + ", " + std::to_string(q.w) + ")");
+}
+
+}  // namespace
+
 core::Toolpath from_toolpath_msg(const msg::Toolpath& m, const std::string& where) {
+  check_setup_rotation(m.setup_rotation, where);
   core::Toolpath tp;
   tp.strategy = m.strategy;
   tp.tool = from_tool_msg(m.tool, where + " tool");

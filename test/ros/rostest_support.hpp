@@ -4,6 +4,7 @@
 #include <ros/ros.h>
 
 #include <ros/network.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <xmlrpcpp/XmlRpcClient.h>
 #include <sys/stat.h>
 
@@ -52,6 +53,7 @@ class Latest {
   std::mutex mutex_;
   boost::shared_ptr<const M> last_;
   size_t count_ = 0;
+  bool seen_ = false;
 };
 
 // True when the node answers on its XML-RPC slave API (what `rosnode ping` does): a crashed node does not, even
@@ -73,6 +75,56 @@ inline bool node_answers(const std::string& node) {
   client.close();
   return ok;
 }
+
+// How many inputs a node has taken (accepted or rejected), from its diagnostic on /diagnostics (the
+// InputDiagnostics of the node: status "<node>: input" with values "accepted" and "rejected"). A test publishes an
+// input and waits for the count to pass what it was before: a condition, not a sleep.
+class InputCount {
+ public:
+  InputCount(ros::NodeHandle& nh, const std::string& status_name) : name_(status_name) {
+    sub_ = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+        "/diagnostics", 50,
+        boost::function<void(const diagnostic_msgs::DiagnosticArray::ConstPtr&)>(
+            [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+              for (const auto& s : m->status) {
+                if (s.name != name_) continue;
+                size_t n = 0;
+                for (const auto& kv : s.values)
+                  if (kv.key == "accepted" || kv.key == "rejected") n += std::stoul(kv.value);
+                std::lock_guard<std::mutex> lock(mutex_);
+                count_ = std::max(count_, n);
+                seen_ = true;
+              }
+            }));
+  }
+  // The count, once the node's diagnostic has been heard (it publishes at least once a second).
+  size_t now(double timeout = 10.0) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    for (;;) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (seen_ || !ros::ok() || ros::WallTime::now() > end) return count_;
+      }
+      ros::WallDuration(0.02).sleep();
+    }
+  }
+  // True once the node has taken more than `before` inputs, within `timeout` seconds.
+  bool wait_beyond(size_t before, double timeout = 30.0) {
+    const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < end) {
+      if (now(0.0) > before) return true;
+      ros::WallDuration(0.02).sleep();
+    }
+    return false;
+  }
+
+ private:
+  std::string name_;
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  size_t count_ = 0;
+  bool seen_ = false;
+};
 
 // The process id of a running node (its XML-RPC getPid), or 0.
 inline int node_pid(const std::string& node) {

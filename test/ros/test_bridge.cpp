@@ -132,6 +132,11 @@ TEST_F(Bridge, BadGoalsAreRefusedWithTheirReason) {
   EXPECT_NE(client.getResult()->message.find("feed_rate"), std::string::npos) << client.getResult()->message;
 
   goal.job = square_job();
+  goal.job.toolpaths[0].setup_rotation.w = std::nan("");  // a job whose setup is no rotation at all
+  EXPECT_EQ(run(client, goal), State::ABORTED);
+  EXPECT_NE(client.getResult()->message.find("setup_rotation"), std::string::npos) << client.getResult()->message;
+
+  goal.job = square_job();
   goal.from_line = 10000;
   EXPECT_EQ(run(client, goal), State::ABORTED);
   EXPECT_NE(client.getResult()->message.find("from_line"), std::string::npos) << client.getResult()->message;
@@ -311,11 +316,17 @@ TEST_F(Bridge, StartRunsTheLastPublishedJob) {
   std::string folder;
   ASSERT_TRUE(ros::param::get("~folder", folder));
   ros::Publisher pub = nh.advertise<msg::ToolpathJob>("/toolpath", 1, true);
-  pub.publish(square_job(-2.0));
-  ros::WallDuration(1.0).sleep();
   // The node's controller parameter is the folder: the program lands there.
   std::filesystem::create_directories(folder);
+  pub.publish(square_job(-2.0));
+  // Until the bridge has the job, start answers that none came yet: ask again (a condition, not a sleep).
   std_srvs::Trigger start = trigger("start");
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (!start.response.success && start.response.message.find("no job received") != std::string::npos &&
+         ros::WallTime::now() < end) {
+    ros::WallDuration(0.05).sleep();
+    start = trigger("start");
+  }
   ASSERT_TRUE(start.response.success) << start.response.message;
   Latest<msg::ProgramStatus> status(nh, "/program_status");
   ASSERT_TRUE(wait_state(status, msg::ProgramStatus::DONE, 10.0));

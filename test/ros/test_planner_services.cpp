@@ -54,6 +54,16 @@ Plan plan_until(const std::string& source, const std::string& text, double timeo
   return srv;
 }
 
+// Publishes an input on `pub` and waits until the planner has taken it (its input count on /diagnostics).
+template <typename M>
+void publish_and_wait(ros::Publisher& pub, const M& message, const std::string& node = "toolpath_planner") {
+  ros::NodeHandle nh;
+  rosmill::rostest::InputCount inputs(nh, node + ": input");
+  const size_t before = inputs.now();
+  pub.publish(message);
+  ASSERT_TRUE(inputs.wait_beyond(before)) << node << " did not take the input";
+}
+
 void expect_alive() {
   EXPECT_TRUE(ros::service::waitForService("plan", ros::Duration(2.0))) << "toolpath_planner died";
 }
@@ -75,8 +85,7 @@ TEST_F(PlannerServices, PlanWithoutInputIsAnError) {
 TEST_F(PlannerServices, EmptyCloudIsRejected) {
   ros::Publisher pub = nh.advertise<sensor_msgs::PointCloud2>("/scan/points", 1, true);
   PointCloud empty;
-  pub.publish(edge::to_cloud_msg(empty, "workpiece"));
-  ros::WallDuration(1.0).sleep();
+  publish_and_wait(pub, edge::to_cloud_msg(empty, "workpiece"));
   Plan srv = call_plan("+Z", "", 0, "cloud");
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("no finite points"), std::string::npos) << srv.response.message;
@@ -88,8 +97,7 @@ TEST_F(PlannerServices, CloudWithoutTransformIsRejected) {
   PointCloud cloud;
   for (int i = 0; i < 100; ++i) cloud.points.emplace_back(i, 2.0 * i, 10.0);
   cloud.recompute_bbox();
-  pub.publish(edge::to_cloud_msg(cloud, "nowhere"));
-  ros::WallDuration(2.0).sleep();  // the planner waits tf_timeout (1 s) for the transform
+  publish_and_wait(pub, edge::to_cloud_msg(cloud, "nowhere"));  // after tf_timeout (1 s) for the transform
   Plan srv = call_plan("+Z", "", 0, "cloud");
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("no transform to 'workpiece'"), std::string::npos) << srv.response.message;
@@ -242,8 +250,7 @@ TEST_F(PlannerServices, WorkBeyondTheBoundsIsRefusedInBoundedMemory) {
 
 TEST_F(PlannerServices, InvalidRequestsGetReasons) {
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
-  pub.publish(edge::to_mesh_msg(make_primitive("dome")));
-  ros::WallDuration(1.0).sleep();
+  publish_and_wait(pub, edge::to_mesh_msg(make_primitive("dome")));
 
   Plan bad_setup = call_plan("+Q", "", 0, "mesh");
   EXPECT_FALSE(bad_setup.response.success);
@@ -315,8 +322,7 @@ TEST_F(PlannerServices, ActionAbortsAnInvalidGoalWithItsReason) {
 // bad one are still planned, without it they are reported as not planned. Feedback names the item.
 TEST_F(PlannerServices, ActionReportsEachItem) {
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
-  pub.publish(edge::to_mesh_msg(make_primitive("cone")));
-  ros::WallDuration(1.0).sleep();
+  publish_and_wait(pub, edge::to_mesh_msg(make_primitive("cone")));
   actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   std::vector<uint32_t> feedback_items;
@@ -364,8 +370,7 @@ TEST_F(PlannerServices, ActionReportsEachItem) {
 // Preemption: a cancel stops the item being planned and keeps what was finished before it.
 TEST_F(PlannerServices, ActionCancelKeepsFinishedItems) {
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
-  pub.publish(edge::to_mesh_msg(make_primitive("dome")));
-  ros::WallDuration(1.0).sleep();
+  publish_and_wait(pub, edge::to_mesh_msg(make_primitive("dome")));
   actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   PlanToolpathGoal goal;
@@ -402,23 +407,31 @@ TEST_F(PlannerServices, ActionCancelKeepsFinishedItems) {
 // preview answers without touching the published toolpath.
 TEST_F(PlannerServices, PreviewDoesNotPublish) {
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
-  pub.publish(edge::to_mesh_msg(make_primitive("cone")));
-  Latest<msg::ToolpathJob> published(nh, "toolpath");
-  ASSERT_TRUE(published.wait(10.0));
-  ros::WallDuration(1.0).sleep();
-  const size_t before = published.count();
+  publish_and_wait(pub, edge::to_mesh_msg(make_primitive("cone")));
+  std::mutex m;
+  std::vector<std::string> setups;  // the setup of every toolpath published from here on
+  ros::Subscriber sub = nh.subscribe<msg::ToolpathJob>(
+      "toolpath", 10, boost::function<void(const msg::ToolpathJob::ConstPtr&)>([&](const msg::ToolpathJob::ConstPtr& j) {
+        std::lock_guard<std::mutex> lock(m);
+        setups.push_back(j->toolpaths.empty() ? "" : j->toolpaths[0].setup);
+      }));
+  auto published_minus_x = [&] {
+    std::lock_guard<std::mutex> lock(m);
+    return std::count(setups.begin(), setups.end(), "-X");
+  };
   Plan srv;
   srv.request.setup = "-X";
   srv.request.source = "mesh";
   srv.request.preview = true;
   ASSERT_TRUE(ros::service::call("plan", srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
-  ros::WallDuration(0.5).sleep();
-  EXPECT_EQ(published.count(), before);
+  ros::WallDuration(0.5).sleep();  // a publication, if there were one, would be on its way by now
+  EXPECT_EQ(published_minus_x(), 0);
   srv.request.preview = false;
   ASSERT_TRUE(ros::service::call("plan", srv));
-  ASSERT_TRUE(published.wait(5.0, before));
-  EXPECT_EQ(published.wait(1.0)->toolpaths.at(0).setup, "-X");
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (published_minus_x() == 0 && ros::WallTime::now() < end) ros::WallDuration(0.02).sleep();
+  EXPECT_EQ(published_minus_x(), 1);
 }
 
 // +Z and -X machine different faces of the cube: the toolpaths differ, and each stays in the part's reach.
@@ -426,8 +439,7 @@ TEST_F(PlannerServices, PlusZAndMinusXSetupsGiveDifferentToolpaths) {
   if (!strategy_known("raster")) GTEST_SKIP() << "the raster strategy has not landed in the core yet";
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
   const Mesh cone = make_primitive("cone");
-  pub.publish(edge::to_mesh_msg(cone));
-  ros::WallDuration(1.0).sleep();
+  publish_and_wait(pub, edge::to_mesh_msg(cone));
   Plan z = call_plan("+Z", "raster", 2, "mesh");
   Plan x = call_plan("-X", "raster", 2, "mesh");
   ASSERT_TRUE(z.response.success) << z.response.message;
