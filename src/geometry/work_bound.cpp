@@ -22,7 +22,7 @@ void check_work(const std::string& where, const Work& work, double part_width, d
   if (!work.counted.empty()) what += ", " + work.counted + ",";
   std::snprintf(text, sizeof text,
                 " over a part of %.6g x %.6g mm: raise the stepover, step-down, spacing or tolerance, or check "
-                "the part's units",
+                "the cloud's units (or the mesh's)",
                 part_width, part_depth);
   throw Error(where, what + text);
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "error_of.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
@@ -27,15 +28,6 @@ using namespace rosmill::core;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 // Every reader of a file, by name.
 const std::vector<std::pair<std::string, std::function<void(const std::string&)>>>& readers() {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "cli_run.hpp"
+#include "error_of.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/planner/plan_request.hpp"
@@ -21,15 +22,6 @@ using namespace rosmill::core;
 using namespace rosmill::core::segment;
 
 namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 const char* const kStrategies[] = {"raster", "waterline", "rough", "grid-rough", "contour"};
 
