@@ -70,7 +70,7 @@ Tool tool_from_json(const json& j, const std::string& where) {
   t.plunge_feed = number(j, "plunge_feed", where);
   t.stepover = number(j, "stepover", where);
   t.stepdown = number(j, "stepdown", where);
-  if (!(t.cutter.diameter > 0)) throw Error(where, "tool diameter must be positive");
+  check_tool(t, where);
   return t;
 }
 

@@ -17,6 +17,7 @@
 #include "rosmill/segment/setup_segmentation.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 #include "rosmill/slice/slicer.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::segment;
@@ -129,6 +130,18 @@ TEST(PlanValidation, NonsenseValuesAreRefusedNamingTheFieldAndItsRange) {
       EXPECT_NE(e.find(c.expected), std::string::npos) << strategy << ": expected '" << c.expected << "', got '" << e
                                                         << "'";
     }
+}
+
+TEST(PlanValidation, AToolpathFilesToolIsCheckedAsARequestsIs) {
+  const std::string path = ::testing::TempDir() + "/hostile_tool_" + std::to_string(::getpid()) + ".json";
+  Toolpath tp;
+  tp.strategy = "raster";
+  tp.tool.cutter = Cutter::bull(6, -1);
+  tp.passes.push_back({"pass", {{Vec3(0, 0, 5), MoveType::Rapid, 0.0}}});
+  write_toolpath_file(path, {tp});
+  EXPECT_NE(error_of([&] { read_toolpath_file(path); }).find("toolpath 0: tool corner_radius: must lie in [0, 3] mm"),
+            std::string::npos);
+  std::remove(path.c_str());
 }
 
 TEST(PlanValidation, AMeshOfDegenerateTrianglesIsRefusedForPlanningAndSegmentation) {
