@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rosmill/error.hpp"
+#include "rosmill/value_range.hpp"
 
 namespace rosmill::core {
 
@@ -29,6 +30,21 @@ double positive_number(const std::string& text, const std::string& where, const 
 }
 
 }  // namespace
+
+void check_tool(const Tool& t, const std::string& where) {
+  const Cutter& c = t.cutter;
+  check_range(c.diameter, 0, 500, where + " diameter", "mm", Bound::Open);
+  check_range(c.corner_radius, 0, 0.5 * c.diameter, where + " corner_radius", "mm (0 to half the diameter)");
+  if (c.type == CutterType::FlatEnd && c.corner_radius != 0)
+    throw Error(where + " corner_radius", "must be 0 for a flat end mill");
+  if (c.type == CutterType::BallEnd && std::abs(c.corner_radius - c.radius()) > 1e-9 * c.diameter)
+    throw Error(where + " corner_radius", "must be half the diameter for a ball end mill");
+  check_range(t.feed, 0, 1e5, where + " feed", "mm/min", Bound::Open);
+  check_range(t.plunge_feed, 0, 1e5, where + " plunge_feed", "mm/min", Bound::Open);
+  check_range(t.spindle_rpm, 0, 1e5, where + " spindle_rpm", "rpm");
+  check_range(t.stepover, 0, 500, where + " stepover", "mm", Bound::Open);
+  check_range(t.stepdown, 0, 500, where + " stepdown", "mm", Bound::Open);
+}
 
 Cutter offset_cutter(const Cutter& cutter, double allowance) {
   if (!(allowance >= 0)) throw Error("allowance", "must be >= 0");

@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/input_file.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -142,11 +143,7 @@ ToolTable parse_tool_table(const std::string& yaml_text, const std::string& name
 }
 
 ToolTable read_tool_table(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open the tool table");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_tool_table(ss.str(), path);
+  return parse_tool_table(read_input_file(path), path);
 }
 
 Tool default_tool(const Cutter& cutter) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "rosmill/error.hpp"
+#include "rosmill/input_file.hpp"
 #include "rosmill/gcode/canon_arc.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 
@@ -47,9 +48,7 @@ std::string fmt(double v) {
 MachineLimits load_machine_limits(const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw Error(path, "cannot open machine file");
+    root = YAML::Load(read_input_file(path));
   } catch (const YAML::Exception& e) {
     throw Error(path, std::string("not valid YAML: ") + e.what());
   }

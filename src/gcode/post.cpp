@@ -5,7 +5,9 @@
 #include <fstream>
 
 #include "rosmill/error.hpp"
+#include "rosmill/input_file.hpp"
 #include "rosmill/gcode/arc_fit.hpp"
+#include "rosmill/gcode/comment_text.hpp"
 #include "rosmill/gcode/number_format.hpp"
 
 namespace rosmill::core::gcode {
@@ -35,10 +37,11 @@ class Writer {
     prog_.origin.push_back(origin);
   }
 
+  // Every comment of the program: made inert for the dialect, and cut to its line length.
   void comment(const std::string& text) {
-    std::string clean;
-    for (char c : text) clean.push_back(c == '(' || c == ')' ? ' ' : c);  // parentheses would end the comment
-    line("(" + clean + ")");
+    const size_t number = opt_.line_numbers ? std::to_string(next_number_).size() + 2 : 0;
+    const size_t room = dialect_.max_line_length > number ? dialect_.max_line_length - number : 0;
+    line(comment_line(dialect_, text, room));
   }
 
   // motion: 0 rapid, 1 line, 2 clockwise arc, 3 counter-clockwise arc (centre given for arcs).
@@ -292,13 +295,14 @@ bool is_program_path(const std::string& path) {
 }
 
 std::vector<std::string> read_program_lines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open G-code program");
+  const std::string text = read_input_file(path);
   std::vector<std::string> lines;
-  std::string l;
-  while (std::getline(in, l)) {
+  for (size_t at = 0; at < text.size();) {
+    const size_t eol = std::min(text.find('\n', at), text.size());
+    std::string l = text.substr(at, eol - at);
     if (!l.empty() && l.back() == '\r') l.pop_back();
-    lines.push_back(l);
+    lines.push_back(std::move(l));
+    at = eol + 1;
   }
   return lines;
 }

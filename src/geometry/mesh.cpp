@@ -253,4 +253,12 @@ void scale_mesh(Mesh& mesh, double factor) {
   for (double& a : mesh.areas) a *= factor * factor;
 }
 
+void check_has_area(const Mesh& mesh, const std::string& where) {
+  if (mesh.faces.empty()) throw Error(where, "the mesh has no triangles");
+  for (const double a : mesh.areas)
+    if (a > 0) return;
+  throw Error(where, "every one of the mesh's " + std::to_string(mesh.faces.size()) +
+                         " triangles is degenerate (zero area): there is no surface");
+}
+
 }  // namespace rosmill::core

@@ -15,6 +15,7 @@
 #include "cloud_header_check.hpp"
 #include "file_bytes.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/input_file.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -31,6 +32,9 @@ std::string lower_extension(const std::string& path) {
 // "pcd" or "ply" from the file's first bytes; empty when they are neither.
 std::string format_by_content(const std::string& path) {
   char head[16] = {};
+  // Only a regular file is opened here (a FIFO would block the open): anything else is refused by the reader.
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return "";
   std::ifstream in(path, std::ios::binary);
   in.read(head, sizeof head);
   const std::string start(head, static_cast<size_t>(in.gcount()));
@@ -119,7 +123,7 @@ bool is_cloud_path(const std::string& path) {
 bool is_cloud_file(const std::string& path) { return is_cloud_path(path) || !format_by_content(path).empty(); }
 
 PointCloud read_cloud(const std::string& path, const CloudReadOptions& options, CloudInfo* info) {
-  io::check_input_file(path);
+  check_input_file(path);
   const std::string format = cloud_format(path);
   {
     const io::FileBytes bytes(path);

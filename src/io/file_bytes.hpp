@@ -5,12 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "rosmill/input_file.hpp"
+
 namespace rosmill::core::io {
 
 class FileBytes {
  public:
-  // Throws Error naming `path` when it is missing, a directory, unreadable or a corrupt gzip stream.
-  explicit FileBytes(const std::string& path);
+  // Throws Error naming `path` when it breaks the input policy (rosmill/input_file.hpp: a regular file of at most
+  // max_bytes, inflating to at most as many), is unreadable or is a corrupt gzip stream.
+  explicit FileBytes(const std::string& path, size_t max_bytes = kMaxInputBytes);
   ~FileBytes();
   FileBytes(const FileBytes&) = delete;
   FileBytes& operator=(const FileBytes&) = delete;
@@ -28,12 +31,9 @@ class FileBytes {
   bool gzipped_ = false;
 };
 
-// Checks that path names a readable, non-empty file; throws Error naming it otherwise (for readers, like PCL's,
-// that open the file themselves and report problems poorly).
-void check_input_file(const std::string& path);
-
-// Inflates a gzip (or zlib) stream held in memory; `name` is used in error messages.
-std::vector<char> gunzip(const char* data, size_t size, const std::string& name);
+// Inflates a gzip (or zlib) stream held in memory; `name` is used in error messages. Throws Error when the stream
+// inflates to more than max_bytes, before allocating it.
+std::vector<char> gunzip(const char* data, size_t size, const std::string& name, size_t max_bytes = kMaxInputBytes);
 
 inline bool is_gzip(const char* data, size_t size) {
   return size >= 2 && static_cast<unsigned char>(data[0]) == 0x1f && static_cast<unsigned char>(data[1]) == 0x8b;

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
+#include "rosmill/work_bound.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -67,6 +68,14 @@ Toolpath contour_toolpath(const Mesh& mesh, const Tool& tool, const ContourOptio
   if (!(options.allowance >= 0.0) || !std::isfinite(options.allowance))
     throw Error("contour", "the allowance must be zero or positive");
   if (mesh.faces.empty()) throw Error("contour", "the mesh is empty");
+  // Each layer slices the triangles and offsets its section, a full turn of arc at the arc tolerance per loop.
+  const double n_levels = step_count(mesh.bbox.size().z(), options.stepdown);
+  const double distance = tool.cutter.radius() + options.allowance;
+  const double turn = M_PI / std::acos(std::max(-1.0, 1.0 - std::max(options.arc_tolerance / 2.5, 1e-6) / distance));
+  check_work("contour", {n_levels * (double(mesh.faces.size()) + turn), n_levels * turn,
+                         count_text(n_levels, "layers") + " x " +
+                             count_text(double(mesh.faces.size()), "triangles")},
+             mesh.bbox.size().x(), mesh.bbox.size().y());
 
   const std::vector<double> z = layer_heights(mesh, options.stepdown);
   const std::vector<SliceLayer> sections = slice_mesh(mesh, z);
@@ -76,7 +85,6 @@ Toolpath contour_toolpath(const Mesh& mesh, const Tool& tool, const ContourOptio
   for (size_t k = 0; k < z.size(); ++k)
     shadow[k] = k == 0 ? union_regions({}, sections[0].contours) : union_regions(shadow[k - 1], sections[k].contours);
   std::vector<std::vector<OffsetLoop>> loops(z.size());
-  const double distance = tool.cutter.radius() + options.allowance;
   tbb::parallel_for(size_t(0), z.size(), [&](size_t k) {
     loops[k] = offset_region(shadow[k], distance, options.arc_tolerance);
     // Climb milling with a clockwise spindle keeps the material on the cutter's right: clockwise around material,

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
+#include "rosmill/work_bound.hpp"
 
 namespace rosmill::core {
 
@@ -13,10 +14,13 @@ DropGrid grid_over(const Box3& box, double radius, double step) {
   g.step = step;
   g.x0 = box.min.x() - radius;
   g.y0 = box.min.y() - radius;
-  // Exactly the formula, in the same order of operations, so that any reader of it counts the same.
-  g.nx = static_cast<size_t>(std::floor((box.max.x() + radius - (box.min.x() - radius)) / step)) + 1;
-  g.ny = static_cast<size_t>(std::floor((box.max.y() + radius - (box.min.y() - radius)) / step)) + 1;
-  if (double(g.nx) * double(g.ny) > 5e8) throw Error("--spacing", "the grid would hold more than 5e8 points");
+  // Exactly the documented formula, in the same order of operations, so that any reader of it counts the same.
+  const double nx = std::floor((box.max.x() + radius - (box.min.x() - radius)) / step) + 1;
+  const double ny = std::floor((box.max.y() + radius - (box.min.y() - radius)) / step) + 1;
+  check_work("--spacing", {nx * ny, nx * ny, count_text(nx, "columns") + " x " + count_text(ny, "rows")},
+             box.size().x(), box.size().y());
+  g.nx = static_cast<size_t>(nx);
+  g.ny = static_cast<size_t>(ny);
   return g;
 }
 

@@ -66,15 +66,17 @@ Job grid_rough_on(const Surface& s, const PlanParams& params, const PlanProgress
   if (!(grid > 0)) throw Error("grid-rough", "grid size 2R - 0.5 allowance is not positive");
   const Box3& box = f.part;
   // Rows from y_min + 0.5δ every grid size until the cutter has covered y_max.
+  const double step = R / 4, flat = R - corner_of(f.cutter);
+  // Each level walks every sample (a few operations each, a tenth of a drop's cost).
+  const double samples = step_count(box.size().x() + 2 * (R + delta), step) * step_count(box.size().y(), grid);
+  const double n_levels = step_count(box.size().z(), f.stepdown);
+  check_plan_work("grid-rough", {samples * (1 + n_levels / 10), samples,
+                                 count_text(samples, "samples") + " x " + count_text(n_levels, "levels")}, f);
   size_t rows = 1;
   while (box.min.y() + 0.5 * delta + double(rows - 1) * grid + R < box.max.y()) ++rows;
   const double y0 = box.min.y() + 0.5 * delta, y1 = y0 + double(rows - 1) * grid;
   const double x0 = box.min.x() - R - delta, x1 = box.max.x() + R + delta;
-  const double step = R / 4, flat = R - corner_of(f.cutter);
   const double side = kSlack * (std::sqrt(flat * flat + step * step / 4) - flat);
-  // Each level walks every sample (a few operations each, a tenth of a drop's cost).
-  const double samples = (x1 - x0) / step * double(rows);
-  check_query_count("grid-rough", samples * (1 + std::ceil(box.size().z() / f.stepdown) / 10), box);
   std::vector<ScanLine> lines = scan_lines(Vec2(x0, y0), Vec2(x1, y1), 0.0, grid, {});
   lines.resize(std::min(lines.size(), rows));  // one row: scan_lines gives the same line twice
   const std::vector<Vec2> route = zigzag_route(lines, step);

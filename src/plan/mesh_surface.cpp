@@ -102,13 +102,15 @@ Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint3
   if (hint < tris_.size()) best = triangle_contact(cp, x, y, tris_[hint]);
   if (nodes_.empty()) return {bounds_.min.z(), false};
 
-  // Upper bound of any contact inside a box: its top minus the cutter's height at the nearest distance.
+  // Upper bound of any contact inside a box: its top minus the cutter's height at the nearest distance. Boxes
+  // and triangles are culled by the same reach as the contacts themselves.
+  const double reach2 = cp.reach_sq(x, y);
   auto bound = [&](const Node& nd) {
     const double dx = std::max({0.0, nd.xmin - x, x - nd.xmax});
     const double dy = std::max({0.0, nd.ymin - y, y - nd.ymax});
     const double d2 = dx * dx + dy * dy;
-    if (d2 > cp.R2) return kNoContact;
-    return nd.zmax - cp.height_sq(d2);
+    if (d2 > reach2) return kNoContact;
+    return nd.zmax - cp.height_sq(std::min(d2, cp.R2));
   };
   struct Entry {
     uint32_t node;
@@ -129,7 +131,7 @@ Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint3
         const double dx = std::max({0.0, t.xmin - x, x - t.xmax});
         const double dy = std::max({0.0, t.ymin - y, y - t.ymax});
         const double d2 = dx * dx + dy * dy;
-        if (d2 > cp.R2 || t.zmax - cp.height_sq(d2) <= best) continue;
+        if (d2 > reach2 || t.zmax - cp.height_sq(std::min(d2, cp.R2)) <= best) continue;
         const double z = triangle_contact(cp, x, y, t);
         if (z > best) best = z, winner = i;
       }

@@ -254,15 +254,8 @@ void parallel_blocks(size_t n, const PlanProgress& progress, double from, double
   }
 }
 
-void check_query_count(const std::string& strategy, double queries, const Box3& part) {
-  constexpr double kMaxQueries = 2e8;
-  if (queries <= kMaxQueries) return;
-  char text[256];
-  std::snprintf(text, sizeof text,
-                "would need about %.3g drop-cutter queries (more than %.0g) over a part of %.0f x %.0f mm: check the "
-                "cloud's units (or the mesh's), or raise the stepover or the tolerance",
-                queries, kMaxQueries, part.size().x(), part.size().y());
-  throw Error(strategy, text);
+void check_plan_work(const std::string& strategy, const Work& work, const PlanFrame& f) {
+  check_work(strategy, work, f.part.size().x(), f.part.size().y());
 }
 
 const char* sampling_name(Sampling s) { return s == Sampling::StepError ? "step-error" : "chord"; }

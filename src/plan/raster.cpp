@@ -63,10 +63,14 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
   const PlanFrame f = make_frame(surface, params);
   const double reach = f.cutter.radius() + f.allowance;
   const Vec2 lo = f.part.min.head<2>() - Vec2::Constant(reach), hi = f.part.max.head<2>() + Vec2::Constant(reach);
-  const std::vector<ScanLine> lines = scan_lines(lo, hi, params.angle_deg, f.stepover, options.boundary);
   const bool step_error = params.sampling == Sampling::StepError;
   const double step = step_error ? step_error_spacing(f) : std::min(0.25 * f.cutter.radius(), 1.0);
-  if (step_error) check_query_count("raster", double(lines.size()) * (hi - lo).norm() / step, f.part);
+  // At most the diagonal's count of lines, each at most the diagonal long; a chord costs its end and three
+  // checks (sample_segment), a probe of the footprint one more.
+  const double n_lines = step_count((hi - lo).norm(), f.stepover), n_samples = step_count((hi - lo).norm(), step);
+  check_plan_work("raster", {n_lines * n_samples * (step_error ? 1 : 5), n_lines * n_samples,
+                             count_text(n_lines, "lines") + " x " + count_text(n_samples, "samples")}, f);
+  const std::vector<ScanLine> lines = scan_lines(lo, hi, params.angle_deg, f.stepover, options.boundary);
   // One stretch a-b sampled by the plan's policy into CL points.
   auto sample = [&](const Vec2& a, const Vec2& b, std::vector<Vec3>& pts, StepErrorCounts& counts) {
     if (step_error)

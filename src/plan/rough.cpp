@@ -73,6 +73,12 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
   fw.drop_cutter = wide;
 
   const Vec2 lo = f.stock.min.head<2>(), hi = f.stock.max.head<2>();
+  // Every line sampled once, then walked at every level (about a tenth of a drop per sample and level).
+  const double n_lines = step_count((hi - lo).norm(), f.stepover), n_samples = step_count((hi - lo).norm(), spacing);
+  const double n_levels = step_count(f.stock.size().z(), f.stepdown);
+  check_plan_work("rough", {n_lines * n_samples * (1 + n_levels / 10), n_lines * n_samples,
+                            count_text(n_lines, "lines") + " x " + count_text(n_samples, "samples") + " x " +
+                                count_text(n_levels, "levels")}, f);
   const std::vector<ScanLine> scan = scan_lines(lo, hi, params.angle_deg, f.stepover, {});
   std::vector<SampledLine> lines(scan.size());
   parallel_blocks(scan.size(), progress, 0.0, 0.8, [&](size_t i) {

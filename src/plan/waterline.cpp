@@ -181,6 +181,13 @@ Job waterline_on(const Surface& surface, const PlanParams& params, const Waterli
                  const PlanProgress& progress, std::vector<std::vector<Loop>>* loops_out) {
   const PlanFrame f = make_frame(surface, params);
   const double step = std::min(0.25 * f.cutter.radius(), 0.5);
+  // The grid's nodes are dropped once; each level walks every cell (about a tenth of a drop each) and bisects
+  // where the contour crosses.
+  const double reach = 2 * (f.cutter.radius() + f.allowance + 2 * step);
+  const double cells = step_count(f.part.size().x() + reach, step) * step_count(f.part.size().y() + reach, step);
+  const double n_levels = options.levels.empty() ? step_count(f.part.size().z(), f.stepdown) : options.levels.size();
+  check_plan_work("waterline", {cells * (1 + n_levels / 10), cells,
+                                count_text(cells, "grid nodes") + " x " + count_text(n_levels, "levels")}, f);
   const HeightGrid grid = height_grid(surface, f, step);
   check_cancel(progress, 0.2);
   const std::vector<double> levels = options.levels.empty() ? default_levels(f, grid) : options.levels;

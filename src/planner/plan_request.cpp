@@ -51,6 +51,7 @@ Job run(const StrategyEntry& entry, const std::string& name, const PlanningReque
   if (entry.needs_mesh && !r.input.mesh)
     throw Error("strategy " + name,
                 "needs a mesh (an STL file), got a " + std::string(r.input.cloud ? "cloud" : "surface"));
+  check_plan_params(params);
   PlanReport report;
   const StrategyCall call{entry.needs_mesh ? nullptr : &surface.get(), r.input.mesh, params, progress, &report};
   Job job = entry.function(call);
@@ -102,10 +103,13 @@ Job plan_turned(const PlanningRequest& r) {
 }  // namespace
 
 Job plan(const PlanningRequest& r) {
+  check_setup(r.input.setup);
   if (!r.input.setup.identity()) return plan_turned(r);
   const int given = (r.input.mesh != nullptr) + (r.input.cloud != nullptr) + (r.input.surface != nullptr);
   if (given != 1) throw Error("strategy " + r.strategy, given ? "give one input, not several" : "nothing to plan on");
   check_plan_name(r.strategy, r.presets, "strategy");
+  if (r.input.mesh) check_has_area(*r.input.mesh, "plan: the part");
+  if (r.params.stock_mesh) check_has_area(*r.params.stock_mesh, "plan: the stock");
   if (!std::isnan(r.params.tolerance) && !(r.params.tolerance > 0 && std::isfinite(r.params.tolerance)))
     throw Error("parameter tolerance", "must be a positive number");
   const PlanTemplate* tmpl = r.presets ? r.presets->find_template(r.strategy) : nullptr;

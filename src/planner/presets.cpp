@@ -8,6 +8,7 @@
 
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/input_file.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -109,11 +110,7 @@ PresetTable parse_presets(const std::string& yaml_text, const std::string& name)
 }
 
 PresetTable read_presets(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open the preset table");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_presets(text.str(), path);
+  return parse_presets(read_input_file(path), path);
 }
 
 bool tool_unset(const Tool& t) {

@@ -8,6 +8,16 @@
 
 namespace rosmill::core {
 
+void check_setup(const SetupFrame& s, const std::string& where) {
+  const std::string name = where + (s.name.empty() ? "" : " " + s.name);
+  if (!s.tool_axis.allFinite() || std::abs(s.tool_axis.norm() - 1) > 1e-6)
+    throw Error(name, "the tool axis must be a finite unit vector");
+  if (!s.to_setup.coeffs().allFinite() || std::abs(s.to_setup.norm() - 1) > 1e-6)
+    throw Error(name, "the rotation must be a finite unit quaternion");
+  if ((s.to_setup * s.tool_axis - Vec3::UnitZ()).norm() > 1e-6)
+    throw Error(name, "the rotation does not turn the tool axis onto +Z");
+}
+
 SetupFrame direction_setup(const Vec3& direction, const std::string& where) {
   if (!direction.allFinite() || direction.norm() < 1e-9)
     throw Error(where, "the tool direction must be a finite non-zero vector");

@@ -191,6 +191,7 @@ std::vector<std::array<uint32_t, 3>> inner_neighbours(const Mesh& mesh, const st
 
 SurfacePatches segment_surface(const Mesh& mesh, const SegmentOptions& options) {
   check_options(options);
+  check_has_area(mesh, "segmentation: the part");
   SurfacePatches out;
   out.mesh_ = &mesh;
   out.options_ = options;

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "rosmill/error.hpp"
+#include "rosmill/input_file.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -69,7 +70,7 @@ Tool tool_from_json(const json& j, const std::string& where) {
   t.plunge_feed = number(j, "plunge_feed", where);
   t.stepover = number(j, "stepover", where);
   t.stepdown = number(j, "stepdown", where);
-  if (!(t.cutter.diameter > 0)) throw Error(where, "tool diameter must be positive");
+  check_tool(t, where);
   return t;
 }
 
@@ -135,11 +136,10 @@ void write_toolpath_file(const std::string& path, const std::vector<Toolpath>& j
 }
 
 std::vector<Toolpath> read_toolpath_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path, "cannot open toolpath file");
+  const std::string text = read_input_file(path);
   json doc;
   try {
-    in >> doc;
+    doc = json::parse(text);
   } catch (const json::exception& e) {
     throw Error(path, std::string("not valid JSON: ") + e.what());
   }

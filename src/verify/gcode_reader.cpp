@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "rosmill/error.hpp"
+#include "rosmill/input_file.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 
 namespace rosmill::core::verify {
@@ -169,17 +170,7 @@ MachineProgram parse_gcode(const std::string& text, const std::string& name, con
 }
 
 MachineProgram read_gcode(const std::string& path, const ToolSetup& tools) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open the G-code program");
-  in.seekg(0, std::ios::end);
-  const auto bytes = in.tellg();
-  in.seekg(0);
-  // Room for about one move per 24 bytes (a typical motion line), at most 2 million ahead of need.
-  Reader reader(path, tools, bytes > 0 ? std::min<size_t>(static_cast<size_t>(bytes) / 24, 2'000'000) : 0);
-  uint32_t number = 0;
-  for (std::string raw; std::getline(in, raw);)
-    if (!reader.line(raw, ++number)) break;
-  return reader.finish();
+  return parse_gcode(read_input_file(path), path, tools);
 }
 
 ToolSetup tool_setup(const std::vector<std::string>& specs, const ToolTable* table) {

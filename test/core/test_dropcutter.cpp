@@ -303,3 +303,25 @@ TEST(DropCutter, OffsetCutterKeepsAllowance) {
   EXPECT_TRUE(s.drop(g, 65.4, 30).touched);
   EXPECT_FALSE(s.drop(g, 65.6, 30).touched);
 }
+
+// A wall whose lower edge lies at exactly the cutter's radius from a grid that starts at ymin - R: in double
+// ymin - R is -34.794768000000005, 5.0000000000000036 from the edge, and a strict comparison dropped the cutter to
+// the floor (0). At the rim's distance, whatever the last bit, the edge, its corners and the boxes around them
+// are touched: the flat end mill stands on the edge at its height.
+TEST(DropCutter, AnEdgeAtTheRadiusIsTouchedWhateverTheLastBit) {
+  const double R = 5.0, ymin = -29.794768;
+  const std::vector<Vec3> corners = {{-3.097246, -29.46833, 4.693034}, {-3.131556, -29.794768, 1.570079},
+                                     {3.131556, -29.794768, 1.570079},
+                                     // a floor far away: the part's lowest height, 0
+                                     {100, 100, 0}, {110, 100, 0}, {100, 110, 0}};
+  const Mesh mesh = build_mesh(corners);
+  const MeshSurface surface(mesh);
+  const double y = ymin - R;
+  ASSERT_GT(ymin - y, R) << "the premise: the grid's row lies beyond the radius in double";
+  const Cutter flat = Cutter::flat(2 * R);
+  EXPECT_EQ(surface.drop(flat, -2.8, y).z, 1.570079);       // the edge's interior
+  EXPECT_EQ(surface.drop(flat, -3.131556, y).z, 1.570079);  // its corner, straight ahead
+  EXPECT_EQ(surface.drop(flat, 3.131556, y).z, 1.570079);
+  // A hair further (a micrometre) nothing is under the cutter: the floor.
+  EXPECT_EQ(surface.drop(flat, -2.8, y - 1e-6).z, 0.0);
+}

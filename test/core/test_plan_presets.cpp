@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_run.hpp"
+#include "error_of.hpp"
 #include "plan_names.hpp"
 #include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/cutter/tool_table.hpp"
@@ -17,19 +18,6 @@
 #include "test_plan_check.hpp"
 
 using namespace rosmill::core;
-
-namespace {
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
 
 TEST(PlanPresets, PackageTableHasThePapersStagesAndTemplate) {
   const PresetTable& t = test::package_presets();

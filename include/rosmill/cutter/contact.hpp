@@ -8,6 +8,7 @@
 // one stationary point of a concave 1-D function, or inside the facet where the cutter's normal equals the
 // facet's. Each function below returns -infinity when the feature is out of reach.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -31,10 +32,21 @@ struct CutterProfile {
     if (type == CutterType::BallEnd) R1 = 0, r = R;
   }
 
-  // Height of the cutter surface above the tip at horizontal distance d (d <= R).
+  // The squared reach of the cutter with its axis at (x, y): a feature at the rim's distance is touched, however
+  // the last bit of its coordinates and of the axis's fell. Those are rounded to about eps times their size (a
+  // grid at ymin - R lands a few ulps beyond R of ymin), so the rim is widened by a few such roundings, scaled to
+  // the coordinates; the same rule for vertices, edges and the boxes that cull them. Touching is the safe side:
+  // it lifts the cutter by the feature's height at the rim, where a miss can drop it into a wall.
+  double reach_sq(double x, double y) const {
+    constexpr double eps = std::numeric_limits<double>::epsilon();
+    const double reach = R + 8 * eps * (std::abs(x) + std::abs(y) + R);
+    return reach * reach;
+  }
+
+  // Height of the cutter surface above the tip at horizontal distance d (d <= R; the rim's height just beyond).
   double height(double d) const {
     if (d <= R1) return 0.0;
-    const double e = d - R1;
+    const double e = std::min(d - R1, r);
     return r - std::sqrt(std::max(0.0, r * r - e * e));
   }
   // The same from d^2, with one square root less for the two common shapes.
@@ -61,8 +73,8 @@ ContactTriangle make_contact_triangle(const double* p0, const double* p1, const 
 
 inline double vertex_contact(const CutterProfile& cp, double x, double y, const double* v) {
   const double dx = v[0] - x, dy = v[1] - y, d2 = dx * dx + dy * dy;
-  if (d2 > cp.R2) return kNoContact;
-  return v[2] - cp.height_sq(d2);
+  if (d2 > cp.reach_sq(x, y)) return kNoContact;
+  return v[2] - cp.height_sq(std::min(d2, cp.R2));
 }
 
 // Facet interior: the cutter point whose normal is the facet's lies at a fixed offset from the axis.
@@ -99,12 +111,8 @@ inline double edge_contact(const CutterProfile& cp, double x, double y, const do
   double d0sq = cross * cross / L2;
   const double L = std::sqrt(L2);
   if (d0sq > cp.R2) {
-    // An edge at exactly the rim's distance is touched (the drop jumps there, by the wall's height). The computed
-    // distance can exceed R by the rounding of px, py and the cross product: within that bound the edge is taken
-    // as tangent, since touching is the safe side (it lifts the cutter, a miss can drop it into a wall).
-    constexpr double eps = std::numeric_limits<double>::epsilon();
-    const double rounding = 4 * eps * (std::abs(px * ey) + std::abs(py * ex) + cp.R * L);
-    if (std::abs(cross) > cp.R * L + rounding) return kNoContact;
+    // An edge at the rim's distance (within its rounding, CutterProfile::reach_sq) is tangent to the cutter.
+    if (d0sq > cp.reach_sq(x, y)) return kNoContact;
     d0sq = cp.R2;
   }
   const double half = std::sqrt(cp.R2 - d0sq) / L;  // half the chord of the footprint, in t

@@ -39,6 +39,11 @@ const char* cutter_type_name(CutterType t);
 // of corner radius `allowance`): dropped, then lifted by `allowance`, it leaves that much stock on every surface.
 // Throws Error for a negative or NaN allowance.
 Cutter offset_cutter(const Cutter& cutter, double allowance);
+// Throws Error naming `where` and the field when a tool's numbers are out of range: a diameter in (0, 500] mm,
+// a corner radius in [0, D/2] (0 for a flat end mill, D/2 for a ball), feeds in (0, 1e5] mm/min, a speed in
+// [0, 1e5] rpm, stepover and step-down in (0, 500] mm. A tool from a message or a request passes here.
+void check_tool(const Tool& tool, const std::string& where = "tool");
+
 // Parses a cutter spec "ball:D", "flat:D" or "bull:D:r" (D diameter, r corner radius); throws Error naming
 // `where` on anything else (unknown type, missing or non-positive numbers, r > D/2).
 Cutter parse_cutter_spec(const std::string& spec, const std::string& where = "--tool");

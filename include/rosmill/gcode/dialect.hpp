@@ -15,6 +15,10 @@ struct Dialect {
   bool tool_length_offset = false;  // G43 H<n> after a tool change
   std::string program_end;     // M2 or M30
   size_t max_line_length = 0;  // 0: no limit (GRBL's line buffer holds 80 characters)
+  // What the controller acts on inside a comment (comment_text.hpp): characters (beyond control bytes and bytes
+  // above ASCII, always unsafe) and first words that turn a comment into an instruction.
+  std::string comment_unsafe;
+  std::vector<std::string> active_comments;
 };
 
 const std::vector<Dialect>& dialects();

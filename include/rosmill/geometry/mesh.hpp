@@ -75,6 +75,10 @@ struct IndexedTriangles {
 // Welds corners (3 per triangle) into vertices and faces.
 IndexedTriangles weld_corners(const std::vector<Vec3>& corners, const WeldOptions& options = {});
 
+// Throws Error(where) when the mesh has no triangle of positive area (none, or every one degenerate): there is
+// no surface to plan on or to segment, only points and lines.
+void check_has_area(const Mesh& mesh, const std::string& where);
+
 // Builds a mesh from corners (3 per triangle). Degenerate triangles are kept (zero area, zero normal) so that
 // reports can count them; consumers skip faces whose area is zero.
 Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options = {});

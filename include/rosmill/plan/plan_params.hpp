@@ -34,6 +34,12 @@ struct PlanParams {
   Sampling sampling = Sampling::Chord;
 };
 
+// Throws Error naming the field ("parameter allowance") and its accepted range when a value is NaN where NaN does
+// not mean a default, infinite or out of range: the tool (check_tool), stepover and step-down (NaN or (0, 500] mm),
+// allowance [0, 50] mm, tolerance (NaN or [1e-6, 10] mm), angle [-360, 360] degrees, stock margin [0, 1000] mm, safe
+// clearance (0, 1000] mm. plan() checks every request here, whoever sends it (the command line, a node).
+void check_plan_params(const PlanParams& params);
+
 // Progress in [0, 1]; return false to cancel (the strategy then throws Error("plan", "cancelled")).
 using PlanProgress = std::function<bool(double fraction)>;
 

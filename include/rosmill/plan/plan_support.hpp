@@ -10,6 +10,7 @@
 #include "rosmill/plan/region.hpp"
 #include "rosmill/plan/surface.hpp"
 #include "rosmill/toolpath/job.hpp"
+#include "rosmill/work_bound.hpp"
 
 namespace rosmill::core {
 
@@ -82,8 +83,7 @@ void parallel_blocks(size_t n, const PlanProgress& progress, double from, double
                      const std::function<void(size_t)>& f);
 void check_cancel(const PlanProgress& progress, double fraction);
 
-// Refuses a plan of more than about 2e8 drop-cutter queries (minutes of work at a million a second), naming the
-// part's size: a cloud read in the wrong units would otherwise run for hours.
-void check_query_count(const std::string& strategy, double queries, const Box3& part);
+// check_work (rosmill/work_bound.hpp) for a strategy over the plan's part.
+void check_plan_work(const std::string& strategy, const Work& work, const PlanFrame& f);
 
 }  // namespace rosmill::core

@@ -22,6 +22,10 @@ struct SetupFrame {
   bool identity() const { return to_setup.angularDistance(Eigen::Quaterniond::Identity()) < 1e-12; }
 };
 
+// Throws Error naming `where` when the setup's tool axis or rotation holds NaN or infinity, the axis is not a unit
+// vector, the rotation not a unit quaternion, or the rotation does not turn the axis onto +Z.
+void check_setup(const SetupFrame& setup, const std::string& where = "setup");
+
 // "+Z", "-Z", "+X", "-X", "+Y", "-Y" (case-insensitive, "Z" means "+Z"); throws Error(where) on anything else.
 SetupFrame named_setup(const std::string& name, const std::string& where = "setup");
 // A tool direction; throws Error(where) when it is not finite or has (near) zero length.

@@ -1,0 +1,36 @@
+#include "rosmill/gcode/comment_text.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+namespace rosmill::core::gcode {
+namespace {
+
+// The first word of the text (letters, after spaces), in upper case.
+std::string first_word(const std::string& text) {
+  std::string word;
+  size_t i = text.find_first_not_of(' ');
+  for (; i < text.size() && std::isalpha(static_cast<unsigned char>(text[i])); ++i)
+    word.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(text[i]))));
+  return word;
+}
+
+}  // namespace
+
+std::string comment_line(const Dialect& dialect, const std::string& text, size_t room) {
+  std::string clean;
+  clean.reserve(text.size());
+  for (const char ch : text) {
+    const unsigned char c = static_cast<unsigned char>(ch);
+    if (c >= 0x80) clean.push_back('_');
+    else if (c < 0x20 || c == 0x7f || dialect.comment_unsafe.find(ch) != std::string::npos) clean.push_back(' ');
+    else clean.push_back(ch);
+  }
+  const std::string word = first_word(clean);
+  const auto& active = dialect.active_comments;
+  if (!word.empty() && std::find(active.begin(), active.end(), word) != active.end()) clean = "- " + clean;
+  if (room > 2 && clean.size() > room - 2) clean.resize(room - 2);
+  return "(" + clean + ")";
+}
+
+}  // namespace rosmill::core::gcode

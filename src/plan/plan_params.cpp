@@ -1,0 +1,23 @@
+#include "rosmill/plan/plan_params.hpp"
+
+#include <cmath>
+
+#include "rosmill/value_range.hpp"
+
+namespace rosmill::core {
+
+void check_plan_params(const PlanParams& p) {
+  check_tool(p.tool, "parameter tool");
+  // NaN: the tool's default (stepover, step-down) or the strategy's (tolerance).
+  if (!std::isnan(p.stepover)) check_range(p.stepover, 0, 500, "parameter stepover", "mm", Bound::Open);
+  if (!std::isnan(p.stepdown)) check_range(p.stepdown, 0, 500, "parameter stepdown", "mm", Bound::Open);
+  // A tolerance below a nanometre is below what a double resolves on a part of a metre: the searches that
+  // refine to it would not end.
+  if (!std::isnan(p.tolerance)) check_range(p.tolerance, 1e-6, 10, "parameter tolerance", "mm");
+  check_range(p.allowance, 0, 50, "parameter allowance", "mm");
+  check_range(p.angle_deg, -360, 360, "parameter angle", "degrees");
+  check_range(p.stock_margin, 0, 1000, "parameter stock_margin", "mm");
+  check_range(p.safe_clearance, 0, 1000, "parameter safe_clearance", "mm", Bound::Open);
+}
+
+}  // namespace rosmill::core
