@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "rosmill/error.hpp"
+#include "rosmill/value_range.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
 
 namespace rosmill::edge {
@@ -373,7 +374,7 @@ PlanParams from_plan_parameters(const msg::PlanParameters& m, const core::Tool& 
   p.tolerance = length_field(m.tolerance, defaults.tolerance, "tolerance", false);
   p.stock_margin = length_field(m.stock_margin, defaults.stock_margin, "stock_margin", false);
   p.safe_clearance = length_field(m.safe_clearance, defaults.safe_clearance, "safe_clearance", false);
-  if (!std::isfinite(m.angle)) throw Error("parameters.angle", "must be a finite angle in radians");
+  check_range(m.angle, -2 * M_PI, 2 * M_PI, "parameters.angle", "rad");  // radians as sent, not degrees
   p.angle_deg = m.angle == 0.0 ? defaults.angle_deg : m.angle * 180.0 / M_PI;
   if (!std::isnan(p.stepover) && p.stepover > tool.cutter.diameter)
     throw Error("parameters.stepover", "is larger than the tool diameter (" +
