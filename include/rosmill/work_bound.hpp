@@ -16,6 +16,7 @@ struct Work {
   double queries = 0;   // drop-cutter queries, or steps of about their cost
   double points = 0;    // points held in memory at once
   std::string counted;  // how: "1.2e+07 lines x 401 samples"
+  const char* steps = "drop-cutter queries";  // what `queries` counts, for the message
 };
 
 // Throws Error(where, ...) giving the estimate, the limit, how it was counted and the part's size (mm) when the

@@ -26,21 +26,18 @@ const char* kind_of(mode_t mode) {
   return "not a regular file";
 }
 
-std::string mib(double bytes) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f MiB", bytes / (1024.0 * 1024.0));
-  return text;
-}
-
 }  // namespace
 
 size_t check_input_stat(const struct stat& st, const std::string& path, size_t max_bytes) {
   if (!S_ISREG(st.st_mode)) throw Error(path, std::string("is ") + kind_of(st.st_mode) + ", not a regular file");
   if (st.st_size == 0) throw Error(path, "empty file");
   const size_t size = static_cast<size_t>(st.st_size);
-  if (size > max_bytes)
-    throw Error(path, "file of " + mib(double(size)) + " is larger than the " + mib(double(max_bytes)) +
-                          " rosmill reads");
+  if (size > max_bytes) {
+    char text[160];
+    std::snprintf(text, sizeof text, "file of %zu bytes is larger than the %zu bytes (%.0f MiB) rosmill reads", size,
+                  max_bytes, double(max_bytes) / (1 << 20));
+    throw Error(path, text);
+  }
   return size;
 }
 

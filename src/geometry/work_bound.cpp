@@ -13,7 +13,7 @@ void check_work(const std::string& where, const Work& work, double part_width, d
   if (!too_slow && !too_big) return;
   char text[512];
   if (too_slow)
-    std::snprintf(text, sizeof text, "would need about %.3g drop-cutter queries (limit %.3g)", work.queries,
+    std::snprintf(text, sizeof text, "would need about %.3g %s (limit %.3g)", work.queries, work.steps,
                   kMaxDropQueries);
   else
     std::snprintf(text, sizeof text, "would hold about %.3g points at once (limit %.3g)", work.points,

@@ -74,7 +74,8 @@ Toolpath contour_toolpath(const Mesh& mesh, const Tool& tool, const ContourOptio
   const double turn = M_PI / std::acos(std::max(-1.0, 1.0 - std::max(options.arc_tolerance / 2.5, 1e-6) / distance));
   check_work("contour", {n_levels * (double(mesh.faces.size()) + turn), n_levels * turn,
                          count_text(n_levels, "layers") + " x " +
-                             count_text(double(mesh.faces.size()), "triangles")},
+                             count_text(double(mesh.faces.size()), "triangles"),
+                         "plane-triangle intersections and arc points"},
              mesh.bbox.size().x(), mesh.bbox.size().y());
 
   const std::vector<double> z = layer_heights(mesh, options.stepdown);

@@ -16,7 +16,8 @@ void check_mesh(const Mesh& mesh, const std::string& where) {
 // A plane's section crosses about the square root of the mesh's triangles (a surface of n triangles is about
 // sqrt(n) of them across); every plane is held.
 void check_planes(const Mesh& mesh, double planes, const std::string& where) {
-  check_work(where, {planes * std::sqrt(double(mesh.faces.size())), planes, count_text(planes, "planes")},
+  check_work(where, {planes * std::sqrt(double(mesh.faces.size())), planes, count_text(planes, "planes"),
+                     "plane-triangle intersections"},
              mesh.bbox.size().x(), mesh.bbox.size().y());
 }
 

@@ -1,5 +1,6 @@
-// The input policy (rosmill/input_file.hpp) under hostile paths: a device, a FIFO and a gzip bomb are refused by
-// every reader with the reason, in bounded time and memory, and `rosmill info /dev/zero` says why and exits 1.
+// The input policy (rosmill/input_file.hpp) under hostile paths: a device, a FIFO, a file beyond the size limit
+// and a gzip bomb are refused by every reader with the reason, in bounded time and memory, and `rosmill info
+// /dev/zero` says why and exits 1.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -18,6 +19,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "rosmill/input_file.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/planner/presets.hpp"
@@ -108,6 +110,21 @@ TEST_F(HostileFiles, EveryReaderRefusesAnEmptyFileAndADirectory) {
   for (const auto& [name, read] : readers()) {
     EXPECT_NE(error_of([&] { read(empty); }).find("empty file"), std::string::npos) << name;
     EXPECT_NE(error_of([&] { read(dir_.string()); }).find("is a directory"), std::string::npos) << name;
+  }
+}
+
+TEST_F(HostileFiles, EveryReaderRefusesAFileBeyondTheLimitWithoutReadingIt) {
+  // Sparse: a gigabyte and a byte that takes no disk.
+  const std::string big = (dir_ / "big.stl").string();
+  std::ofstream(big).close();
+  fs::resize_file(big, kMaxInputBytes + 1);
+  for (const auto& [name, read] : readers()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string e = error_of([&] { read(big); });
+    EXPECT_NE(e.find("big.stl: file of 1073741825 bytes is larger than the 1073741824 bytes (1024 MiB) rosmill reads"),
+              std::string::npos)
+        << name << ": " << e;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0) << name;
   }
 }
 
