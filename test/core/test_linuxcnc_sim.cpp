@@ -138,6 +138,21 @@ bool poll_until(Controller& c, double seconds, const std::function<bool(const Co
   return false;
 }
 
+// The position once the machine has come to rest (two polls 0.2 s apart agree), waiting at most `seconds`: a
+// deceleration takes longer on a loaded machine, so the test waits for it instead of sleeping a fixed time.
+ControllerStatus settled(Controller& c, double seconds = 10.0) {
+  ControllerStatus before = c.poll(0.05);
+  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const ControllerStatus now = c.poll(0.05);
+    if (now.position_known && before.position_known && (now.position - before.position).norm() < 1e-6) return now;
+    before = now;
+  }
+  ADD_FAILURE() << "the machine did not come to rest within " << seconds << " s";
+  return before;
+}
+
 void expect_at(const ControllerStatus& s, const Vec3& expected, const std::string& what) {
   ASSERT_TRUE(s.position_known) << what;
   EXPECT_LT((s.position - expected).cwiseAbs().maxCoeff(), 0.002)
@@ -204,8 +219,7 @@ TEST(LinuxcncSimulator, FeedHoldResumeAbortThenResumeFromTheLine) {
   // Feed hold: the machine stops and stays.
   c->feed_hold();
   ASSERT_TRUE(poll_until(*c, 5, [](const ControllerStatus& st) { return st.state == RunState::Paused; }, &s));
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // deceleration
-  const Vec3 held = c->poll(0.05).position;
+  const Vec3 held = settled(*c).position;
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   s = c->poll(0.05);
   EXPECT_EQ(s.state, RunState::Paused);
@@ -220,8 +234,7 @@ TEST(LinuxcncSimulator, FeedHoldResumeAbortThenResumeFromTheLine) {
   // Abort: the program stops where it is, short of its end.
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   c->abort();
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  const ControllerStatus aborted = c->poll(0.05);
+  const ControllerStatus aborted = settled(*c);
   std::this_thread::sleep_for(std::chrono::milliseconds(700));
   s = c->poll(0.05);
   EXPECT_EQ(s.state, RunState::Idle);
