@@ -35,6 +35,7 @@
 #include "rosmill/ros/markers.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
+#include "rosmill/ros/plan_goal.hpp"
 #include "rosmill/ros/setup_frames.hpp"
 #include "rosmill/ros/transform_wait.hpp"
 
@@ -240,10 +241,6 @@ class ToolpathPlanner {
     }
   }
 
-  static std::string summary(const msg::PlanStatistics& s) {
-    return "planned " + std::to_string(s.toolpaths) + " toolpath(s), " + std::to_string(s.moves) + " moves";
-  }
-
   bool on_plan(Plan::Request& req, Plan::Response& res) {
     try {
       auto timed_out = std::make_shared<std::atomic<bool>>(false);
@@ -258,7 +255,7 @@ class ToolpathPlanner {
       res.job = std::move(out.job_msg);
       res.statistics = out.statistics;
       res.success = true;
-      res.message = summary(res.statistics);
+      res.message = plan_summary(res.statistics);
     } catch (const std::exception& e) {
       res.success = false;
       res.message = e.what();
@@ -267,64 +264,21 @@ class ToolpathPlanner {
     return true;
   }
 
-  // Feedback for item `index` of `count` at `fraction` of it, at most every 0.1 s unless `force`.
-  void feedback(size_t index, size_t count, double fraction, const char* stage, bool force) {
-    const ::ros::WallTime now = ::ros::WallTime::now();
-    if (!force && (now - last_feedback_).toSec() < 0.1) return;
-    PlanToolpathFeedback fb;
-    fb.item = index;
-    fb.items = count;
-    fb.stage = stage;
-    fb.item_progress = float(fraction);
-    fb.progress = float((index + fraction) / count);
-    action_.publishFeedback(fb);
-    last_feedback_ = now;
-  }
-
   void on_goal(const PlanToolpathGoalConstPtr& goal) {
-    PlanToolpathResult result;
-    const size_t n = goal->items.size();
-    result.results.resize(n);
-    if (n == 0) {
-      result.message = "the goal has no items";
-      action_.setAborted(result, result.message);
-      return;
-    }
-    size_t valid = 0;
-    std::string first_failure;
+    PlanGoalHooks hooks;
+    hooks.cancel_requested = [this] { return action_.isPreemptRequested(); };
+    hooks.feedback = [this](const PlanToolpathFeedback& fb) { action_.publishFeedback(fb); };
+    hooks.plan_item = [&](size_t i, const PlanProgress& progress) {
+      PlanOutcome out = plan_item(goal->items[i], progress);
+      if (action_.isPreemptRequested()) throw Error("plan", "cancelled");
+      if (!goal->preview) publish(out);
+      msg::PlanItemResult r;
+      r.job = std::move(out.job_msg);
+      r.statistics = out.statistics;
+      return r;
+    };
     bool cancelled = false;
-    for (size_t i = 0; i < n; ++i) {
-      msg::PlanItemResult& r = result.results[i];
-      if (cancelled || (!first_failure.empty() && !goal->proceed_on_failure)) {
-        r.message = cancelled ? "not planned: the goal was cancelled" : "not planned: " + first_failure;
-        continue;
-      }
-      feedback(i, n, 0.0, "planning", true);
-      const PlanProgress progress = [&, i](double fraction) {
-        feedback(i, n, fraction, "planning", false);
-        return !action_.isPreemptRequested() && ::ros::ok();
-      };
-      try {
-        if (action_.isPreemptRequested()) throw Error("plan", "cancelled");
-        PlanOutcome out = plan_item(goal->items[i], progress);
-        if (action_.isPreemptRequested()) throw Error("plan", "cancelled");
-        feedback(i, n, 1.0, "publishing", true);
-        if (!goal->preview) publish(out);
-        r.job = std::move(out.job_msg);
-        r.statistics = out.statistics;
-        r.valid = true;
-        r.message = summary(r.statistics);
-        ++valid;
-      } catch (const std::exception& e) {
-        r.message = e.what();
-        cancelled = action_.isPreemptRequested();
-        if (!cancelled && first_failure.empty()) first_failure = "item " + std::to_string(i) + " failed: " + e.what();
-      }
-    }
-    feedback(n - 1, n, 1.0, "done", true);
-    result.success = valid == n;
-    result.message = std::to_string(valid) + " of " + std::to_string(n) + " item(s) planned" +
-                     (cancelled ? "; cancelled" : first_failure.empty() ? "" : "; " + first_failure);
+    const PlanToolpathResult result = run_plan_goal(*goal, hooks, cancelled);
     finish_goal(action_, result, cancelled, result.success);
   }
 
@@ -342,7 +296,6 @@ class ToolpathPlanner {
   InputDiagnostics diagnostics_;
   SetupFramePublisher setup_frames_;
   actionlib::SimpleActionServer<PlanToolpathAction> action_;
-  ::ros::WallTime last_feedback_;
   InputSlot<Mesh> mesh_{"mesh"};
   InputSlot<PointCloud> cloud_{"cloud"};
   std::atomic<uint64_t> inputs_{0};  // inputs received (accepted or not)
