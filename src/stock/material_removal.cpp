@@ -1,4 +1,4 @@
-#include "rosmill/verify/material_removal.hpp"
+#include "rosmill/stock/material_removal.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -24,7 +24,7 @@
 // which the whole sweep before covered). The finishing trace (distance to the finishing path) is kept the same
 // way with the nearest point for lead. SimulationOptions::prune = false sweeps every move whole: the reference.
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 namespace {
 
 using namespace sweep;
@@ -85,7 +85,7 @@ Vec3 chord_end(const CanonMove& m, int i, int n) { return i == n ? m.to : move_p
 class BandSweep {
  public:
   BandSweep(const MachineProgram& prog, const std::vector<CutterProfile>& profiles, const SimulationOptions& o,
-            Stock& stock, float* trace, double trace_radius, int r0, int r1)
+            HeightField& stock, float* trace, double trace_radius, int r0, int r1)
       : prog_(prog), profiles_(profiles), o_(o), g_(stock.grid), top_(stock.top.data()),
         cut_by_(stock.cut_by.data()), trace_(trace), trace_radius_(trace_radius), r0_(r0), r1_(r1) {}
 
@@ -294,18 +294,18 @@ class BandSweep {
   double trace_radius_;
   int r0_, r1_;
   size_t visited_ = 0;
-  uint32_t cached_ = Stock::kNoMove;  // the move whose first piece cached_piece_ is
+  uint32_t cached_ = HeightField::kNoMove;  // the move whose first piece cached_piece_ is
   Piece cached_piece_;
 };
 
 }  // namespace
 
-SimulationResult simulate(const MachineProgram& prog, Stock& stock, const SimulationOptions& options) {
+SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const SimulationOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   SimulationResult result;
   result.moves = prog.moves.size();
   const GridSpec& g = stock.grid;
-  result.finish_axis_d2.assign(g.cells(), std::numeric_limits<float>::infinity());
+  if (options.trace_finishing) result.finish_axis_d2.assign(g.cells(), std::numeric_limits<float>::infinity());
   if (prog.moves.empty() || g.cells() == 0) return result;
   // Finishing moves: the feed moves of the last tool's trailing run.
   result.finishing_tool = prog.moves.back().tool;
@@ -348,10 +348,11 @@ SimulationResult simulate(const MachineProgram& prog, Stock& stock, const Simula
   }
 
   std::vector<size_t> rapid_cuts(bands, 0), visited(bands, 0);
-  std::vector<uint32_t> first_rapid(bands, Stock::kNoMove);
+  std::vector<uint32_t> first_rapid(bands, HeightField::kNoMove);
   auto run_band = [&](int b) {
     const int r0 = b * band_rows, r1 = std::min(g.ny - 1, r0 + band_rows - 1);
-    BandSweep sweep(prog, profiles, options, stock, result.finish_axis_d2.data(), trace_radius, r0, r1);
+    float* trace = options.trace_finishing ? result.finish_axis_d2.data() : nullptr;
+    BandSweep sweep(prog, profiles, options, stock, trace, trace_radius, r0, r1);
     for (uint32_t q = band_start[b]; q < band_start[b + 1]; ++q) {
       const uint32_t k = band_moves[q];
       const size_t lowered = sweep.move(k, linked[k], linked[k + 1], finishing(k));
@@ -389,4 +390,4 @@ double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, doub
   return best;
 }
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock

@@ -1,4 +1,4 @@
-#include "rosmill/verify/height_field.hpp"
+#include "rosmill/stock/height_field.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,12 +7,13 @@
 
 #include "rosmill/error.hpp"
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 
-GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells) {
+GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells, const std::string& where,
+                            size_t bytes_per_cell) {
   if (!(cell > 0) || !std::isfinite(cell))
-    throw Error("--resolution", "the cell size must be a positive number of mm, got " + std::to_string(cell));
-  if (!min.allFinite() || !max.allFinite()) throw Error("--resolution", "the area to cover is not finite");
+    throw Error(where, "the cell size must be a positive number of mm, got " + std::to_string(cell));
+  if (!min.allFinite() || !max.allFinite()) throw Error(where, "the area to cover is not finite");
   const Vec2 size = (max - min).cwiseMax(Vec2::Zero());
   const double nx = std::max(1.0, std::ceil(size.x() / cell - 1e-9)), ny = std::max(1.0, std::ceil(size.y() / cell - 1e-9));
   if (nx * ny > static_cast<double>(max_cells)) {
@@ -25,10 +26,13 @@ GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell, size_
       coarse += unit;
     char finest[32];
     std::snprintf(finest, sizeof finest, "%g", coarse);
-    char what[200];
-    std::snprintf(what, sizeof what, "a %.0f x %.0f mm area at %g mm cells would be %.3g cells, more than the %zu the "
-                  "verifier allows: use a cell of %s mm or more", size.x(), size.y(), cell, nx * ny, max_cells, finest);
-    throw Error("--resolution", what);
+    char memory[64] = "";
+    if (bytes_per_cell)
+      std::snprintf(memory, sizeof memory, " (about %.3g MB)", nx * ny * static_cast<double>(bytes_per_cell) / 1e6);
+    char what[300];
+    std::snprintf(what, sizeof what, "a %.0f x %.0f mm area at %g mm cells would be %.3g cells%s, more than the %zu "
+                  "allowed: use a cell of %s mm or more", size.x(), size.y(), cell, nx * ny, memory, max_cells, finest);
+    throw Error(where, what);
   }
   GridSpec g;
   g.cell = cell;
@@ -39,8 +43,8 @@ GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell, size_
   return g;
 }
 
-Stock Stock::box(const GridSpec& grid, double bottom_z, double top_z) {
-  Stock s;
+HeightField HeightField::box(const GridSpec& grid, double bottom_z, double top_z) {
+  HeightField s;
   s.grid = grid;
   s.bottom = bottom_z;
   s.top.assign(grid.cells(), static_cast<float>(top_z));
@@ -48,4 +52,4 @@ Stock Stock::box(const GridSpec& grid, double bottom_z, double top_z) {
   return s;
 }
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock
