@@ -15,7 +15,8 @@ GridSpec GridSpec::covering(const Vec2& min, const Vec2& max, double cell, size_
     throw Error(where, "the cell size must be a positive number of mm, got " + std::to_string(cell));
   if (!min.allFinite() || !max.allFinite()) throw Error(where, "the area to cover is not finite");
   const Vec2 size = (max - min).cwiseMax(Vec2::Zero());
-  const double nx = std::max(1.0, std::ceil(size.x() / cell - 1e-9)), ny = std::max(1.0, std::ceil(size.y() / cell - 1e-9));
+  const double nx = std::max(1.0, std::ceil(size.x() / cell - 1e-9));
+  const double ny = std::max(1.0, std::ceil(size.y() / cell - 1e-9));
   if (nx * ny > static_cast<double>(max_cells)) {
     // The finest cell that fits, in two significant digits.
     const double fit = std::sqrt(std::max(size.x() * size.y(), 1e-300) / static_cast<double>(max_cells));

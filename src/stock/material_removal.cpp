@@ -103,7 +103,8 @@ class BandSweep {
       return sweep_arc(arc, cp, t);
     }
     // A line's piece was usually made already, as the next piece of the move before.
-    const Piece current = m.shape == MoveShape::Line && cached_ == k ? cached_piece_ : line_piece(m, m.from, m.to, cp, o_.prune);
+    const Piece current =
+        m.shape == MoveShape::Line && cached_ == k ? cached_piece_ : line_piece(m, m.from, m.to, cp, o_.prune);
     Piece next;
     const Piece* after = next_linked && first_piece(k + 1, next) ? &next : nullptr;
     if (after) cached_ = k + 1, cached_piece_ = next;

@@ -22,7 +22,8 @@ double stepover_of(const stock::MachineProgram& program, const CompareOptions& o
 // Cells where the design is nearly flat (slope under `max_slope`) everywhere within `radius`: there the cutter's
 // whole footprint sits on a floor, so the material left between passes is a scallop comparable with the
 // flat-floor theory; next to a wall or on a slope it is something else (a fillet the cutter cannot enter).
-std::vector<uint8_t> flat_floor_cells(const std::vector<float>& z, const stock::GridSpec& g, double max_slope, double radius) {
+std::vector<uint8_t> flat_floor_cells(const std::vector<float>& z, const stock::GridSpec& g, double max_slope,
+                                      double radius) {
   const int nx = g.nx, ny = g.ny;
   // Steep (or unknown) cells, by differences over the neighbours that exist.
   std::vector<uint8_t> steep(g.cells(), 0);
@@ -62,7 +63,8 @@ double scallop_window(const stock::MachineProgram& program, const CompareOptions
   return (s > 0 ? 0.5 * s : 0.5 * finishing_profile(program).R) + 0.5 * cell;
 }
 
-DeviationReport compare(const stock::HeightField& stock, const std::vector<float>& design, const stock::MachineProgram& program,
+DeviationReport compare(const stock::HeightField& stock, const std::vector<float>& design,
+                        const stock::MachineProgram& program,
                         const stock::SimulationResult& sim, const CompareOptions& options, DeviationGrid* grid) {
   const stock::GridSpec& g = stock.grid;
   DeviationReport r;
@@ -100,7 +102,8 @@ DeviationReport compare(const stock::HeightField& stock, const std::vector<float
     rest_sum += dev;
     r.max_rest_mm = std::max(r.max_rest_mm, dev);
     if (dev > tol && stock.cut_by[c] == stock::HeightField::kNoMove) ++unreached;
-    const bool by_finisher = stock.cut_by[c] != stock::HeightField::kNoMove && program.moves[stock.cut_by[c]].tool == sim.finishing_tool;
+    const bool by_finisher =
+        stock.cut_by[c] != stock::HeightField::kNoMove && program.moves[stock.cut_by[c]].tool == sim.finishing_tool;
     if (traced && by_finisher && sim.finish_axis_d2[c] <= window_d2 && flat[c]) r.scallop_mm = std::max(r.scallop_mm, dev);
   }
   if (r.compared_cells) r.mean_rest_mm = rest_sum / r.compared_cells;
@@ -112,7 +115,8 @@ DeviationReport compare(const stock::HeightField& stock, const std::vector<float
     if (r.gouge_move != stock::HeightField::kNoMove) r.gouge_source = program.moves[r.gouge_move].source;
   }
   r.rapid_cut_cells = sim.rapid_cut_cells;
-  if (sim.first_rapid_cut != stock::HeightField::kNoMove) r.first_rapid_cut_source = program.moves[sim.first_rapid_cut].source;
+  if (sim.first_rapid_cut != stock::HeightField::kNoMove)
+    r.first_rapid_cut_source = program.moves[sim.first_rapid_cut].source;
   return r;
 }
 

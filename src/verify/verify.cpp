@@ -76,7 +76,8 @@ StockSpec StockSpec::parse_box(const std::string& text, const std::string& where
   return s;
 }
 
-VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program,
+                            const StockSpec& stock,
                             const VerifyOptions& options) {
   return run(design, design.bbox, program, stock, options, design.bbox.min.z());
 }

@@ -61,7 +61,8 @@ double scallop_theory(const Cutter& cutter, double stepover);
 // finishing cutter's radius when the stepover is unknown) plus half a cell. The simulation's trace radius.
 double scallop_window(const stock::MachineProgram& program, const CompareOptions& options, double cell);
 
-DeviationReport compare(const stock::HeightField& stock, const std::vector<float>& design, const stock::MachineProgram& program,
+DeviationReport compare(const stock::HeightField& stock, const std::vector<float>& design,
+                        const stock::MachineProgram& program,
                         const stock::SimulationResult& sim, const CompareOptions& options = {},
                         DeviationGrid* grid = nullptr);
 

@@ -37,7 +37,8 @@ struct VerifyResult {
   double seconds = 0.0;  // the whole verification (grid, design heights, simulation, comparison)
 };
 
-VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program,
+                            const StockSpec& stock,
                             const VerifyOptions& options = {});
 VerifyResult verify_program(const PointCloud& design, const stock::MachineProgram& program, const StockSpec& stock,
                             const VerifyOptions& options = {});
