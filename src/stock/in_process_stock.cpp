@@ -9,6 +9,7 @@
 
 #include "grid_walk.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/canon_arc.hpp"
 #include "rosmill/stock/design_height.hpp"
 
 namespace rosmill::core::stock {
@@ -222,6 +223,7 @@ RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupF
   HeightField work = view(setup);
   SimulationOptions o = options;
   o.trace_finishing = false;
+  o.mark_cutting_moves = true;
   const SimulationResult sim = simulate(program, work, o);
   Envelope& e = envelope_of(setup);
   for (size_t c = 0; c < work.top.size(); ++c)
@@ -231,6 +233,13 @@ RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupF
     }
   if (r.cut_cells) clip(e);
   r.removed_mm3 = std::max(0.0, before - volume());
+  for (size_t k = 0; k < program.moves.size(); ++k) {
+    const CanonMove& m = program.moves[k];
+    if (m.rapid) continue;
+    const double length = gcode::move_length(m);
+    r.feed_mm += length;
+    if (!sim.cutting_moves[k]) r.air_feed_mm += length;
+  }
   r.rapid_cut_cells = sim.rapid_cut_cells;
   r.first_rapid_move = sim.first_rapid_cut;
   if (sim.first_rapid_cut != HeightField::kNoMove) r.first_rapid_source = program.moves[sim.first_rapid_cut].source;

@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "sweep_kernels.hpp"
 
@@ -348,6 +350,12 @@ SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const 
     }
   }
 
+  // Bands write a move's mark independently (a move spans several bands): relaxed atomic stores of the same 1.
+  std::unique_ptr<std::atomic<uint8_t>[]> marks;
+  if (options.mark_cutting_moves) {
+    marks.reset(new std::atomic<uint8_t>[n]);
+    for (size_t k = 0; k < n; ++k) marks[k].store(0, std::memory_order_relaxed);
+  }
   std::vector<size_t> rapid_cuts(bands, 0), visited(bands, 0);
   std::vector<uint32_t> first_rapid(bands, HeightField::kNoMove);
   auto run_band = [&](int b) {
@@ -357,6 +365,7 @@ SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const 
     for (uint32_t q = band_start[b]; q < band_start[b + 1]; ++q) {
       const uint32_t k = band_moves[q];
       const size_t lowered = sweep.move(k, linked[k], linked[k + 1], finishing(k));
+      if (lowered && marks) marks[k].store(1, std::memory_order_relaxed);
       if (prog.moves[k].rapid && lowered) {
         rapid_cuts[b] += lowered;
         first_rapid[b] = std::min(first_rapid[b], k);
@@ -375,6 +384,10 @@ SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const 
     result.rapid_cut_cells += rapid_cuts[b];
     result.first_rapid_cut = std::min(result.first_rapid_cut, first_rapid[b]);
     result.cells_visited += visited[b];
+  }
+  if (marks) {
+    result.cutting_moves.resize(n);
+    for (size_t k = 0; k < n; ++k) result.cutting_moves[k] = marks[k].load(std::memory_order_relaxed);
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

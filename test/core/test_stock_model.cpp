@@ -41,10 +41,14 @@ TEST(StockModel, BoxStockMinusOneRoughingPassOverTheCube) {
   EXPECT_NEAR(stock.volume(), 60.0 * 60 * 60, outline_error(240, 60, cell));
   EXPECT_GT(first.cut_cells, 0u);
   EXPECT_FALSE(first.collided()) << "line " << first.first_rapid_source;
+  // Roughing from the cube's bounding box grown by 5 mm cuts air over most of its path in this stock.
+  EXPECT_GT(first.air_cut_share(), 0.3);
+  EXPECT_LT(first.air_cut_share(), 1.0);
   // The same program again cuts only air.
   const RemovalReport second = stock.remove(program);
   EXPECT_EQ(second.removed_mm3, 0.0);
   EXPECT_EQ(second.cut_cells, 0u);
+  EXPECT_EQ(second.air_cut_share(), 1.0);
   EXPECT_FALSE(second.collided());
 }
 
@@ -85,6 +89,8 @@ TEST(StockModel, RapidThroughMaterialIsACollisionWithItsLine) {
   const RemovalReport air = again.remove(program_of(Cutter::flat(10), {{Vec3(-10, 20, 30), Vec3(-10, 20, 10)}}));
   EXPECT_EQ(air.cut_cells, 0u);
   EXPECT_EQ(air.removed_mm3, 0.0);
+  EXPECT_DOUBLE_EQ(air.feed_mm, 20.0);
+  EXPECT_DOUBLE_EQ(air.air_feed_mm, 20.0);
 }
 
 TEST(StockModel, ClosedMeshStockHoldsTheMeshVolume) {

@@ -33,8 +33,11 @@ struct RemovalReport {
   size_t rapid_cut_cells = 0;    // of them, cut by a rapid (G0): a collision
   uint32_t first_rapid_move = HeightField::kNoMove;  // index in the program's moves of the first rapid that cut
   uint32_t first_rapid_source = 0;                   // its G-code line or toolpath move number (0: none)
+  double feed_mm = 0;            // length of the feed moves (lines and arcs)
+  double air_feed_mm = 0;        // of it, moves that cut no material (air cutting)
   double seconds = 0;
   bool collided() const { return rapid_cut_cells > 0; }
+  double air_cut_share() const { return feed_mm > 0 ? air_feed_mm / feed_mm : 0.0; }
 };
 
 class InProcessStock {

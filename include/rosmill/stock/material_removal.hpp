@@ -25,6 +25,7 @@ struct SimulationOptions {
   bool prune = true;             // false: sweep every move over its whole footprint (the slow reference)
   double trace_radius = 0;       // mm: how far from the finishing path cells record their distance (0: R)
   bool trace_finishing = true;   // false: no finishing trace (SimulationResult::finish_axis_d2 stays empty)
+  bool mark_cutting_moves = false;  // true: SimulationResult::cutting_moves says which moves lowered a cell
 };
 
 struct SimulationResult {
@@ -35,6 +36,7 @@ struct SimulationResult {
   // of the last tool), recorded up to the trace radius; +infinity elsewhere. The scallop check reads it.
   std::vector<float> finish_axis_d2;
   uint16_t finishing_tool = 0;
+  std::vector<uint8_t> cutting_moves;  // per move 1 when it lowered some cell (with mark_cutting_moves)
   size_t cells_visited = 0;       // cell evaluations (the work done)
   double seconds = 0.0;
 };
