@@ -94,14 +94,20 @@ GridSpec InProcessStock::setup_grid(const SetupFrame& setup) const {
   return s;
 }
 
+size_t InProcessStock::envelope_index(const SetupFrame& setup) const {
+  for (size_t k = 0; k < envelopes_.size(); ++k)
+    if (envelopes_[k].setup.to_setup.angularDistance(setup.to_setup) < 1e-9) return k;
+  return envelopes_.size();
+}
+
 const InProcessStock::Envelope* InProcessStock::envelope_if(const SetupFrame& setup) const {
-  for (const Envelope& e : envelopes_)
-    if (e.setup.to_setup.angularDistance(setup.to_setup) < 1e-9) return &e;
-  return nullptr;
+  const size_t k = envelope_index(setup);
+  return k < envelopes_.size() ? &envelopes_[k] : nullptr;
 }
 
 InProcessStock::Envelope& InProcessStock::envelope_of(const SetupFrame& setup) {
-  if (const Envelope* e = envelope_if(setup)) return const_cast<Envelope&>(*e);
+  const size_t k = envelope_index(setup);
+  if (k < envelopes_.size()) return envelopes_[k];
   Envelope e;
   e.setup = setup;
   e.field.grid = setup_grid(setup);

@@ -5,6 +5,7 @@
 // (from the table up to the scanned top).
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "rosmill/geometry/mesh.hpp"

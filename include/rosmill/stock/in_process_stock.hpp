@@ -9,6 +9,7 @@
 // envelope) are kept up to date, so volumes and views read them directly; each envelope keeps its own setup's
 // precision for the next program in that setup.
 #pragma once
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,7 @@ class InProcessStock {
     HeightField field;  // lowest cutter bottom per cell (+infinity where nothing passed)
   };
   explicit InProcessStock(Dexels raw) : material_(std::move(raw)) {}
+  size_t envelope_index(const SetupFrame& setup) const;  // envelopes_.size() when the setup has none
   Envelope& envelope_of(const SetupFrame& setup);
   const Envelope* envelope_if(const SetupFrame& setup) const;
   Box3 turned_bounds(const SetupFrame& setup) const;
