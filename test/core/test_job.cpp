@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "test_stock_programs.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/io/stl.hpp"
 #include "rosmill/job/run_job.hpp"
 
 using namespace rosmill::core;
@@ -109,5 +111,27 @@ TEST(Job, CommandLineWritesCheckedProgramsAndJson) {
   const CliRun missing = run_rosmill_shell("job /nonexistent/job.yaml 2>&1");
   EXPECT_NE(missing.status, 0);
   EXPECT_NE(missing.out.find("cannot read the job file"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Job, CastStockFromAMesh) {
+  // A casting 2 mm larger than the cube all round, 4 mm on top, written as STL next to the job.
+  const std::string dir = ::testing::TempDir() + "rosmill_job_cast";
+  std::filesystem::create_directories(dir);
+  write_stl(dir + "/cast.stl", build_mesh(stock_test::box_corners(Vec3(-2, -2, 0), Vec3(62, 62, 64))));
+  const JobSpec spec = parse_job("part: primitive:cube\nresolution: 0.5\nstock: {mesh: cast.stl}\noperations:\n"
+                                 "  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 2, allowance: 0.5}\n",
+                                 "job.yaml", dir);
+  const JobReport r = run_job(spec, {});
+  EXPECT_NEAR(r.stock_mm3, 64.0 * 64 * 64, 1e-6);
+  EXPECT_GE(r.left_mm3, 60.0 * 60 * 60 - 1e-6);
+  // Levels 2 mm apart from the casting's top: the first, at 62, clears the whole top (the next over the cube would
+  // leave less than the allowance, so the roughing goes down beside it only where the cutter fits).
+  EXPECT_GE(r.removed_mm3, 64.0 * 64 * 2 - 1e-6);
+  EXPECT_EQ(r.operations[0].collision_line, 0u);
+  // The same job from the box around the cube cuts more air.
+  JobSpec box = spec;
+  box.stock = StockSpec{};
+  EXPECT_GT(run_job(box, {}).operations[0].air_cut_share, r.operations[0].air_cut_share);
   std::filesystem::remove_all(dir);
 }
