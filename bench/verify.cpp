@@ -19,6 +19,7 @@
 
 using namespace rosmill::core;
 using namespace rosmill::core::verify;
+using namespace rosmill::core::stock;
 
 namespace {
 

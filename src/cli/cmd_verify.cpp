@@ -23,6 +23,7 @@ namespace rosmill::core::cli {
 namespace {
 
 using namespace rosmill::core::verify;
+using namespace rosmill::core::stock;
 
 struct VerifyArgs {
   std::string design, program, stock = "box", tools, units, image;

@@ -12,6 +12,12 @@ double arc_sweep(const CanonMove& arc) {
   return ccw - 2 * M_PI == 0.0 ? -2 * M_PI : ccw - 2 * M_PI;          // [-2π, 0)
 }
 
+double move_length(const CanonMove& move) {
+  if (move.shape == MoveShape::Line) return (move.to - move.from).norm();
+  const double xy = (move.from.head<2>() - move.centre).norm() * std::abs(arc_sweep(move));
+  return std::hypot(xy, move.to.z() - move.from.z());
+}
+
 Vec3 move_point(const CanonMove& move, double s) {
   if (move.shape == MoveShape::Line) return move.from + s * (move.to - move.from);
   const Vec2 a = move.from.head<2>() - move.centre;

@@ -11,18 +11,19 @@ namespace {
 constexpr double kFlatSlope = 0.2;  // about 11 degrees
 
 // The profile of the finishing tool (the tool of the last move).
-CutterProfile finishing_profile(const MachineProgram& program) {
+CutterProfile finishing_profile(const stock::MachineProgram& program) {
   return CutterProfile(program.moves.empty() ? Cutter{} : program.tools[program.moves.back().tool].cutter);
 }
 
-double stepover_of(const MachineProgram& program, const CompareOptions& options) {
+double stepover_of(const stock::MachineProgram& program, const CompareOptions& options) {
   return options.stepover > 0 ? options.stepover : program.finishing_stepover;
 }
 
 // Cells where the design is nearly flat (slope under `max_slope`) everywhere within `radius`: there the cutter's
 // whole footprint sits on a floor, so the material left between passes is a scallop comparable with the
 // flat-floor theory; next to a wall or on a slope it is something else (a fillet the cutter cannot enter).
-std::vector<uint8_t> flat_floor_cells(const std::vector<float>& z, const GridSpec& g, double max_slope, double radius) {
+std::vector<uint8_t> flat_floor_cells(const std::vector<float>& z, const stock::GridSpec& g, double max_slope,
+                                      double radius) {
   const int nx = g.nx, ny = g.ny;
   // Steep (or unknown) cells, by differences over the neighbours that exist.
   std::vector<uint8_t> steep(g.cells(), 0);
@@ -57,14 +58,15 @@ double scallop_theory(const Cutter& cutter, double stepover) {
   return cp.height(std::min(cp.R, 0.5 * stepover));
 }
 
-double scallop_window(const MachineProgram& program, const CompareOptions& options, double cell) {
+double scallop_window(const stock::MachineProgram& program, const CompareOptions& options, double cell) {
   const double s = stepover_of(program, options);
   return (s > 0 ? 0.5 * s : 0.5 * finishing_profile(program).R) + 0.5 * cell;
 }
 
-DeviationReport compare(const Stock& stock, const std::vector<float>& design, const MachineProgram& program,
-                        const SimulationResult& sim, const CompareOptions& options, DeviationGrid* grid) {
-  const GridSpec& g = stock.grid;
+DeviationReport compare(const stock::HeightField& stock, const std::vector<float>& design,
+                        const stock::MachineProgram& program,
+                        const stock::SimulationResult& sim, const CompareOptions& options, DeviationGrid* grid) {
+  const stock::GridSpec& g = stock.grid;
   DeviationReport r;
   r.cells = g.cells();
   const double tol = options.tolerance;
@@ -80,7 +82,7 @@ DeviationReport compare(const Stock& stock, const std::vector<float>& design, co
     grid->design = design;
     grid->deviation.assign(g.cells(), std::numeric_limits<float>::quiet_NaN());
     grid->cut.resize(g.cells());
-    for (size_t c = 0; c < g.cells(); ++c) grid->cut[c] = stock.cut_by[c] != Stock::kNoMove;
+    for (size_t c = 0; c < g.cells(); ++c) grid->cut[c] = stock.cut_by[c] != stock::HeightField::kNoMove;
     grid->tolerance = tol;
   }
   const std::vector<uint8_t> flat = flat_floor_cells(design, g, kFlatSlope, finish.R);
@@ -99,8 +101,9 @@ DeviationReport compare(const Stock& stock, const std::vector<float>& design, co
     if (dev <= 0) continue;
     rest_sum += dev;
     r.max_rest_mm = std::max(r.max_rest_mm, dev);
-    if (dev > tol && stock.cut_by[c] == Stock::kNoMove) ++unreached;
-    const bool by_finisher = stock.cut_by[c] != Stock::kNoMove && program.moves[stock.cut_by[c]].tool == sim.finishing_tool;
+    if (dev > tol && stock.cut_by[c] == stock::HeightField::kNoMove) ++unreached;
+    const bool by_finisher =
+        stock.cut_by[c] != stock::HeightField::kNoMove && program.moves[stock.cut_by[c]].tool == sim.finishing_tool;
     if (traced && by_finisher && sim.finish_axis_d2[c] <= window_d2 && flat[c]) r.scallop_mm = std::max(r.scallop_mm, dev);
   }
   if (r.compared_cells) r.mean_rest_mm = rest_sum / r.compared_cells;
@@ -109,10 +112,11 @@ DeviationReport compare(const Stock& stock, const std::vector<float>& design, co
     const int i = static_cast<int>(gouge_cell % g.nx), j = static_cast<int>(gouge_cell / g.nx);
     r.gouge_at = Vec3(g.cx(i), g.cy(j), stock.top[gouge_cell]);
     r.gouge_move = stock.cut_by[gouge_cell];
-    if (r.gouge_move != Stock::kNoMove) r.gouge_source = program.moves[r.gouge_move].source;
+    if (r.gouge_move != stock::HeightField::kNoMove) r.gouge_source = program.moves[r.gouge_move].source;
   }
   r.rapid_cut_cells = sim.rapid_cut_cells;
-  if (sim.first_rapid_cut != Stock::kNoMove) r.first_rapid_cut_source = program.moves[sim.first_rapid_cut].source;
+  if (sim.first_rapid_cut != stock::HeightField::kNoMove)
+    r.first_rapid_cut_source = program.moves[sim.first_rapid_cut].source;
   return r;
 }
 

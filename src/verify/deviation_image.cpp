@@ -17,7 +17,7 @@ std::string fmt(const char* f, double a, double b = 0, double c = 0) {
 
 // The report's figures, a line each (short enough for the legend's width).
 std::vector<std::string> figures(const DeviationGrid& grid, const DeviationReport& r) {
-  const GridSpec& g = grid.grid;
+  const stock::GridSpec& g = grid.grid;
   std::vector<std::string> lines;
   lines.push_back(fmt("%.0f x %.0f cells of %g mm", g.nx, g.ny, g.cell));
   if (r.gouged) {
@@ -39,7 +39,7 @@ std::vector<std::string> figures(const DeviationGrid& grid, const DeviationRepor
 }  // namespace
 
 RgbImage deviation_image(const DeviationGrid& grid, const DeviationReport& report) {
-  const GridSpec& g = grid.grid;
+  const stock::GridSpec& g = grid.grid;
   const int longest = std::max(g.nx, g.ny);
   const int step = std::max(1, (longest + kMapPixels - 1) / kMapPixels);       // cells a pixel (large grids)
   const int zoom = step > 1 ? 1 : std::clamp(kMapPixels / longest, 1, 8);     // pixels a cell (small grids)

@@ -44,7 +44,7 @@ size_t deviation_band(double deviation, bool cut, double tol) {
 }
 
 long worst_cell(const DeviationGrid& grid, int i, int j, int step) {
-  const GridSpec& g = grid.grid;
+  const stock::GridSpec& g = grid.grid;
   long worst = -1;
   for (int v = j; v < std::min(g.ny, j + step); ++v)
     for (int u = i; u < std::min(g.nx, i + step); ++u) {
@@ -61,7 +61,7 @@ long worst_cell(const DeviationGrid& grid, int i, int j, int step) {
 }
 
 std::vector<DeviationPoint> deviation_points(const DeviationGrid& grid, size_t max_points) {
-  const GridSpec& g = grid.grid;
+  const stock::GridSpec& g = grid.grid;
   int step = 1;
   while (max_points > 0 && static_cast<size_t>((g.nx + step - 1) / step) * ((g.ny + step - 1) / step) > max_points)
     ++step;

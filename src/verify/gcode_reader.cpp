@@ -100,7 +100,7 @@ class Reader {
     return !reader_.state().ended;
   }
 
-  MachineProgram finish() {
+  stock::MachineProgram finish() {
     program_.from_gcode = true;
     return std::move(program_);
   }
@@ -130,7 +130,7 @@ class Reader {
   }
 
   // A move is swept once all three axes are known, the first one from its own target.
-  void add(const CanonMove& move) {
+  void add(const gcode::CanonMove& move) {
     if (move.is_arc() && move.turns != 1) throw Error(reader_.where(), "arcs of several turns (P) are not supported");
     if (!move.to_known()) return;  // still somewhere unknown: nothing to sweep yet
     if (current_ < 0)
@@ -141,7 +141,7 @@ class Reader {
     if (program_.moves.size() >= kMaxProgramMoves)
       throw Error(reader_.where(), "the program has more than " + std::to_string(kMaxProgramMoves) +
                                        " moves, more than the verifier holds: verify it in parts");
-    CanonMove& m = program_.moves.emplace_back(move);
+    gcode::CanonMove& m = program_.moves.emplace_back(move);
     if (!m.from_known()) {  // the first swept move starts at its own target
       m.from = m.to;
       m.known_from = m.known_to;
@@ -151,13 +151,13 @@ class Reader {
 
   const ToolSetup& tools_;
   gcode::Interpreter reader_;
-  MachineProgram program_;
+  stock::MachineProgram program_;
   int current_ = -1;
 };
 
 }  // namespace
 
-MachineProgram parse_gcode(const std::string& text, const std::string& name, const ToolSetup& tools) {
+stock::MachineProgram parse_gcode(const std::string& text, const std::string& name, const ToolSetup& tools) {
   Reader reader(name, tools, static_cast<size_t>(std::count(text.begin(), text.end(), '\n')));
   std::string_view rest(text);
   uint32_t number = 0;
@@ -169,7 +169,7 @@ MachineProgram parse_gcode(const std::string& text, const std::string& name, con
   return reader.finish();
 }
 
-MachineProgram read_gcode(const std::string& path, const ToolSetup& tools) {
+stock::MachineProgram read_gcode(const std::string& path, const ToolSetup& tools) {
   return parse_gcode(read_input_file(path), path, tools);
 }
 

@@ -8,14 +8,14 @@
 #include <sstream>
 
 #include "rosmill/error.hpp"
-#include "rosmill/verify/design_height.hpp"
+#include "rosmill/stock/design_height.hpp"
 
 namespace rosmill::core::verify {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-Stock make_stock(const StockSpec& spec, const Box3& design_bounds, double resolution, size_t max_cells) {
+stock::HeightField make_stock(const StockSpec& spec, const Box3& design_bounds, double resolution, size_t max_cells) {
   const Box3 b = spec.kind == StockSpec::Kind::Box    ? spec.box
                  : spec.kind == StockSpec::Kind::Mesh ? spec.mesh->bbox
                                                       : design_bounds;
@@ -30,23 +30,23 @@ Stock make_stock(const StockSpec& spec, const Box3& design_bounds, double resolu
                   design_bounds.min.y(), design_bounds.max.y());
     throw Error("--stock", what);
   }
-  const GridSpec grid = GridSpec::covering(b.min.head<2>(), b.max.head<2>(), resolution, max_cells);
-  Stock stock = Stock::box(grid, b.min.z(), b.max.z());
-  if (spec.kind == StockSpec::Kind::Mesh) stock.top = design_heights(*spec.mesh, grid, b.min.z());
+  const stock::GridSpec grid = stock::GridSpec::covering(b.min.head<2>(), b.max.head<2>(), resolution, max_cells);
+  stock::HeightField stock = stock::HeightField::box(grid, b.min.z(), b.max.z());
+  if (spec.kind == StockSpec::Kind::Mesh) stock.top = stock::design_heights(*spec.mesh, grid, b.min.z());
   return stock;
 }
 
 template <class Design>
-VerifyResult run(const Design& design, const Box3& bounds, const MachineProgram& program, const StockSpec& spec,
+VerifyResult run(const Design& design, const Box3& bounds, const stock::MachineProgram& program, const StockSpec& spec,
                  const VerifyOptions& options, double floor) {
   const auto start = Clock::now();
-  Stock stock = make_stock(spec, bounds, options.resolution, options.max_cells);
+  stock::HeightField stock = make_stock(spec, bounds, options.resolution, options.max_cells);
   std::vector<float> heights;
-  if constexpr (std::is_same_v<Design, rosmill::core::Mesh>) heights = design_heights(design, stock.grid, floor);
-  else heights = design_heights(design, stock.grid);
-  SimulationOptions so = options.simulation;
+  if constexpr (std::is_same_v<Design, rosmill::core::Mesh>) heights = stock::design_heights(design, stock.grid, floor);
+  else heights = stock::design_heights(design, stock.grid);
+  stock::SimulationOptions so = options.simulation;
   if (!(so.trace_radius > 0)) so.trace_radius = scallop_window(program, options.compare, stock.grid.cell);
-  const SimulationResult sim = simulate(program, stock, so);
+  const stock::SimulationResult sim = stock::simulate(program, stock, so);
   VerifyResult result;
   result.report = compare(stock, heights, program, sim, options.compare, &result.grid);
   result.simulation_seconds = sim.seconds;
@@ -76,12 +76,13 @@ StockSpec StockSpec::parse_box(const std::string& text, const std::string& where
   return s;
 }
 
-VerifyResult verify_program(const rosmill::core::Mesh& design, const MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program,
+                            const StockSpec& stock,
                             const VerifyOptions& options) {
   return run(design, design.bbox, program, stock, options, design.bbox.min.z());
 }
 
-VerifyResult verify_program(const PointCloud& design, const MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const PointCloud& design, const stock::MachineProgram& program, const StockSpec& stock,
                             const VerifyOptions& options) {
   return run(design, design.bbox, program, stock, options, design.bbox.min.z());
 }

@@ -6,13 +6,14 @@
 #include <sstream>
 
 #include "rosmill/geometry/primitives.hpp"
-#include "rosmill/verify/design_height.hpp"
+#include "rosmill/stock/design_height.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
 #include "test_verify_programs.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::verify;
+using namespace rosmill::core::stock;
 using namespace verify_test;
 
 namespace {

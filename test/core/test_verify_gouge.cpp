@@ -11,6 +11,7 @@
 
 using namespace rosmill::core;
 using namespace rosmill::core::verify;
+using namespace rosmill::core::stock;
 using namespace verify_test;
 
 namespace {

@@ -12,6 +12,7 @@ namespace verify_test {
 
 using namespace rosmill::core;
 using namespace rosmill::core::verify;
+using namespace rosmill::core::stock;
 
 inline StockSpec box(double x0, double y0, double z0, double x1, double y1, double z1) {
   StockSpec s;

@@ -7,10 +7,11 @@
 #include <random>
 
 #include "rosmill/verify/gcode_reader.hpp"
-#include "rosmill/verify/material_removal.hpp"
+#include "rosmill/stock/material_removal.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::verify;
+using namespace rosmill::core::stock;
 
 namespace {
 
@@ -30,7 +31,7 @@ void expect_matches_reference(const CanonMove& m, const Cutter& c, double slack 
   Cutter inner = c;
   inner.diameter -= 2e-6;
   const GridSpec g = GridSpec::covering(Vec2(-12, -12), Vec2(12, 12), 0.5);
-  Stock s = Stock::box(g, -50, 50);
+  HeightField s = HeightField::box(g, -50, 50);
   simulate(one_move(m, c), s);
   int cut = 0;
   for (int j = 0; j < g.ny; ++j)
@@ -156,7 +157,7 @@ TEST(VerifySweep, ArcsMatchReference) {
 TEST(VerifySweep, BallSlotDepthAndWidthAreExact) {
   // A 6 mm ball along x at z = 2 in a stock whose top is at 5: the slot's cross-section is the ball's circle.
   const GridSpec g = GridSpec::covering(Vec2(0, -10), Vec2(40, 10), 0.1);
-  Stock s = Stock::box(g, 0, 5);
+  HeightField s = HeightField::box(g, 0, 5);
   simulate(one_move(line({5, 0.05, 2}, {35, 0.05, 2}), Cutter::ball(6)), s);
   for (int j = 0; j < g.ny; ++j) {
     const double y = g.cy(j) - 0.05, expect = std::abs(y) < 3 ? std::min(5.0, 2 + 3 - std::sqrt(9 - y * y)) : 5.0;
@@ -167,7 +168,7 @@ TEST(VerifySweep, BallSlotDepthAndWidthAreExact) {
 TEST(VerifySweep, ParallelBandsEqualSerial) {
   const MachineProgram p = mixed_program(7);
   const GridSpec g = GridSpec::covering(Vec2(-16, -16), Vec2(16, 16), 0.25);
-  Stock a = Stock::box(g, -10, 2), b = Stock::box(g, -10, 2);
+  HeightField a = HeightField::box(g, -10, 2), b = HeightField::box(g, -10, 2);
   SimulationOptions serial;
   serial.parallel = false;
   serial.band_rows = 1000;
@@ -175,7 +176,7 @@ TEST(VerifySweep, ParallelBandsEqualSerial) {
   simulate(p, b);
   EXPECT_EQ(a.top, b.top);
   EXPECT_EQ(a.cut_by, b.cut_by);
-  EXPECT_NE(a.top, Stock::box(g, -10, 2).top);
+  EXPECT_NE(a.top, HeightField::box(g, -10, 2).top);
 }
 
 
@@ -185,7 +186,7 @@ TEST(VerifySweep, PrunedChainsEqualWholeSweeps) {
   const GridSpec g = GridSpec::covering(Vec2(-16, -16), Vec2(16, 16), 0.25);
   for (unsigned seed : {1u, 2u, 3u, 6u}) {  // 3 and 6 clamp arcs onto a smaller radius
     const MachineProgram p = mixed_program(seed);
-    Stock pruned = Stock::box(g, -10, 2), whole = Stock::box(g, -10, 2);
+    HeightField pruned = HeightField::box(g, -10, 2), whole = HeightField::box(g, -10, 2);
     SimulationOptions o;
     o.trace_radius = 1.0;
     const SimulationResult a = simulate(p, pruned, o);

@@ -10,6 +10,8 @@ namespace rosmill::core::gcode {
 double arc_sweep(const CanonMove& arc);
 // The point at fraction s in [0, 1] along the move (lines and arcs; z changes linearly along the arc).
 Vec3 move_point(const CanonMove& move, double s);
+// Length of the move's path in mm (a helix: its turns' XY length and its z change together).
+double move_length(const CanonMove& move);
 // XY bounds of the move's axis path (the arc's extreme points included).
 void move_xy_bounds(const CanonMove& move, Vec2& min, Vec2& max);
 

@@ -4,9 +4,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "rosmill/verify/height_field.hpp"
-#include "rosmill/verify/material_removal.hpp"
-#include "rosmill/verify/program.hpp"
+#include "rosmill/stock/height_field.hpp"
+#include "rosmill/stock/material_removal.hpp"
+#include "rosmill/stock/program.hpp"
 
 namespace rosmill::core::verify {
 
@@ -18,7 +18,7 @@ struct CompareOptions {
 // Per-cell deviation on the stock's grid (for images, and for the ROS layer's coloured cloud). NaN in `design`
 // and `deviation` where the design is unknown (cloud gaps).
 struct DeviationGrid {
-  GridSpec grid;
+  stock::GridSpec grid;
   std::vector<float> machined;
   std::vector<float> design;
   std::vector<float> deviation;  // machined - design: < 0 gouge, > 0 material left
@@ -31,7 +31,7 @@ struct DeviationReport {
   double max_gouge_mm = 0.0;
   bool gouged = false;
   Vec3 gouge_at = Vec3::Zero();     // cell centre at the machined height
-  uint32_t gouge_move = Stock::kNoMove;  // index in the program's moves
+  uint32_t gouge_move = stock::HeightField::kNoMove;  // index in the program's moves
   uint32_t gouge_source = 0;        // its G-code line or toolpath move number (0 when unknown)
   bool from_gcode = false;          // gouge_source is a G-code line (else a toolpath move number)
   size_t gouge_cells = 0;
@@ -59,10 +59,11 @@ double scallop_theory(const Cutter& cutter, double stepover);
 
 // How far from the finishing path a cell counts as between two of its passes: half the stepover (half the
 // finishing cutter's radius when the stepover is unknown) plus half a cell. The simulation's trace radius.
-double scallop_window(const MachineProgram& program, const CompareOptions& options, double cell);
+double scallop_window(const stock::MachineProgram& program, const CompareOptions& options, double cell);
 
-DeviationReport compare(const Stock& stock, const std::vector<float>& design, const MachineProgram& program,
-                        const SimulationResult& sim, const CompareOptions& options = {},
+DeviationReport compare(const stock::HeightField& stock, const std::vector<float>& design,
+                        const stock::MachineProgram& program,
+                        const stock::SimulationResult& sim, const CompareOptions& options = {},
                         DeviationGrid* grid = nullptr);
 
 }  // namespace rosmill::core::verify

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "rosmill/cutter/tool_table.hpp"
-#include "rosmill/verify/program.hpp"
+#include "rosmill/stock/program.hpp"
 
 namespace rosmill::core::verify {
 
@@ -36,7 +36,7 @@ constexpr size_t kMaxProgramMoves = 20'000'000;
 
 // Positions are unknown until an axis is first given; a move is swept once all three are known, the first one
 // from its own target (the controller's position before the program is not known).
-MachineProgram parse_gcode(const std::string& text, const std::string& name, const ToolSetup& tools);
-MachineProgram read_gcode(const std::string& path, const ToolSetup& tools);
+stock::MachineProgram parse_gcode(const std::string& text, const std::string& name, const ToolSetup& tools);
+stock::MachineProgram read_gcode(const std::string& path, const ToolSetup& tools);
 
 }  // namespace rosmill::core::verify

@@ -6,8 +6,8 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/verify/deviation.hpp"
-#include "rosmill/verify/material_removal.hpp"
-#include "rosmill/verify/program.hpp"
+#include "rosmill/stock/material_removal.hpp"
+#include "rosmill/stock/program.hpp"
 
 namespace rosmill::core::verify {
 
@@ -24,9 +24,9 @@ struct StockSpec {
 
 struct VerifyOptions {
   double resolution = 0.5;  // cell size in mm
-  size_t max_cells = kMaxGridCells;
+  size_t max_cells = stock::kMaxGridCells;
   CompareOptions compare;
-  SimulationOptions simulation;
+  stock::SimulationOptions simulation;
 };
 
 struct VerifyResult {
@@ -37,9 +37,10 @@ struct VerifyResult {
   double seconds = 0.0;  // the whole verification (grid, design heights, simulation, comparison)
 };
 
-VerifyResult verify_program(const rosmill::core::Mesh& design, const MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program,
+                            const StockSpec& stock,
                             const VerifyOptions& options = {});
-VerifyResult verify_program(const PointCloud& design, const MachineProgram& program, const StockSpec& stock,
+VerifyResult verify_program(const PointCloud& design, const stock::MachineProgram& program, const StockSpec& stock,
                             const VerifyOptions& options = {});
 
 }  // namespace rosmill::core::verify

@@ -8,9 +8,9 @@
 
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/gcode/canon_arc.hpp"
-#include "rosmill/verify/program.hpp"
+#include "rosmill/stock/program.hpp"
 
-namespace rosmill::core::verify::sweep {
+namespace rosmill::core::stock::sweep {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kVerticalLength = 1e-9;  // mm: a line shorter than this in XY is a vertical move
@@ -181,4 +181,4 @@ inline bool arc_row(const ArcFrame& a, double R, double y, double& lo, double& h
   return lo <= hi;
 }
 
-}  // namespace rosmill::core::verify::sweep
+}  // namespace rosmill::core::stock::sweep

@@ -5,10 +5,10 @@
 #pragma once
 #include <cstdint>
 
-#include "rosmill/verify/height_field.hpp"
+#include "rosmill/stock/height_field.hpp"
 #include "sweep_geometry.hpp"
 
-namespace rosmill::core::verify::sweep {
+namespace rosmill::core::stock::sweep {
 
 // ---- cutter profiles: the bottom's height above the tip from the squared distance to the axis
 
@@ -161,4 +161,4 @@ uint32_t update(const Kernel& k, int i0, int i1, size_t base, const Target& t) {
   return t.trace ? update_row<true>(k, i0, i1, base, t) : update_row<false>(k, i0, i1, base, t);
 }
 
-}  // namespace rosmill::core::verify::sweep
+}  // namespace rosmill::core::stock::sweep

@@ -4,9 +4,9 @@
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
-#include "rosmill/verify/height_field.hpp"
+#include "rosmill/stock/height_field.hpp"
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 
 // Highest point of the mesh met by a vertical ray at each cell centre (triangles are rasterised over the cells
 // of their XY bounds, so each cell only meets the triangles above it). Cells the mesh does not cover get `floor`
@@ -17,4 +17,4 @@ std::vector<float> design_heights(const Mesh& mesh, const GridSpec& grid, double
 // cells away (scans have gaps smaller than a few cells); cells further from any point stay NaN (not compared).
 std::vector<float> design_heights(const PointCloud& cloud, const GridSpec& grid, int fill_cells = 3);
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock

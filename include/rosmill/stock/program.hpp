@@ -10,7 +10,7 @@
 #include "rosmill/geometry/types.hpp"
 #include "rosmill/toolpath/toolpath.hpp"
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 
 // The simulator's moves are the G-code reader's canonical moves (arcs in the XY plane, z may change: a helix);
 // `tool` indexes MachineProgram::tools, `source` is a G-code line or a toolpath move number (1-based, over the
@@ -31,4 +31,4 @@ MachineProgram program_from_job(const std::vector<Toolpath>& job);
 // True when the file is a toolpath file (.json) rather than G-code.
 bool is_toolpath_path(const std::string& path);
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock

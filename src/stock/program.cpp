@@ -1,6 +1,6 @@
-#include "rosmill/verify/program.hpp"
+#include "rosmill/stock/program.hpp"
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 
 MachineProgram program_from_job(const std::vector<Toolpath>& job) {
   MachineProgram program;
@@ -32,4 +32,4 @@ bool is_toolpath_path(const std::string& path) {
   return path.size() >= 5 && path.compare(path.size() - 5, 5, ".json") == 0;
 }
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock

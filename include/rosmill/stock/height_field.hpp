@@ -1,17 +1,19 @@
 // A height field (dexel) grid over the XY plane: one value per square cell, sampled at the cell centre.
-// The stock, the design and the deviation are all held on the same grid so they compare cell by cell.
+// The stock seen from a setup, the removal envelope of a setup, the design and the deviation are held on such a
+// grid so that they compare cell by cell.
 #pragma once
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 
-// The largest grid the verifier allocates (about 32 bytes a cell for the stock, the design, the deviation and the
-// trace): a larger one is refused with a message, never allocated from what an input asks for.
+// The largest grid allocated (the verifier holds about 32 bytes a cell for the stock, the design, the deviation and
+// the trace): a larger one is refused with a message, never allocated from what an input asks for.
 constexpr size_t kMaxGridCells = 25'000'000;
 
 struct GridSpec {
@@ -30,9 +32,11 @@ struct GridSpec {
   int first_y(double a) const { return first_index((a - y0) / cell, ny); }
   int last_y(double b) const { return last_index((b - y0) / cell, ny); }
 
-  // A grid covering [min, max] in XY at `cell` mm (at least one cell each way). Throws Error (naming
-  // --resolution) for a cell size that is not a positive number or a grid of more than `max_cells` cells.
-  static GridSpec covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells = kMaxGridCells);
+  // A grid covering [min, max] in XY at `cell` mm (at least one cell each way). Throws Error naming `where` for a
+  // cell size that is not a positive number or a grid of more than `max_cells` cells (with the memory it would take
+  // at `bytes_per_cell`, when given).
+  static GridSpec covering(const Vec2& min, const Vec2& max, double cell, size_t max_cells = kMaxGridCells,
+                           const std::string& where = "--resolution", size_t bytes_per_cell = 0);
 
  private:
   static int first_index(double u, int n) {
@@ -45,8 +49,9 @@ struct GridSpec {
   }
 };
 
-// The stock being cut: the top height of material per cell and, per cell, the move that last lowered it.
-struct Stock {
+// The stock being cut, seen from the tool: the top height of material per cell and, per cell, the move that last
+// lowered it.
+struct HeightField {
   GridSpec grid;
   double bottom = 0.0;             // stock floor (mm); cells without material sit at the floor
   std::vector<float> top;          // current top of material per cell (mm)
@@ -54,7 +59,7 @@ struct Stock {
   static constexpr uint32_t kNoMove = 0xffffffffu;
 
   // A box of stock: every cell at `top_z`, floor at `bottom_z`.
-  static Stock box(const GridSpec& grid, double bottom_z, double top_z);
+  static HeightField box(const GridSpec& grid, double bottom_z, double top_z);
 };
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock

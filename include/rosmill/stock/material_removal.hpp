@@ -13,10 +13,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "rosmill/verify/height_field.hpp"
-#include "rosmill/verify/program.hpp"
+#include "rosmill/stock/height_field.hpp"
+#include "rosmill/stock/program.hpp"
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 
 struct SimulationOptions {
   double arc_tolerance = 0.001;  // mm: largest distance between a helical arc and its chords
@@ -24,26 +24,30 @@ struct SimulationOptions {
   bool parallel = true;
   bool prune = true;             // false: sweep every move over its whole footprint (the slow reference)
   double trace_radius = 0;       // mm: how far from the finishing path cells record their distance (0: R)
+  bool trace_finishing = true;   // false: no finishing trace (SimulationResult::finish_axis_d2 stays empty)
+  bool mark_cutting_moves = false;  // true: SimulationResult::cutting_moves says which moves lowered a cell
 };
 
 struct SimulationResult {
   size_t moves = 0;               // program moves swept
   size_t rapid_cut_cells = 0;     // cells lowered by a rapid (G0): each is a crash into material
-  uint32_t first_rapid_cut = Stock::kNoMove;  // program move index of the first rapid that cut, if any
+  uint32_t first_rapid_cut = HeightField::kNoMove;  // program move index of the first rapid that cut, if any
   // Squared XY distance from each cell centre to the nearest axis position of the finishing moves (the feed moves
   // of the last tool), recorded up to the trace radius; +infinity elsewhere. The scallop check reads it.
   std::vector<float> finish_axis_d2;
   uint16_t finishing_tool = 0;
+  std::vector<uint8_t> cutting_moves;  // per move 1 when it lowered some cell (with mark_cutting_moves)
   size_t cells_visited = 0;       // cell evaluations (the work done)
   double seconds = 0.0;
 };
 
 // Sweeps every move of `program` through `stock` (heights lowered in place; stock.cut_by records, per cell, the
 // index in program.moves of the first move that cut it to its final height).
-SimulationResult simulate(const MachineProgram& program, Stock& stock, const SimulationOptions& options = {});
+SimulationResult simulate(const MachineProgram& program, HeightField& stock,
+                          const SimulationOptions& options = {});
 
 // The lowest cutter bottom (tip height + profile) the move passes over the point (x, y); +infinity when the
 // cutter never covers it. The slow, obvious reference of what simulate() computes (tests compare the two).
 double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, double x, double y, int samples = 20000);
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock

@@ -1,12 +1,14 @@
-#include "rosmill/verify/material_removal.hpp"
+#include "rosmill/stock/material_removal.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "sweep_kernels.hpp"
 
@@ -24,7 +26,7 @@
 // which the whole sweep before covered). The finishing trace (distance to the finishing path) is kept the same
 // way with the nearest point for lead. SimulationOptions::prune = false sweeps every move whole: the reference.
 
-namespace rosmill::core::verify {
+namespace rosmill::core::stock {
 namespace {
 
 using namespace sweep;
@@ -85,7 +87,7 @@ Vec3 chord_end(const CanonMove& m, int i, int n) { return i == n ? m.to : move_p
 class BandSweep {
  public:
   BandSweep(const MachineProgram& prog, const std::vector<CutterProfile>& profiles, const SimulationOptions& o,
-            Stock& stock, float* trace, double trace_radius, int r0, int r1)
+            HeightField& stock, float* trace, double trace_radius, int r0, int r1)
       : prog_(prog), profiles_(profiles), o_(o), g_(stock.grid), top_(stock.top.data()),
         cut_by_(stock.cut_by.data()), trace_(trace), trace_radius_(trace_radius), r0_(r0), r1_(r1) {}
 
@@ -103,7 +105,8 @@ class BandSweep {
       return sweep_arc(arc, cp, t);
     }
     // A line's piece was usually made already, as the next piece of the move before.
-    const Piece current = m.shape == MoveShape::Line && cached_ == k ? cached_piece_ : line_piece(m, m.from, m.to, cp, o_.prune);
+    const Piece current =
+        m.shape == MoveShape::Line && cached_ == k ? cached_piece_ : line_piece(m, m.from, m.to, cp, o_.prune);
     Piece next;
     const Piece* after = next_linked && first_piece(k + 1, next) ? &next : nullptr;
     if (after) cached_ = k + 1, cached_piece_ = next;
@@ -294,18 +297,18 @@ class BandSweep {
   double trace_radius_;
   int r0_, r1_;
   size_t visited_ = 0;
-  uint32_t cached_ = Stock::kNoMove;  // the move whose first piece cached_piece_ is
+  uint32_t cached_ = HeightField::kNoMove;  // the move whose first piece cached_piece_ is
   Piece cached_piece_;
 };
 
 }  // namespace
 
-SimulationResult simulate(const MachineProgram& prog, Stock& stock, const SimulationOptions& options) {
+SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const SimulationOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   SimulationResult result;
   result.moves = prog.moves.size();
   const GridSpec& g = stock.grid;
-  result.finish_axis_d2.assign(g.cells(), std::numeric_limits<float>::infinity());
+  if (options.trace_finishing) result.finish_axis_d2.assign(g.cells(), std::numeric_limits<float>::infinity());
   if (prog.moves.empty() || g.cells() == 0) return result;
   // Finishing moves: the feed moves of the last tool's trailing run.
   result.finishing_tool = prog.moves.back().tool;
@@ -347,14 +350,22 @@ SimulationResult simulate(const MachineProgram& prog, Stock& stock, const Simula
     }
   }
 
+  // Bands write a move's mark independently (a move spans several bands): relaxed atomic stores of the same 1.
+  std::unique_ptr<std::atomic<uint8_t>[]> marks;
+  if (options.mark_cutting_moves) {
+    marks.reset(new std::atomic<uint8_t>[n]);
+    for (size_t k = 0; k < n; ++k) marks[k].store(0, std::memory_order_relaxed);
+  }
   std::vector<size_t> rapid_cuts(bands, 0), visited(bands, 0);
-  std::vector<uint32_t> first_rapid(bands, Stock::kNoMove);
+  std::vector<uint32_t> first_rapid(bands, HeightField::kNoMove);
   auto run_band = [&](int b) {
     const int r0 = b * band_rows, r1 = std::min(g.ny - 1, r0 + band_rows - 1);
-    BandSweep sweep(prog, profiles, options, stock, result.finish_axis_d2.data(), trace_radius, r0, r1);
+    float* trace = options.trace_finishing ? result.finish_axis_d2.data() : nullptr;
+    BandSweep sweep(prog, profiles, options, stock, trace, trace_radius, r0, r1);
     for (uint32_t q = band_start[b]; q < band_start[b + 1]; ++q) {
       const uint32_t k = band_moves[q];
       const size_t lowered = sweep.move(k, linked[k], linked[k + 1], finishing(k));
+      if (lowered && marks) marks[k].store(1, std::memory_order_relaxed);
       if (prog.moves[k].rapid && lowered) {
         rapid_cuts[b] += lowered;
         first_rapid[b] = std::min(first_rapid[b], k);
@@ -374,6 +385,10 @@ SimulationResult simulate(const MachineProgram& prog, Stock& stock, const Simula
     result.first_rapid_cut = std::min(result.first_rapid_cut, first_rapid[b]);
     result.cells_visited += visited[b];
   }
+  if (marks) {
+    result.cutting_moves.resize(n);
+    for (size_t k = 0; k < n; ++k) result.cutting_moves[k] = marks[k].load(std::memory_order_relaxed);
+  }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
@@ -389,4 +404,4 @@ double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, doub
   return best;
 }
 
-}  // namespace rosmill::core::verify
+}  // namespace rosmill::core::stock

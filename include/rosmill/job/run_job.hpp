@@ -1,0 +1,48 @@
+// Runs a job: each operation planned on the part in its setup, its moves removed from the in-process stock left
+// by the operations before it, and, when asked, written as a G-code program through the one program pipeline.
+// The report gives per operation and for the job the material removed, the share of the feed path that cut only
+// air, and the machining time estimated from the feeds and the rapid feed.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/job/job_spec.hpp"
+#include "rosmill/planner/presets.hpp"
+
+namespace rosmill::core::job {
+
+struct JobOptions {
+  const ToolTable* tools = nullptr;      // for tool ids; null: tools given as ball:D etc. only
+  const PresetTable* presets = nullptr;  // for preset names
+  std::string out_dir;                   // empty: no programs written
+  std::string dialect = "linuxcnc";
+  gcode::ProgramChecks checks;           // what every written program is checked against
+};
+
+struct OperationReport {
+  std::string name, strategy, tool, setup;
+  size_t moves = 0;
+  double cutting_mm = 0, rapid_mm = 0, air_feed_mm = 0, air_cut_share = 0;
+  double removed_mm3 = 0, time_s = 0, plan_seconds = 0, remove_seconds = 0;
+  uint32_t collision_line = 0;  // the toolpath move number of the first rapid into material (0: none)
+  std::string program;          // the written program (with an output folder)
+};
+
+struct JobReport {
+  std::vector<OperationReport> operations;
+  double stock_mm3 = 0;       // the raw stock
+  double left_mm3 = 0;        // the stock after the job
+  double removed_mm3 = 0, air_cut_share = 0, time_s = 0;
+  size_t stock_bytes = 0;
+};
+
+JobReport run_job(const JobSpec& job, const JobOptions& options);
+
+nlohmann::json to_json(const JobReport& report);
+
+}  // namespace rosmill::core::job

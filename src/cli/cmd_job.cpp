@@ -1,0 +1,66 @@
+// rosmill job JOB.yaml [-o DIR] [--json] [--tools FILE] [--presets FILE] [--dialect linuxcnc|grbl]
+//   [--machine FILE | --no-limits]
+// Runs the job's operations in order on the in-process stock: each planned, removed from the stock the ones
+// before left, and with -o written as DIR/NN_NAME.ngc through the checked program pipeline. Prints per operation
+// the material removed, the air-cutting share and the estimated time, and the same for the job.
+#include <cstdio>
+#include <memory>
+
+#include "command.hpp"
+#include "config_file.hpp"
+#include "rosmill/job/run_job.hpp"
+
+namespace rosmill::core::cli {
+namespace {
+
+struct JobArgs {
+  std::string file, out, tools, presets, dialect = "linuxcnc", machine;
+  bool json = false, no_limits = false;
+};
+
+void run(const JobArgs& a) {
+  const job::JobSpec spec = job::read_job(a.file);
+  const ToolTable tools = read_tool_table(a.tools.empty() ? default_config("tools.yaml") : a.tools);
+  const PresetTable presets = read_presets(a.presets.empty() ? default_config("presets.yaml") : a.presets);
+  job::JobOptions o;
+  o.tools = &tools;
+  o.presets = &presets;
+  o.out_dir = a.out;
+  o.dialect = a.dialect;
+  if (!a.out.empty()) o.checks.machine = machine_to_check(a.machine, a.no_limits);
+  const job::JobReport r = job::run_job(spec, o);
+  if (a.json) {
+    std::printf("%s\n", job::to_json(r).dump().c_str());
+    return;
+  }
+  std::printf("job %s: stock %.0f mm3 (model %.1f MB)\n", a.file.c_str(), r.stock_mm3, r.stock_bytes / 1e6);
+  std::printf("%-3s %-16s %-12s %-10s %-5s %9s %12s %6s %9s %s\n", "#", "operation", "strategy", "tool", "setup",
+              "moves", "removed mm3", "air %", "time s", "program");
+  for (size_t k = 0; k < r.operations.size(); ++k) {
+    const job::OperationReport& op = r.operations[k];
+    std::printf("%-3zu %-16s %-12s %-10s %-5s %9zu %12.0f %6.1f %9.0f %s\n", k + 1, op.name.c_str(),
+                op.strategy.c_str(), op.tool.c_str(), op.setup.c_str(), op.moves, op.removed_mm3,
+                100 * op.air_cut_share, op.time_s, op.program.c_str());
+    if (op.collision_line)
+      std::printf("    rapid into material at toolpath move %u\n", op.collision_line);
+  }
+  std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s\n", r.removed_mm3, r.left_mm3,
+              100 * r.air_cut_share, r.time_s);
+}
+
+CommandRegistration reg([](CLI::App& app) {
+  auto a = std::make_shared<JobArgs>();
+  auto* cmd = app.add_subcommand("job", "run a job's operations on the in-process stock (see README: Jobs)");
+  cmd->add_option("JOB", a->file, "the job file (YAML)")->required();
+  cmd->add_option("-o", a->out, "write each operation's program into this folder");
+  cmd->add_flag("--json", a->json, "print one JSON object");
+  cmd->add_option("--tools", a->tools, "tool table (default config/tools.yaml here, else the package's)");
+  cmd->add_option("--presets", a->presets, "preset table (default config/presets.yaml here, else the package's)");
+  cmd->add_option("--dialect", a->dialect, "linuxcnc or grbl")->capture_default_str();
+  cmd->add_option("--machine", a->machine, "machine limits the programs are checked against");
+  cmd->add_flag("--no-limits", a->no_limits, "write the programs without checking the machine's limits");
+  cmd->callback([a] { run(*a); });
+});
+
+}  // namespace
+}  // namespace rosmill::core::cli

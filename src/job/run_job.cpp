@@ -1,0 +1,159 @@
+#include "rosmill/job/run_job.hpp"
+
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "rosmill/error.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/io/cloud_io.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/planner/plan_request.hpp"
+#include "rosmill/stock/in_process_stock.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
+
+namespace rosmill::core::job {
+namespace {
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Mesh read_part(const JobSpec& job) {
+  const std::string primitive = "primitive:";
+  if (job.part.rfind(primitive, 0) == 0) return make_primitive(job.part.substr(primitive.size()));
+  StlReadOptions o;
+  o.units = job.units;
+  return read_stl(job.part, o);
+}
+
+stock::InProcessStock raw_stock(const JobSpec& job, const Mesh& part, const Mesh* stock_mesh) {
+  const std::string where = job.source + " stock";
+  switch (job.stock.kind) {
+    case StockSpec::Kind::Box: {
+      // The box the roughing strategies assume: the part's bounds grown by the margin sideways and up.
+      Box3 b = part.bbox;
+      b.min.head<2>() -= Vec2::Constant(job.stock.margin);
+      b.max += Vec3::Constant(job.stock.margin);
+      return stock::InProcessStock::box(b, job.resolution, stock::kMaxGridCells, where);
+    }
+    case StockSpec::Kind::Mesh:
+      return stock::InProcessStock::from_mesh(*stock_mesh, job.resolution, stock::kMaxGridCells, where);
+    case StockSpec::Kind::Cloud: {
+      CloudReadOptions o;
+      o.units = job.stock.units;
+      return stock::InProcessStock::from_cloud(read_cloud(job.stock.file, o), job.stock.table_z, job.resolution, 3,
+                                               stock::kMaxGridCells, where);
+    }
+  }
+  throw Error(where, "unknown kind");
+}
+
+std::string program_path(const std::string& dir, size_t index, const std::string& name) {
+  char prefix[24];
+  std::snprintf(prefix, sizeof prefix, "%02zu_", index + 1);
+  std::string safe;
+  for (char c : name) safe += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+  return (std::filesystem::path(dir) / (prefix + safe + ".ngc")).string();
+}
+
+}  // namespace
+
+JobReport run_job(const JobSpec& job, const JobOptions& options) {
+  const Mesh part = read_part(job);
+  std::optional<Mesh> stock_mesh;
+  if (job.stock.kind == StockSpec::Kind::Mesh) {
+    StlReadOptions o;
+    o.units = job.units;
+    stock_mesh = read_stl(job.stock.file, o);
+  }
+  stock::InProcessStock stock = raw_stock(job, part, stock_mesh ? &*stock_mesh : nullptr);
+  if (!options.out_dir.empty()) std::filesystem::create_directories(options.out_dir);
+  JobReport report;
+  report.stock_mm3 = stock.volume();
+  double feed_mm = 0, air_mm = 0;
+  for (size_t k = 0; k < job.operations.size(); ++k) {
+    const OperationSpec& op = job.operations[k];
+    const std::string where = job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "]";
+    OperationReport r;
+    r.name = op.name;
+    r.strategy = op.strategy;
+    r.setup = op.setup;
+    PlanningRequest request;
+    request.input.mesh = &part;
+    request.input.setup = named_setup(op.setup, where + ".setup");
+    request.strategy = op.strategy;
+    request.presets = options.presets;
+    check_plan_name(op.strategy, options.presets, where + ".strategy");
+    try {
+      request.params.tool = resolve_tool(op.tool, options.tools);
+    } catch (const Error& e) {
+      throw Error(where + ".tool", e.what());
+    }
+    request.params.stepover = op.stepover;
+    request.params.stepdown = op.stepdown;
+    request.params.allowance = op.allowance;
+    if (!std::isnan(op.tolerance)) request.params.tolerance = op.tolerance;
+    if (job.stock.kind == StockSpec::Kind::Box) request.params.stock_margin = job.stock.margin;
+    if (stock_mesh) request.params.stock_mesh = &*stock_mesh;
+    r.tool = request.params.tool.name;
+    auto t0 = std::chrono::steady_clock::now();
+    const Job toolpaths = plan(request);
+    r.plan_seconds = since(t0);
+    const stock::MachineProgram program = stock::program_from_job(toolpaths);
+    const stock::RemovalReport removal = stock.remove(program, request.input.setup);
+    r.moves = program.moves.size();
+    r.removed_mm3 = removal.removed_mm3;
+    r.air_feed_mm = removal.air_feed_mm;
+    r.air_cut_share = removal.air_cut_share();
+    r.collision_line = removal.first_rapid_source;
+    r.remove_seconds = removal.seconds;
+    for (const Toolpath& tp : toolpaths) {
+      const ToolpathStats s = toolpath_stats(tp, job.rapid_feed);
+      r.cutting_mm += s.cutting_length;
+      r.rapid_mm += s.rapid_length;
+      r.time_s += s.estimated_seconds;
+    }
+    if (!options.out_dir.empty()) {
+      r.program = program_path(options.out_dir, k, op.name);
+      const gcode::PreparedProgram prepared =
+          gcode::prepare_program(toolpaths, gcode::post_options_for(options.dialect), options.checks);
+      gcode::write_program(r.program, prepared.program);
+    }
+    feed_mm += removal.feed_mm;
+    air_mm += removal.air_feed_mm;
+    report.removed_mm3 += r.removed_mm3;
+    report.time_s += r.time_s;
+    report.operations.push_back(r);
+  }
+  report.left_mm3 = stock.volume();
+  report.air_cut_share = feed_mm > 0 ? air_mm / feed_mm : 0.0;
+  report.stock_bytes = stock.bytes();
+  return report;
+}
+
+nlohmann::json to_json(const JobReport& report) {
+  nlohmann::json ops = nlohmann::json::array();
+  for (const OperationReport& r : report.operations) {
+    nlohmann::json o = {{"name", r.name},           {"strategy", r.strategy},
+                        {"tool", r.tool},           {"setup", r.setup},
+                        {"moves", r.moves},         {"cutting_mm", r.cutting_mm},
+                        {"rapid_mm", r.rapid_mm},   {"air_feed_mm", r.air_feed_mm},
+                        {"air_cut_share", r.air_cut_share}, {"removed_mm3", r.removed_mm3},
+                        {"time_s", r.time_s},       {"plan_seconds", r.plan_seconds},
+                        {"rapid_collision_line", r.collision_line}};
+    if (!r.program.empty()) o["program"] = r.program;
+    ops.push_back(o);
+  }
+  return {{"operations", ops},
+          {"stock_mm3", report.stock_mm3},
+          {"left_mm3", report.left_mm3},
+          {"removed_mm3", report.removed_mm3},
+          {"air_cut_share", report.air_cut_share},
+          {"time_s", report.time_s},
+          {"stock_bytes", report.stock_bytes}};
+}
+
+}  // namespace rosmill::core::job

@@ -1,0 +1,275 @@
+#include "rosmill/stock/in_process_stock.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "grid_walk.hpp"
+#include "rosmill/error.hpp"
+#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/stock/design_height.hpp"
+
+namespace rosmill::core::stock {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kAxial = 1e-9;  // a direction whose XY part is shorter than this runs along a dexel
+
+struct Range {
+  double lo, hi;
+};
+
+// Spans minus removed ranges (ascending, possibly touching), appended to `out`.
+void subtract(const Span* b, const Span* e, const std::vector<Range>& removed, std::vector<Span>& out) {
+  for (const Span* s = b; s != e; ++s) {
+    double lo = s->lo;
+    for (const Range& r : removed) {
+      if (r.hi <= lo || r.lo >= s->hi) continue;
+      if (r.lo > lo) out.push_back({static_cast<float>(lo), static_cast<float>(r.lo)});
+      lo = std::max(lo, r.hi);
+      if (lo >= s->hi) break;
+    }
+    if (lo < s->hi) out.push_back({static_cast<float>(lo), s->hi});
+  }
+}
+
+// Adds [lo, hi] to ascending ranges, merging it with the last when they touch.
+void add_range(std::vector<Range>& ranges, double lo, double hi) {
+  if (!(lo < hi)) return;
+  if (!ranges.empty() && lo <= ranges.back().hi) ranges.back().hi = std::max(ranges.back().hi, hi);
+  else ranges.push_back({lo, hi});
+}
+
+}  // namespace
+
+InProcessStock InProcessStock::box(const Box3& b, double resolution, size_t max_cells, const std::string& where) {
+  if (!b.empty() && !(b.size().minCoeff() > 0)) throw Error(where, "the stock box has no volume");
+  return InProcessStock(box_dexels(b, stock_grid(b, resolution, max_cells, where)));
+}
+
+InProcessStock InProcessStock::from_mesh(const Mesh& mesh, double resolution, size_t max_cells,
+                                         const std::string& where) {
+  return InProcessStock(mesh_dexels(mesh, stock_grid(mesh.bbox, resolution, max_cells, where), where));
+}
+
+InProcessStock InProcessStock::from_cloud(const PointCloud& cloud, double table_z, double resolution, int fill_cells,
+                                          size_t max_cells, const std::string& where) {
+  Box3 b = cloud.bbox;
+  if (b.empty()) throw Error(where, "the cloud has no points");
+  if (fill_cells < 0) throw Error(where, "the hole fill must be 0 cells or more");
+  return InProcessStock(cloud_dexels(cloud, table_z, stock_grid(b, resolution, max_cells, where), fill_cells));
+}
+
+size_t InProcessStock::bytes() const {
+  size_t n = material_.bytes();
+  for (const Envelope& e : envelopes_) n += e.field.top.capacity() * sizeof(float);
+  return n;
+}
+
+Box3 InProcessStock::turned_bounds(const SetupFrame& setup) const {
+  const GridSpec& g = material_.grid;
+  Box3 turned;
+  for (int k = 0; k < 8; ++k)
+    turned.add(setup.to_setup_frame(Vec3(k & 1 ? g.x0 + g.nx * g.cell : g.x0, k & 2 ? g.y0 + g.ny * g.cell : g.y0,
+                                         k & 4 ? material_.z_max : material_.z_min)));
+  return turned;
+}
+
+GridSpec InProcessStock::setup_grid(const SetupFrame& setup) const {
+  const GridSpec& g = material_.grid;
+  const Box3 turned = turned_bounds(setup);
+  GridSpec s;
+  s.cell = g.cell;
+  s.x0 = turned.min.x();
+  s.y0 = turned.min.y();
+  // The turned box of a grid turned about an axis is the grid itself: its cells fall on the stock's cells.
+  s.nx = std::max(1, static_cast<int>(std::ceil(turned.size().x() / g.cell - 1e-6)));
+  s.ny = std::max(1, static_cast<int>(std::ceil(turned.size().y() / g.cell - 1e-6)));
+  if (s.cells() > 4 * std::max(g.cells(), size_t(1)) + (1u << 20))
+    throw Error("setup " + setup.name, "the stock seen from this setup needs " + std::to_string(s.cells()) +
+                                           " cells, more than four times the stock's own grid");
+  return s;
+}
+
+size_t InProcessStock::envelope_index(const SetupFrame& setup) const {
+  for (size_t k = 0; k < envelopes_.size(); ++k)
+    if (envelopes_[k].setup.to_setup.angularDistance(setup.to_setup) < 1e-9) return k;
+  return envelopes_.size();
+}
+
+const InProcessStock::Envelope* InProcessStock::envelope_if(const SetupFrame& setup) const {
+  const size_t k = envelope_index(setup);
+  return k < envelopes_.size() ? &envelopes_[k] : nullptr;
+}
+
+InProcessStock::Envelope& InProcessStock::envelope_of(const SetupFrame& setup) {
+  const size_t k = envelope_index(setup);
+  if (k < envelopes_.size()) return envelopes_[k];
+  Envelope e;
+  e.setup = setup;
+  e.field.grid = setup_grid(setup);
+  e.field.top.assign(e.field.grid.cells(), std::numeric_limits<float>::infinity());
+  envelopes_.push_back(std::move(e));
+  return envelopes_.back();
+}
+
+// The highest t where the line R^T (u, v, t) (R: workpiece -> setup) is in material; -infinity when it never is.
+double InProcessStock::top_along(const SetupFrame& setup, double u, double v) const {
+  const GridSpec& g = material_.grid;
+  const Vec3 o = setup.to_workpiece_frame(Vec3(u, v, 0)), a = setup.tool_axis;
+  double best = -kInf;
+  auto in_cell = [&](int i, int j, double ta, double tb) {
+    const size_t c = g.index(i, j);
+    for (const Span* s = material_.begin(c); s != material_.end(c); ++s) {
+      if (std::abs(a.z()) < kAxial) {
+        if (o.z() >= s->lo && o.z() <= s->hi) best = std::max(best, tb);
+        continue;
+      }
+      const double p = (s->lo - o.z()) / a.z(), q = (s->hi - o.z()) / a.z();
+      const double lo = std::max(ta, std::min(p, q)), hi = std::min(tb, std::max(p, q));
+      if (lo <= hi) best = std::max(best, hi);
+    }
+  };
+  if (a.head<2>().norm() < kAxial) {
+    const double fi = std::floor((o.x() - g.x0) / g.cell), fj = std::floor((o.y() - g.y0) / g.cell);
+    if (fi >= 0 && fj >= 0 && fi < g.nx && fj < g.ny) in_cell(static_cast<int>(fi), static_cast<int>(fj), -kInf, kInf);
+    return best;
+  }
+  walk_cells(g, o.head<2>(), a.head<2>(), -kInf, kInf, in_cell);
+  return best;
+}
+
+double InProcessStock::top_at(const SetupFrame& setup, const Envelope* env, const GridSpec& g, int i, int j) const {
+  const double t = top_along(setup, g.cx(i), g.cy(j));
+  return env ? std::min(t, double(env->field.top[g.index(i, j)])) : t;
+}
+
+HeightField InProcessStock::view(const SetupFrame& setup) const {
+  HeightField hf;
+  hf.grid = setup_grid(setup);
+  hf.top.assign(hf.grid.cells(), kNoMaterial);
+  hf.cut_by.assign(hf.grid.cells(), HeightField::kNoMove);
+  const Envelope* env = envelope_if(setup);
+  hf.bottom = turned_bounds(setup).min.z();
+  const GridSpec& g = hf.grid;
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.ny), [&](const tbb::blocked_range<int>& rows) {
+    for (int j = rows.begin(); j < rows.end(); ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const double t = top_at(setup, env, g, i, j);
+        hf.top[g.index(i, j)] = t == -kInf ? kNoMaterial : static_cast<float>(t);
+      }
+  });
+  return hf;
+}
+
+// Clips the material's dexels by an envelope: a workpiece line (x, y, z) is at (R p).z = q0.z + z d.z in the
+// setup's frame, over the envelope's cell at q0.xy + z d.xy; it is removed where that reaches the envelope.
+void InProcessStock::clip(const Envelope& e) {
+  const GridSpec& g = material_.grid;
+  const GridSpec& eg = e.field.grid;
+  const Vec3 d = e.setup.to_setup_frame(Vec3::UnitZ());
+  const bool axial = d.head<2>().norm() < kAxial;
+  Dexels out;
+  out.grid = g;
+  out.first.assign(g.cells() + 1, 0);
+  out.spans.reserve(material_.spans.size());
+  out.z_min = material_.z_min;
+  out.z_max = material_.z_max;
+  std::vector<Range> removed;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const size_t c = g.index(i, j);
+      const Span *b = material_.begin(c), *end = material_.end(c);
+      removed.clear();
+      if (b != end) {
+        const Vec3 q0 = e.setup.to_setup_frame(Vec3(g.cx(i), g.cy(j), 0));
+        // The part of [za, zb] where q0.z + z d.z >= level.
+        auto cut = [&](double za, double zb, double level) {
+          if (!std::isfinite(level)) return;
+          if (std::abs(d.z()) < kAxial) {
+            if (q0.z() >= level) add_range(removed, za, zb);
+            return;
+          }
+          const double zt = (level - q0.z()) / d.z();
+          if (d.z() > 0) add_range(removed, std::max(za, zt), zb);
+          else add_range(removed, za, std::min(zb, zt));
+        };
+        if (axial) {
+          const double fi = std::floor((q0.x() - eg.x0) / eg.cell), fj = std::floor((q0.y() - eg.y0) / eg.cell);
+          if (fi >= 0 && fj >= 0 && fi < eg.nx && fj < eg.ny)
+            cut(-kInf, kInf, e.field.top[eg.index(static_cast<int>(fi), static_cast<int>(fj))]);
+        } else {
+          walk_cells(eg, q0.head<2>(), d.head<2>(), b->lo, (end - 1)->hi,
+                     [&](int u, int v, double za, double zb) { cut(za, zb, e.field.top[eg.index(u, v)]); });
+        }
+      }
+      if (removed.empty()) out.spans.insert(out.spans.end(), b, end);
+      else subtract(b, end, removed, out.spans);
+      out.first[c + 1] = static_cast<uint32_t>(out.spans.size());
+    }
+  material_ = std::move(out);
+}
+
+RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupFrame& setup,
+                                     const SimulationOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  RemovalReport r;
+  r.moves = program.moves.size();
+  for (const CanonMove& m : program.moves) {
+    const std::string where = "program move " + std::to_string(m.source);
+    if (!m.from.allFinite() || !m.to.allFinite()) throw Error(where, "a position is not finite");
+    if (m.tool >= program.tools.size()) throw Error(where, "names a tool the program does not have");
+    if (m.is_arc() && m.plane != gcode::Plane::XY) throw Error(where, "only arcs in the XY plane (G17) are simulated");
+  }
+  const double before = volume();
+  // The kernel lowers the material's top as seen from the setup: a cell it lowers is a cut into material.
+  HeightField work = view(setup);
+  SimulationOptions o = options;
+  o.trace_finishing = false;
+  o.mark_cutting_moves = true;
+  const SimulationResult sim = simulate(program, work, o);
+  Envelope& e = envelope_of(setup);
+  for (size_t c = 0; c < work.top.size(); ++c)
+    if (work.cut_by[c] != HeightField::kNoMove) {
+      e.field.top[c] = std::min(e.field.top[c], work.top[c]);
+      ++r.cut_cells;
+    }
+  if (r.cut_cells) clip(e);
+  r.removed_mm3 = std::max(0.0, before - volume());
+  for (size_t k = 0; k < program.moves.size(); ++k) {
+    const CanonMove& m = program.moves[k];
+    if (m.rapid) continue;
+    const double length = gcode::move_length(m);
+    r.feed_mm += length;
+    if (!sim.cutting_moves[k]) r.air_feed_mm += length;
+  }
+  r.rapid_cut_cells = sim.rapid_cut_cells;
+  r.first_rapid_move = sim.first_rapid_cut;
+  if (sim.first_rapid_cut != HeightField::kNoMove) r.first_rapid_source = program.moves[sim.first_rapid_cut].source;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+std::vector<float> InProcessStock::material_above(const Mesh& design, const SetupFrame& setup) const {
+  const HeightField v = view(setup);
+  const std::vector<float> h = design_heights(mesh_in_setup(design, setup), v.grid, v.bottom);
+  std::vector<float> above(v.top.size(), NAN);
+  for (size_t c = 0; c < above.size(); ++c)
+    if (v.top[c] != kNoMaterial) above[c] = v.top[c] - h[c];
+  return above;
+}
+
+bool InProcessStock::material_in(const Vec2& lo, const Vec2& hi, double z, const SetupFrame& setup) const {
+  if (!lo.allFinite() || !hi.allFinite() || !std::isfinite(z)) throw Error("region", "not finite");
+  const GridSpec g = setup_grid(setup);
+  const Envelope* env = envelope_if(setup);
+  for (int j = g.first_y(lo.y()); j <= g.last_y(hi.y()); ++j)
+    for (int i = g.first_x(lo.x()); i <= g.last_x(hi.x()); ++i)
+      if (top_at(setup, env, g, i, j) >= z) return true;
+  return false;
+}
+
+}  // namespace rosmill::core::stock

@@ -1,0 +1,137 @@
+// Jobs: a job file read with every field checked (errors name the file, line and field); the operations run in
+// order on one in-process stock (what the first removed the second does not remove again; the figures add up);
+// `rosmill job` writes each operation's program through the checked pipeline and reports it in JSON.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli_run.hpp"
+#include "test_stock_programs.hpp"
+#include "rosmill/error.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/job/run_job.hpp"
+
+using namespace rosmill::core;
+using namespace rosmill::core::job;
+
+namespace {
+
+const std::string kJob = std::string(ROSMILL_SOURCE_DIR) + "/config/jobs/box_cube.yaml";
+
+// The error parse_job gives for `text` (empty when it reads).
+std::string error_of(const std::string& text) {
+  try {
+    parse_job(text, "job.yaml", ROSMILL_SOURCE_DIR);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Job, FieldsAreCheckedWithTheirLine) {
+  const std::string ops = "operations:\n  - {strategy: rough, tool: flat:10}\n";
+  EXPECT_EQ(error_of("part: primitive:cube\n" + ops), "");
+  EXPECT_NE(error_of("part: primitive:cube\nresolutoin: 0.5\n" + ops).find("job.yaml:2 resolutoin: unknown field"),
+            std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\nresolution: fine\n" + ops).find("job.yaml:2 resolution: expected a number"),
+            std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\nresolution: 0\n" + ops).find("job.yaml:2 resolution: must lie in"),
+            std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\n").find("operations: missing"), std::string::npos);
+  EXPECT_NE(error_of("part: nowhere.stl\n" + ops).find("job.yaml:1 part: no file"), std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: rough}\n")
+                .find("job.yaml:3 operations[0].tool"),
+            std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: rough, tool: flat:10}\n"
+                     "  - {strategy: raster, tool: ball:6, stepover: -1}\n")
+                .find("job.yaml:4 operations[1].stepover: must lie in"),
+            std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\nstock: {box: {margin: 5}, mesh: a.stl}\n" + ops).find("exactly one of"),
+            std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: raster, tool: ball:3, rest: true}\n")
+                .find("rest machining is not available yet"),
+            std::string::npos);
+  EXPECT_NE(error_of("part: primitive:cube\noperations: [\n").find("not valid YAML"), std::string::npos);
+  // A strategy and a setup the planner does not know: refused when the job runs, naming the operation.
+  JobSpec bad = parse_job("part: primitive:cube\n" + ops, "job.yaml", ROSMILL_SOURCE_DIR);
+  bad.operations[0].strategy = "sculpt";
+  EXPECT_THROW(run_job(bad, {}), Error);
+  bad.operations[0].strategy = "rough";
+  bad.operations[0].setup = "+W";
+  EXPECT_THROW(run_job(bad, {}), Error);
+}
+
+TEST(Job, OperationsRunOnTheStockTheOnesBeforeLeft) {
+  const JobSpec spec = read_job(kJob);
+  ASSERT_EQ(spec.operations.size(), 2u);
+  const JobReport r = run_job(spec, {});
+  ASSERT_EQ(r.operations.size(), 2u);
+  // The stock: the cube's bounds grown by 5 mm sideways and up, at 0.5 mm cells that fall on its sides.
+  EXPECT_NEAR(r.stock_mm3, 70.0 * 70 * 65, 1e-6);
+  EXPECT_NEAR(r.removed_mm3, r.stock_mm3 - r.left_mm3, 1e-6 * r.stock_mm3);
+  EXPECT_NEAR(r.removed_mm3, r.operations[0].removed_mm3 + r.operations[1].removed_mm3, 1e-6 * r.stock_mm3);
+  // Neither operation cuts into the cube: at least its volume is left.
+  EXPECT_GE(r.left_mm3, 60.0 * 60 * 60 - 1e-6);
+  // Roughing takes the top down to the allowance over the whole box where it fits: at least the 4.5 mm over the cube.
+  EXPECT_GT(r.operations[0].removed_mm3, 60.0 * 60 * 4.5);
+  for (const OperationReport& op : r.operations) {
+    EXPECT_EQ(op.collision_line, 0u) << op.name;
+    EXPECT_GT(op.time_s, 0) << op.name;
+    EXPECT_GE(op.air_cut_share, 0) << op.name;
+    EXPECT_LT(op.air_cut_share, 1) << op.name;
+  }
+  // The finish after the roughing removes less than the same finish on the raw box.
+  JobSpec finish_only = spec;
+  finish_only.operations.erase(finish_only.operations.begin());
+  const JobReport alone = run_job(finish_only, {});
+  EXPECT_LT(r.operations[1].removed_mm3, alone.operations[0].removed_mm3);
+  EXPECT_GT(r.operations[1].air_cut_share, alone.operations[0].air_cut_share);
+}
+
+TEST(Job, CommandLineWritesCheckedProgramsAndJson) {
+  const std::string dir = ::testing::TempDir() + "rosmill_job_out";
+  std::filesystem::remove_all(dir);
+  const CliRun run = run_rosmill_in(::testing::TempDir(), "job '" + kJob + "' -o '" + dir + "' --json");
+  ASSERT_EQ(run.status, 0) << run.out;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  ASSERT_EQ(j["operations"].size(), 2u);
+  for (const auto& op : j["operations"]) {
+    EXPECT_TRUE(op.contains("air_cut_share"));
+    EXPECT_TRUE(op.contains("removed_mm3"));
+    EXPECT_TRUE(op.contains("time_s"));
+    EXPECT_TRUE(std::filesystem::exists(op["program"].get<std::string>())) << op.dump();
+  }
+  EXPECT_TRUE(j.contains("air_cut_share") && j.contains("removed_mm3") && j.contains("time_s"));
+  const CliRun text = run_rosmill_in(::testing::TempDir(), "job '" + kJob + "'");
+  EXPECT_EQ(text.status, 0);
+  EXPECT_NE(text.out.find("rough"), std::string::npos);
+  const CliRun missing = run_rosmill_shell("job /nonexistent/job.yaml 2>&1");
+  EXPECT_NE(missing.status, 0);
+  EXPECT_NE(missing.out.find("cannot read the job file"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Job, CastStockFromAMesh) {
+  // A casting 2 mm larger than the cube all round, 4 mm on top, written as STL next to the job.
+  const std::string dir = ::testing::TempDir() + "rosmill_job_cast";
+  std::filesystem::create_directories(dir);
+  write_stl(dir + "/cast.stl", build_mesh(stock_test::box_corners(Vec3(-2, -2, 0), Vec3(62, 62, 64))));
+  const JobSpec spec = parse_job("part: primitive:cube\nresolution: 0.5\nstock: {mesh: cast.stl}\noperations:\n"
+                                 "  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 2, allowance: 0.5}\n",
+                                 "job.yaml", dir);
+  const JobReport r = run_job(spec, {});
+  EXPECT_NEAR(r.stock_mm3, 64.0 * 64 * 64, 1e-6);
+  EXPECT_GE(r.left_mm3, 60.0 * 60 * 60 - 1e-6);
+  // Levels 2 mm apart from the casting's top: the first, at 62, clears the whole top (the next over the cube would
+  // leave less than the allowance, so the roughing goes down beside it only where the cutter fits).
+  EXPECT_GE(r.removed_mm3, 64.0 * 64 * 2 - 1e-6);
+  EXPECT_EQ(r.operations[0].collision_line, 0u);
+  // The same job from the box around the cube cuts more air.
+  JobSpec box = spec;
+  box.stock = StockSpec{};
+  EXPECT_GT(run_job(box, {}).operations[0].air_cut_share, r.operations[0].air_cut_share);
+  std::filesystem::remove_all(dir);
+}
