@@ -1,7 +1,8 @@
 // rosmill job JOB.yaml [-o DIR] [--json] [--tools FILE] [--presets FILE] [--dialect linuxcnc|grbl]
 //   [--machine FILE | --no-limits]
 // Runs the job's operations in order on the in-process stock: each planned, removed from the stock the ones
-// before left, and with -o written as DIR/NN_NAME.ngc through the checked program pipeline. Prints per operation
+// before left, and with -o written through the checked program pipeline: one program per setup (DIR/NN_setup_S.ngc,
+// tool changes between operations), or one per operation with --per-operation (DIR/NN_NAME.ngc). Prints per operation
 // the material removed, the air-cutting share and the estimated time, and the same for the job.
 #include <cstdio>
 #include <memory>
@@ -15,7 +16,7 @@ namespace {
 
 struct JobArgs {
   std::string file, out, tools, presets, dialect = "linuxcnc", machine;
-  bool json = false, no_limits = false;
+  bool json = false, no_limits = false, per_operation = false;
 };
 
 void run(const JobArgs& a) {
@@ -26,6 +27,7 @@ void run(const JobArgs& a) {
   o.tools = &tools;
   o.presets = &presets;
   o.out_dir = a.out;
+  o.per_operation = a.per_operation;
   o.dialect = a.dialect;
   if (!a.out.empty()) o.checks.machine = machine_to_check(a.machine, a.no_limits);
   const job::JobReport r = job::run_job(spec, o);
@@ -52,7 +54,10 @@ CommandRegistration reg([](CLI::App& app) {
   auto a = std::make_shared<JobArgs>();
   auto* cmd = app.add_subcommand("job", "run a job's operations on the in-process stock (see README: Jobs)");
   cmd->add_option("JOB", a->file, "the job file (YAML)")->required();
-  cmd->add_option("-o", a->out, "write each operation's program into this folder");
+  cmd->add_option("-o", a->out,
+                  "write the programs into this folder: one per setup (tool changes between operations), "
+                  "NN_setup_S.ngc");
+  cmd->add_flag("--per-operation", a->per_operation, "with -o: one program per operation, NN_NAME.ngc");
   cmd->add_flag("--json", a->json, "print one JSON object");
   cmd->add_option("--tools", a->tools, "tool table (default config/tools.yaml here, else the package's)");
   cmd->add_option("--presets", a->presets, "preset table (default config/presets.yaml here, else the package's)");

@@ -92,7 +92,10 @@ StockSpec read_stock(const YAML::Node& node, const std::string& file, const std:
   }
   s.kind = f.has("mesh") ? StockSpec::Kind::Mesh : StockSpec::Kind::Cloud;
   s.file = resolve(f.text(f.has("mesh") ? "mesh" : "cloud", ""), folder);
-  if (!std::filesystem::exists(s.file)) throw Error(f.where(f.has("mesh") ? "mesh" : "cloud"), "no file " + s.file);
+  const bool primitive = s.file.rfind("primitive:", 0) == 0;
+  if (primitive && s.kind == StockSpec::Kind::Cloud) throw Error(f.where("cloud"), "a cloud stock must be a file");
+  if (!primitive && !std::filesystem::exists(s.file))
+    throw Error(f.where(f.has("mesh") ? "mesh" : "cloud"), "no file " + s.file);
   if (s.kind == StockSpec::Kind::Mesh && (f.has("table_z") || f.has("units")))
     throw Error(f.where("table_z"), "only a cloud stock has table_z and units (a mesh takes the job's units)");
   s.table_z = f.number("table_z", 0.0, -1e5, 1e5);

@@ -21,12 +21,13 @@ double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-Mesh read_part(const JobSpec& job) {
+// The part, or a cast stock: an STL in the job's units or a primitive of the STL slicing paper (millimetres).
+Mesh read_mesh(const std::string& path, Units units) {
   const std::string primitive = "primitive:";
-  if (job.part.rfind(primitive, 0) == 0) return make_primitive(job.part.substr(primitive.size()));
+  if (path.rfind(primitive, 0) == 0) return make_primitive(path.substr(primitive.size()));
   StlReadOptions o;
-  o.units = job.units;
-  return read_stl(job.part, o);
+  o.units = units;
+  return read_stl(path, o);
 }
 
 stock::InProcessStock raw_stock(const JobSpec& job, const Mesh& part, const Mesh* stock_mesh) {
@@ -59,21 +60,42 @@ std::string program_path(const std::string& dir, size_t index, const std::string
   return (std::filesystem::path(dir) / (prefix + safe + ".ngc")).string();
 }
 
+// The job's programs: one per run of operations in the same setup (the part stays clamped; the tools change with
+// M6 T between them), or one per operation on request. Every program is prepared and checked before any is
+// written, so a job that fails a check leaves no program behind.
+void write_programs(const JobSpec& job, const std::vector<Job>& planned, const JobOptions& options,
+                    JobReport& report) {
+  std::vector<std::pair<std::string, gcode::Program>> programs;
+  for (size_t first = 0; first < planned.size();) {
+    size_t end = first + 1;
+    while (!options.per_operation && end < planned.size() && job.operations[end].setup == job.operations[first].setup)
+      ++end;
+    Job toolpaths;
+    for (size_t k = first; k < end; ++k) toolpaths.insert(toolpaths.end(), planned[k].begin(), planned[k].end());
+    const std::string name =
+        options.per_operation ? job.operations[first].name : "setup " + job.operations[first].setup;
+    const std::string path = program_path(options.out_dir, programs.size(), name);
+    gcode::PostOptions post = gcode::post_options_for(options.dialect);
+    post.title = "rosmill job " + job.source + ": " + name;
+    programs.emplace_back(path, gcode::prepare_program(toolpaths, post, options.checks).program);
+    for (size_t k = first; k < end; ++k) report.operations[k].program = path;
+    first = end;
+  }
+  std::filesystem::create_directories(options.out_dir);
+  for (const auto& [path, program] : programs) gcode::write_program(path, program);
+}
+
 }  // namespace
 
 JobReport run_job(const JobSpec& job, const JobOptions& options) {
-  const Mesh part = read_part(job);
+  const Mesh part = read_mesh(job.part, job.units);
   std::optional<Mesh> stock_mesh;
-  if (job.stock.kind == StockSpec::Kind::Mesh) {
-    StlReadOptions o;
-    o.units = job.units;
-    stock_mesh = read_stl(job.stock.file, o);
-  }
+  if (job.stock.kind == StockSpec::Kind::Mesh) stock_mesh = read_mesh(job.stock.file, job.units);
   stock::InProcessStock stock = raw_stock(job, part, stock_mesh ? &*stock_mesh : nullptr);
-  if (!options.out_dir.empty()) std::filesystem::create_directories(options.out_dir);
   JobReport report;
   report.stock_mm3 = stock.volume();
   double feed_mm = 0, air_mm = 0;
+  std::vector<Job> planned;  // each operation's toolpaths, for the programs
   for (size_t k = 0; k < job.operations.size(); ++k) {
     const OperationSpec& op = job.operations[k];
     const std::string where = job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "]";
@@ -104,6 +126,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     r.plan_seconds = since(t0);
     const stock::MachineProgram program = stock::program_from_job(toolpaths);
     const stock::RemovalReport removal = stock.remove(program, request.input.setup);
+    // A rapid through material is a crash: no program of this job is written.
+    if (removal.collided())
+      throw Error(where, "a rapid runs into the stock at toolpath move " + std::to_string(removal.first_rapid_source) +
+                             " (" + std::to_string(removal.rapid_cut_cells) +
+                             " cells): the stock stands higher than this operation's safe height; give the "
+                             "stock's real shape or raise the clearance");
     r.moves = program.moves.size();
     r.removed_mm3 = removal.removed_mm3;
     r.air_feed_mm = removal.air_feed_mm;
@@ -116,18 +144,14 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
       r.rapid_mm += s.rapid_length;
       r.time_s += s.estimated_seconds;
     }
-    if (!options.out_dir.empty()) {
-      r.program = program_path(options.out_dir, k, op.name);
-      const gcode::PreparedProgram prepared =
-          gcode::prepare_program(toolpaths, gcode::post_options_for(options.dialect), options.checks);
-      gcode::write_program(r.program, prepared.program);
-    }
+    planned.push_back(toolpaths);
     feed_mm += removal.feed_mm;
     air_mm += removal.air_feed_mm;
     report.removed_mm3 += r.removed_mm3;
     report.time_s += r.time_s;
     report.operations.push_back(r);
   }
+  if (!options.out_dir.empty()) write_programs(job, planned, options, report);
   report.left_mm3 = stock.volume();
   report.air_cut_share = feed_mm > 0 ? air_mm / feed_mm : 0.0;
   report.stock_bytes = stock.bytes();

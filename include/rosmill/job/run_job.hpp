@@ -20,6 +20,7 @@ struct JobOptions {
   const ToolTable* tools = nullptr;      // for tool ids; null: tools given as ball:D etc. only
   const PresetTable* presets = nullptr;  // for preset names
   std::string out_dir;                   // empty: no programs written
+  bool per_operation = false;            // one program per operation instead of one per setup
   std::string dialect = "linuxcnc";
   gcode::ProgramChecks checks;           // what every written program is checked against
 };
