@@ -58,6 +58,8 @@ void ProgramRun::watch(double stall_s) {
       if (aborted_.load()) break;
       ControllerStatus s = controller_->poll(0.02);
       verdict = monitor.observe(s);
+      // The run is over before anyone hears that it is: a new run asked for on hearing it must not be refused.
+      if (verdict != RunVerdict::Going) active_.store(false);
       if (on_status_) on_status_(s, verdict);
     }
     if (verdict != RunVerdict::Going) break;
