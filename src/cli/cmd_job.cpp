@@ -36,18 +36,19 @@ void run(const JobArgs& a) {
     return;
   }
   std::printf("job %s: stock %.0f mm3 (model %.1f MB)\n", a.file.c_str(), r.stock_mm3, r.stock_bytes / 1e6);
-  std::printf("%-3s %-16s %-12s %-10s %-5s %9s %12s %6s %9s %s\n", "#", "operation", "strategy", "tool", "setup",
-              "moves", "removed mm3", "air %", "time s", "program");
+  std::printf("%-3s %-16s %-12s %-10s %-5s %9s %12s %6s %9s %17s %s\n", "#", "operation", "strategy", "tool",
+              "setup", "moves", "removed mm3", "air %", "time s", "left on part mm", "program");
   for (size_t k = 0; k < r.operations.size(); ++k) {
     const job::OperationReport& op = r.operations[k];
-    std::printf("%-3zu %-16s %-12s %-10s %-5s %9zu %12.0f %6.1f %9.0f %s\n", k + 1, op.name.c_str(),
+    std::printf("%-3zu %-16s %-12s %-10s %-5s %9zu %12.0f %6.1f %9.0f %8.3f..%-7.3f %s\n", k + 1, op.name.c_str(),
                 op.strategy.c_str(), op.tool.c_str(), op.setup.c_str(), op.moves, op.removed_mm3,
-                100 * op.air_cut_share, op.time_s, op.program.c_str());
+                100 * op.air_cut_share, op.time_s, op.min_left_mm, op.max_left_mm, op.program.c_str());
     if (op.collision_line)
       std::printf("    rapid into material at toolpath move %u\n", op.collision_line);
   }
-  std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s\n", r.removed_mm3, r.left_mm3,
-              100 * r.air_cut_share, r.time_s);
+  std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s, material left on the part "
+              "%.3f to %.3f mm\n",
+              r.removed_mm3, r.left_mm3, 100 * r.air_cut_share, r.time_s, r.min_left_mm, r.max_left_mm);
 }
 
 CommandRegistration reg([](CLI::App& app) {

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <tuple>
 
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/planner/plan_request.hpp"
+#include "rosmill/stock/design_height.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
 
@@ -58,6 +60,22 @@ std::string program_path(const std::string& dir, size_t index, const std::string
   std::string safe;
   for (char c : name) safe += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
   return (std::filesystem::path(dir) / (prefix + safe + ".ngc")).string();
+}
+
+// The least and the most material the stock leaves on the part, seen from the operation's setup: the stock's top
+// minus the design's, over the cells the design covers (above the floor it stands on). Negative: a gouge.
+std::pair<double, double> material_left(const stock::InProcessStock& stock, const Mesh& part,
+                                        const SetupFrame& setup) {
+  const stock::HeightField view = stock.view(setup);
+  const std::vector<float> design = stock::design_heights(mesh_in_setup(part, setup), view.grid, view.bottom);
+  double lo = INFINITY, hi = -INFINITY;
+  for (size_t c = 0; c < design.size(); ++c) {
+    if (!(design[c] > view.bottom + 1e-6) || view.top[c] == stock::kNoMaterial) continue;
+    const double left = double(view.top[c]) - design[c];
+    lo = std::min(lo, left);
+    hi = std::max(hi, left);
+  }
+  return {lo, hi};
 }
 
 // The job's programs: one per run of operations in the same setup (the part stays clamped; the tools change with
@@ -138,6 +156,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     r.air_cut_share = removal.air_cut_share();
     r.collision_line = removal.first_rapid_source;
     r.remove_seconds = removal.seconds;
+    std::tie(r.min_left_mm, r.max_left_mm) = material_left(stock, part, request.input.setup);
     for (const Toolpath& tp : toolpaths) {
       const ToolpathStats s = toolpath_stats(tp, job.rapid_feed);
       r.cutting_mm += s.cutting_length;
@@ -149,10 +168,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     air_mm += removal.air_feed_mm;
     report.removed_mm3 += r.removed_mm3;
     report.time_s += r.time_s;
+    report.min_left_mm = std::min(report.min_left_mm, r.min_left_mm);
     report.operations.push_back(r);
   }
   if (!options.out_dir.empty()) write_programs(job, planned, options, report);
   report.left_mm3 = stock.volume();
+  if (!report.operations.empty()) report.max_left_mm = report.operations.back().max_left_mm;
   report.air_cut_share = feed_mm > 0 ? air_mm / feed_mm : 0.0;
   report.stock_bytes = stock.bytes();
   return report;
@@ -167,7 +188,8 @@ nlohmann::json to_json(const JobReport& report) {
                         {"rapid_mm", r.rapid_mm},   {"air_feed_mm", r.air_feed_mm},
                         {"air_cut_share", r.air_cut_share}, {"removed_mm3", r.removed_mm3},
                         {"time_s", r.time_s},       {"plan_seconds", r.plan_seconds},
-                        {"rapid_collision_line", r.collision_line}};
+                        {"rapid_collision_line", r.collision_line},
+                        {"min_left_mm", r.min_left_mm},     {"max_left_mm", r.max_left_mm}};
     if (!r.program.empty()) o["program"] = r.program;
     ops.push_back(o);
   }
@@ -177,6 +199,8 @@ nlohmann::json to_json(const JobReport& report) {
           {"removed_mm3", report.removed_mm3},
           {"air_cut_share", report.air_cut_share},
           {"time_s", report.time_s},
+          {"min_left_mm", report.min_left_mm},
+          {"max_left_mm", report.max_left_mm},
           {"stock_bytes", report.stock_bytes}};
 }
 

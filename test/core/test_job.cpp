@@ -168,6 +168,9 @@ TEST(Job, ExampleJobsRunFromAnyFolder) {
     ASSERT_EQ(run.status, 0) << name << ": " << run.out;
     const nlohmann::json j = nlohmann::json::parse(run.out);
     EXPECT_GT(j["removed_mm3"].get<double>(), 0.0) << name;
+    // No operation cuts below the design by more than 0.001 mm (the stock model's view of the part).
+    EXPECT_GE(j["min_left_mm"].get<double>(), -0.001) << name;
+    EXPECT_GE(j["max_left_mm"].get<double>(), j["min_left_mm"].get<double>()) << name;
     for (const auto& op : j["operations"])
       EXPECT_TRUE(std::filesystem::exists(op["program"].get<std::string>())) << name << ": " << op.dump();
     if (std::string(name) == "box_cube") continue;

@@ -31,6 +31,8 @@ struct OperationReport {
   double cutting_mm = 0, rapid_mm = 0, air_feed_mm = 0, air_cut_share = 0;
   double removed_mm3 = 0, time_s = 0, plan_seconds = 0, remove_seconds = 0;
   uint32_t collision_line = 0;  // the toolpath move number of the first rapid into material (0: none)
+  // Material left on the part after the operation, seen from its setup (mm; negative: cut below the design).
+  double min_left_mm = 0, max_left_mm = 0;
   std::string program;          // the written program (with an output folder)
 };
 
@@ -39,6 +41,9 @@ struct JobReport {
   double stock_mm3 = 0;       // the raw stock
   double left_mm3 = 0;        // the stock after the job
   double removed_mm3 = 0, air_cut_share = 0, time_s = 0;
+  // After the job: the least material left on the part over every operation's view (negative: a gouge, the
+  // depth below the design), and the most left as the last operation sees it (mm).
+  double min_left_mm = INFINITY, max_left_mm = 0;
   size_t stock_bytes = 0;
 };
 
