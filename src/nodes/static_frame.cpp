@@ -4,6 +4,7 @@
 //   parent, child   frame names (different, not empty)
 //   xyz             [x, y, z] in metres
 //   rpy             [roll, pitch, yaw] in radians (fixed axes X, then Y, then Z)
+// The frame it publishes is on /diagnostics, as every node's input is.
 #include <ros/ros.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 
@@ -12,6 +13,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/input_diagnostics.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 
@@ -20,7 +22,7 @@ namespace {
 
 class StaticFrame {
  public:
-  StaticFrame(::ros::NodeHandle&, ::ros::NodeHandle& pnh) {
+  StaticFrame(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh) : diagnostics_(nh) {
     const std::string parent = string_param(pnh, "parent", "");
     const std::string child = string_param(pnh, "child", "");
     if (parent.empty() || child.empty() || parent == child)
@@ -31,6 +33,7 @@ class StaticFrame {
     broadcaster_.sendTransform(to_transform_msg(parent, child, q, xyz));
     ROS_INFO("static_frame: %s in %s at [%g %g %g] m, rpy [%g %g %g] rad", child.c_str(), parent.c_str(), xyz.x(),
              xyz.y(), xyz.z(), rpy.x(), rpy.y(), rpy.z());
+    diagnostics_.accepted("frame", child + " published in " + parent);
   }
 
  private:
@@ -43,6 +46,7 @@ class StaticFrame {
     return {v[0], v[1], v[2]};
   }
 
+  InputDiagnostics diagnostics_;
   tf2_ros::StaticTransformBroadcaster broadcaster_;
 };
 

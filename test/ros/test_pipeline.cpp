@@ -18,6 +18,10 @@
 #include "rosmill/ros/markers.hpp"
 #include "rostest_support.hpp"
 
+#include <diagnostic_msgs/DiagnosticArray.h>
+
+#include <map>
+#include <mutex>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -337,6 +341,35 @@ TEST_F(Pipeline, BadLoadsAreRefusedAndTheNodesStayUp) {
   // A part in a frame tf does not know is refused: publishing it in the workpiece frame would put it elsewhere.
   expect_refused_load("primitive:cube", "no transform to 'workpiece'", "", "nowhere");
   expect_all_nodes_up();
+}
+
+// Every node of the pipeline (and the static frame) reports on /diagnostics what it did with its last input; the
+// loader's refusal of a bad path names the path.
+TEST_F(Pipeline, EveryNodeReportsItsLastInput) {
+  std::map<std::string, std::string> heard;  // status name -> message
+  std::mutex m;
+  ros::Subscriber sub = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      "/diagnostics", 50, boost::function<void(const diagnostic_msgs::DiagnosticArray::ConstPtr&)>(
+                              [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& a) {
+                                std::lock_guard<std::mutex> lock(m);
+                                for (const auto& st : a->status) heard[st.name] = st.message;
+                              }));
+  expect_refused_load("/no/such/diagnosed.stl", "no such file");
+  const std::vector<std::string> names = {"stl_loader: input", "segmenter: input", "slicer: input",
+                                          "toolpath_planner: input", "fixture_frame: input"};
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
+  auto all_heard = [&] {
+    std::lock_guard<std::mutex> lock(m);
+    for (const std::string& n : names)
+      if (!heard.count(n)) return false;
+    return heard["stl_loader: input"].find("diagnosed.stl") != std::string::npos;
+  };
+  while (!all_heard() && ros::WallTime::now() < end) ros::WallDuration(0.05).sleep();
+  std::lock_guard<std::mutex> lock(m);
+  for (const std::string& n : names) EXPECT_TRUE(heard.count(n)) << n << " published no diagnostic";
+  EXPECT_NE(heard["stl_loader: input"].find("rejected"), std::string::npos) << heard["stl_loader: input"];
+  EXPECT_NE(heard["stl_loader: input"].find("diagnosed.stl"), std::string::npos) << heard["stl_loader: input"];
+  EXPECT_NE(heard["fixture_frame: input"].find("fixture published in workpiece"), std::string::npos);
 }
 
 // A real model through the whole chain: every node takes the new mesh.
