@@ -64,7 +64,8 @@ PlanTemplate read_template(const YAML::Node& node, const PresetTable& table, con
   if (!node["stages"] || !node["stages"].IsSequence() || node["stages"].size() == 0)
     throw Error(at, "field 'stages' must list presets");
   for (const YAML::Node& s : node["stages"]) {
-    t.stages.push_back(s.as<std::string>());
+    if (!s.IsScalar()) throw Error(at, "field 'stages' must list presets by name");
+    t.stages.push_back(s.Scalar());
     if (!table.find(t.stages.back())) throw Error(at, "stage '" + t.stages.back() + "' is not a preset of the table");
   }
   double sum = 0;

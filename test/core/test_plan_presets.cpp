@@ -51,6 +51,13 @@ TEST(PlanPresets, BadTablesAreErrorsNamingTheEntry) {
                             "p.yaml");
             }).find("'c'"),
             std::string::npos);
+  // A stage that is not a name: the entry's own message, not yaml-cpp's "bad conversion".
+  EXPECT_NE(error_of([&] {
+              parse_presets(tools + "presets:\n  - {name: a, strategy: raster, tool: 1}\ntemplates:\n"
+                                    "  - {name: b, stages: [{x: 1}]}\n",
+                            "p.yaml");
+            }).find("p.yaml: template #1 (b): field 'stages' must list presets by name"),
+            std::string::npos);
   const PresetTable ok = parse_presets(tools + "presets:\n  - {name: a, strategy: raster, tool: 1}\n", "p.yaml");
   EXPECT_EQ(ok.presets.size(), 1u);
   EXPECT_TRUE(std::isnan(ok.presets[0].stepover));

@@ -56,25 +56,30 @@ class Latest {
   bool seen_ = false;
 };
 
-// True when the node answers on its XML-RPC slave API (what `rosnode ping` does): a crashed node does not, even
-// while the master still lists it. (Not ~get_loggers: on this platform a C++ client calling it makes the called
-// node crash in log4cxx when the connection drops.)
-inline bool node_answers(const std::string& node) {
+// The process id of a running node from its XML-RPC slave API (getPid, what `rosnode ping` asks), or 0 when it
+// does not answer: a crashed node does not, even while the master still lists it. (Not ~get_loggers: on this
+// platform a C++ client calling it makes the called node crash in log4cxx when the connection drops.)
+inline int node_pid(const std::string& node) {
   XmlRpc::XmlRpcValue args, result, payload;
   args[0] = ros::this_node::getName();
   args[1] = node;
-  if (!ros::master::execute("lookupNode", args, result, payload, false)) return false;
+  if (!ros::master::execute("lookupNode", args, result, payload, false)) return 0;
   std::string host;
   uint32_t port = 0;
-  if (!ros::network::splitURI(std::string(payload), host, port)) return false;
+  if (!ros::network::splitURI(std::string(payload), host, port)) return 0;
   XmlRpc::XmlRpcClient client(host.c_str(), int(port), "/");
   XmlRpc::XmlRpcValue ping, reply;
   ping[0] = ros::this_node::getName();
-  const bool ok = client.execute("getPid", ping, reply) && reply.getType() == XmlRpc::XmlRpcValue::TypeArray &&
-                  int(reply[0]) == 1;
+  int pid = 0;
+  if (client.execute("getPid", ping, reply) && reply.getType() == XmlRpc::XmlRpcValue::TypeArray &&
+      int(reply[0]) == 1)
+    pid = int(reply[2]);
   client.close();
-  return ok;
+  return pid;
 }
+
+// True when the node answers (see node_pid).
+inline bool node_answers(const std::string& node) { return node_pid(node) > 0; }
 
 // How many inputs a node has taken (accepted or rejected), from its diagnostic on /diagnostics (the
 // InputDiagnostics of the node: status "<node>: input" with values "accepted" and "rejected"). A test publishes an
@@ -126,25 +131,6 @@ class InputCount {
   bool seen_ = false;
 };
 
-// The process id of a running node (its XML-RPC getPid), or 0.
-inline int node_pid(const std::string& node) {
-  XmlRpc::XmlRpcValue args, result, payload;
-  args[0] = ros::this_node::getName();
-  args[1] = node;
-  if (!ros::master::execute("lookupNode", args, result, payload, false)) return 0;
-  std::string host;
-  uint32_t port = 0;
-  if (!ros::network::splitURI(std::string(payload), host, port)) return 0;
-  XmlRpc::XmlRpcClient client(host.c_str(), int(port), "/");
-  XmlRpc::XmlRpcValue ping, reply;
-  ping[0] = ros::this_node::getName();
-  int pid = 0;
-  if (client.execute("getPid", ping, reply) && reply.getType() == XmlRpc::XmlRpcValue::TypeArray &&
-      int(reply[0]) == 1)
-    pid = int(reply[2]);
-  client.close();
-  return pid;
-}
 
 // The peak resident memory of a process in MB (VmHWM of /proc/PID/status), or -1.
 inline double peak_rss_mb(int pid) {
