@@ -114,7 +114,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   report.stock_mm3 = stock.volume();
   double feed_mm = 0, air_mm = 0;
   std::vector<Job> planned;  // each operation's toolpaths, for the programs
+  const auto go_on = [&](size_t k, double fraction) { return !options.progress || options.progress(k, fraction); };
   for (size_t k = 0; k < job.operations.size(); ++k) {
+    if (!go_on(k, 0.0)) {
+      report.cancelled = true;
+      break;
+    }
     const OperationSpec& op = job.operations[k];
     const std::string where = job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "]";
     OperationReport r;
@@ -139,8 +144,18 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     if (job.stock.kind == StockSpec::Kind::Box) request.params.stock_margin = job.stock.margin;
     if (stock_mesh) request.params.stock_mesh = &*stock_mesh;
     r.tool = request.params.tool.name;
+    // Planning takes the first 90 % of an operation's progress, the removal from the stock the rest.
+    bool stopped = false;
+    request.progress = [&](double f) { return !(stopped = !go_on(k, 0.9 * f)); };
     auto t0 = std::chrono::steady_clock::now();
-    const Job toolpaths = plan(request);
+    Job toolpaths;
+    try {
+      toolpaths = plan(request);
+    } catch (const Error&) {
+      if (!stopped) throw;
+      report.cancelled = true;
+      break;
+    }
     r.plan_seconds = since(t0);
     const stock::MachineProgram program = stock::program_from_job(toolpaths);
     const stock::RemovalReport removal = stock.remove(program, request.input.setup);
@@ -170,6 +185,10 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     report.time_s += r.time_s;
     report.min_left_mm = std::min(report.min_left_mm, r.min_left_mm);
     report.operations.push_back(r);
+    if (!go_on(k, 1.0) && k + 1 < job.operations.size()) {
+      report.cancelled = true;
+      break;
+    }
   }
   if (!options.out_dir.empty()) write_programs(job, planned, options, report);
   report.left_mm3 = stock.volume();
@@ -201,7 +220,8 @@ nlohmann::json to_json(const JobReport& report) {
           {"time_s", report.time_s},
           {"min_left_mm", report.min_left_mm},
           {"max_left_mm", report.max_left_mm},
-          {"stock_bytes", report.stock_bytes}};
+          {"stock_bytes", report.stock_bytes},
+          {"cancelled", report.cancelled}};
 }
 
 }  // namespace rosmill::core::job

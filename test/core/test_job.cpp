@@ -187,3 +187,41 @@ TEST(Job, ExampleJobsRunFromAnyFolder) {
   }
   std::filesystem::remove_all(dir);
 }
+
+// The progress hook of a long job (the PlanJob action's feedback and cancel): called per operation with a
+// fraction that rises from 0 to 1; answering false stops the job and keeps the operations already finished.
+TEST(Job, ProgressReportsEachOperationAndCancelKeepsTheFinishedOnes) {
+  const JobSpec spec = read_job(kJob);
+  JobOptions options = with_tools();
+  std::vector<std::pair<size_t, double>> calls;
+  options.progress = [&](size_t op, double f) {
+    calls.emplace_back(op, f);
+    return true;
+  };
+  const JobReport full = run_job(spec, options);
+  EXPECT_FALSE(full.cancelled);
+  ASSERT_EQ(full.operations.size(), 2u);
+  ASSERT_GE(calls.size(), 4u);
+  for (size_t i = 1; i < calls.size(); ++i) {
+    // Never backwards: the operation index grows, and within one operation the fraction does too.
+    ASSERT_GE(calls[i].first, calls[i - 1].first);
+    if (calls[i].first == calls[i - 1].first) EXPECT_GE(calls[i].second, calls[i - 1].second);
+  }
+  EXPECT_EQ(calls.front(), std::make_pair(size_t(0), 0.0));
+  EXPECT_EQ(calls.back(), std::make_pair(size_t(1), 1.0));
+  EXPECT_GT(calls.size(), 6u) << "progress is reported while an operation is planned, not only between them";
+
+  // Cancelled while the second operation is planned: the first is kept with its figures, the second is not run.
+  options.progress = [](size_t op, double f) { return op == 0 || f < 0.3; };
+  const JobReport stopped = run_job(spec, options);
+  EXPECT_TRUE(stopped.cancelled);
+  ASSERT_EQ(stopped.operations.size(), 1u);
+  EXPECT_NEAR(stopped.operations[0].removed_mm3, full.operations[0].removed_mm3, 1e-6);
+  EXPECT_NEAR(stopped.left_mm3, stopped.stock_mm3 - full.operations[0].removed_mm3, 1e-6 * stopped.stock_mm3);
+  // Cancelled before anything: nothing removed.
+  options.progress = [](size_t, double) { return false; };
+  const JobReport none = run_job(spec, options);
+  EXPECT_TRUE(none.cancelled);
+  EXPECT_TRUE(none.operations.empty());
+  EXPECT_NEAR(none.left_mm3, none.stock_mm3, 1e-9);
+}

@@ -5,6 +5,7 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,10 @@ struct JobOptions {
   bool per_operation = false;            // one program per operation instead of one per setup
   std::string dialect = "linuxcnc";
   gcode::ProgramChecks checks;           // what every written program is checked against
+  // Called with the operation's index and the fraction of it done (0 before it starts, 1 when its moves are
+  // removed from the stock; in between while it is planned). Returning false cancels the job: the operations
+  // finished so far are kept in the report (and their programs written), the rest are not run.
+  std::function<bool(size_t operation, double fraction)> progress;
 };
 
 struct OperationReport {
@@ -45,6 +50,7 @@ struct JobReport {
   // depth below the design), and the most left as the last operation sees it (mm).
   double min_left_mm = INFINITY, max_left_mm = 0;
   size_t stock_bytes = 0;
+  bool cancelled = false;     // the progress hook said stop: `operations` holds the finished ones
 };
 
 JobReport run_job(const JobSpec& job, const JobOptions& options);
