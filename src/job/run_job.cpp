@@ -84,10 +84,7 @@ std::pair<double, double> material_left(const stock::InProcessStock& stock, cons
 void write_programs(const JobSpec& job, const std::vector<Job>& planned, const JobOptions& options,
                     JobReport& report) {
   std::vector<std::pair<std::string, gcode::Program>> programs;
-  for (size_t first = 0; first < planned.size();) {
-    size_t end = first + 1;
-    while (!options.per_operation && end < planned.size() && job.operations[end].setup == job.operations[first].setup)
-      ++end;
+  for (const auto& [first, end] : program_groups(job, planned.size(), options.per_operation)) {
     Job toolpaths;
     for (size_t k = first; k < end; ++k) toolpaths.insert(toolpaths.end(), planned[k].begin(), planned[k].end());
     const std::string name =
@@ -97,7 +94,6 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
     post.title = "rosmill job " + job.source + ": " + name;
     programs.emplace_back(path, gcode::prepare_program(toolpaths, post, options.checks).program);
     for (size_t k = first; k < end; ++k) report.operations[k].program = path;
-    first = end;
   }
   std::filesystem::create_directories(options.out_dir);
   for (const auto& [path, program] : programs) gcode::write_program(path, program);
@@ -105,8 +101,19 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
 
 }  // namespace
 
+std::vector<std::pair<size_t, size_t>> program_groups(const JobSpec& job, size_t operations, bool per_operation) {
+  std::vector<std::pair<size_t, size_t>> groups;
+  for (size_t first = 0; first < operations;) {
+    size_t end = first + 1;
+    while (!per_operation && end < operations && job.operations[end].setup == job.operations[first].setup) ++end;
+    groups.emplace_back(first, end);
+    first = end;
+  }
+  return groups;
+}
+
 JobReport run_job(const JobSpec& job, const JobOptions& options) {
-  const Mesh part = read_mesh(job.part, job.units);
+  const Mesh part = options.part ? *options.part : read_mesh(job.part, job.units);
   std::optional<Mesh> stock_mesh;
   if (job.stock.kind == StockSpec::Kind::Mesh) stock_mesh = read_mesh(job.stock.file, job.units);
   stock::InProcessStock stock = raw_stock(job, part, stock_mesh ? &*stock_mesh : nullptr);
@@ -185,6 +192,8 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     report.time_s += r.time_s;
     report.min_left_mm = std::min(report.min_left_mm, r.min_left_mm);
     report.operations.push_back(r);
+    if (options.operation_done)
+      options.operation_done({k, report.operations.back(), planned.back(), request.input.setup, stock, part});
     if (!go_on(k, 1.0) && k + 1 < job.operations.size()) {
       report.cancelled = true;
       break;

@@ -122,12 +122,12 @@ visualization_msgs::Marker tool_marker(const core::Toolpath& tp, const SetupFram
 }  // namespace
 
 visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
-                                                 const std_msgs::Header& header) {
+                                                 const std_msgs::Header& header, const std::string& ns_prefix) {
   visualization_msgs::MarkerArray array;
   array.markers.push_back(delete_all_marker(header));
   for (size_t t = 0; t < job.size(); ++t) {
     const core::Toolpath& tp = job[t];
-    const std::string prefix = "toolpath" + std::to_string(t) + "/";
+    const std::string prefix = ns_prefix + "toolpath" + std::to_string(t) + "/";
     Vec3 at = tp.start;
     for (size_t p = 0; p < tp.passes.size(); ++p) {
       const core::ToolpathPass& pass = tp.passes[p];

@@ -14,8 +14,11 @@
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/job/job_spec.hpp"
 #include "rosmill/planner/presets.hpp"
+#include "rosmill/stock/in_process_stock.hpp"
 
 namespace rosmill::core::job {
+
+struct OperationView;
 
 struct JobOptions {
   const ToolTable* tools = nullptr;      // for tool ids; null: tools given as ball:D etc. only
@@ -28,6 +31,11 @@ struct JobOptions {
   // removed from the stock; in between while it is planned). Returning false cancels the job: the operations
   // finished so far are kept in the report (and their programs written), the rest are not run.
   std::function<bool(size_t operation, double fraction)> progress;
+  // Called after each operation with what it did, for a live view (rviz): its toolpaths, its setup, the stock it
+  // left and the part.
+  std::function<void(const OperationView&)> operation_done;
+  // Given: the part (mm, workpiece frame), instead of reading the job's `part` (e.g. the mesh a ROS node received).
+  const Mesh* part = nullptr;
 };
 
 struct OperationReport {
@@ -53,7 +61,20 @@ struct JobReport {
   bool cancelled = false;     // the progress hook said stop: `operations` holds the finished ones
 };
 
+struct OperationView {
+  size_t index;
+  const OperationReport& report;
+  const Job& toolpaths;  // in the setup's frame
+  const SetupFrame& setup;
+  const stock::InProcessStock& stock;
+  const Mesh& part;
+};
+
 JobReport run_job(const JobSpec& job, const JobOptions& options);
+
+// The job's programs as ranges [first, end) of its first `operations` operations: one per run of operations in the
+// same setup (the part stays clamped; the tools change between them), or one per operation.
+std::vector<std::pair<size_t, size_t>> program_groups(const JobSpec& job, size_t operations, bool per_operation);
 
 nlohmann::json to_json(const JobReport& report);
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "rosmill/error.hpp"
+#include "rosmill/ros/namespaces.hpp"
 
 namespace rosmill::edge {
 

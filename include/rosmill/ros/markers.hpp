@@ -33,7 +33,8 @@ visualization_msgs::Marker mesh_marker(const Mesh& mesh, const std_msgs::Header&
 // each segment takes the colour of its move type (the vertex is doubled where the type changes, so colours do not
 // blend); a CYLINDER for the tool at the toolpath's start. Positions are rotated from the setup frame back into the
 // workpiece frame so the path is drawn around the part as it sits. Starts with a DELETEALL so older views vanish.
+// `ns_prefix` goes before every namespace (a job's operations: "rough/toolpath0/...").
 visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
-                                                 const std_msgs::Header& header);
+                                                 const std_msgs::Header& header, const std::string& ns_prefix = "");
 
 }  // namespace rosmill::edge

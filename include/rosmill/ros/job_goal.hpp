@@ -1,0 +1,61 @@
+// One PlanJob goal in the planner node: the job read from its file or its text, run by the core's run_job with the
+// node's tools and presets on the part the job names (or the mesh the node last received), feedback per operation
+// (at most every 0.1 s within one), a cancel that keeps the finished operations, and after each operation what it
+// did handed to `show` (rviz). The result carries the report in SI units and as the CLI's JSON (millimetres).
+#pragma once
+#include <actionlib/server/simple_action_server.h>
+#include <ros/node_handle.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "rosmill/PlanJobAction.h"
+#include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/job/run_job.hpp"
+#include "rosmill/planner/presets.hpp"
+#include "rosmill/ros/namespaces.hpp"
+#include "rosmill/ros/setup_frames.hpp"
+
+namespace rosmill::edge {
+
+struct JobGoalContext {
+  const ToolTable* tools = nullptr;
+  const PresetTable* presets = nullptr;
+  std::string dialect = "linuxcnc";
+  gcode::ProgramChecks checks;  // what every written program is checked against
+  std::function<std::shared_ptr<const Mesh>()> received_mesh;  // the part for part_source "mesh" (or an Error)
+  std::function<bool()> cancel_requested;
+  std::function<void(const PlanJobFeedback&)> feedback;
+  std::function<void(const job::OperationView&)> show;
+  std::function<std::string(const SetupFrame&)> setup_frame;  // the frame a setup's toolpaths are stamped with
+};
+
+// `cancelled` tells whether the goal was cancelled on the way.
+PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& context, bool& cancelled);
+
+// The core's report as the action's result (m, m^3, s).
+PlanJobResult to_job_result(const job::JobReport& report);
+
+// The plan_job action of a node: its server, the `job_markers` and `stock_markers` topics (latched, workpiece
+// frame), and the settings from the node's private parameters: `dialect`, `machine` (the limits programs are
+// checked against; required to write programs unless `no_limits`), `verify_rs274`.
+class JobActionServer {
+ public:
+  JobActionServer(::ros::NodeHandle& nh, const ::ros::NodeHandle& pnh, const std::string& frame_id,
+                  const ToolTable& tools, const PresetTable& presets,
+                  std::function<std::shared_ptr<const Mesh>()> received_mesh);
+
+ private:
+  void on_goal(const PlanJobGoalConstPtr& goal);
+
+  std::string frame_id_;
+  JobGoalContext context_;
+  bool require_machine_ = true;  // programs need machine limits
+  SetupFramePublisher setup_frames_;
+  ::ros::Publisher job_markers_, stock_markers_;
+  actionlib::SimpleActionServer<PlanJobAction> server_;
+};
+
+}  // namespace rosmill::edge

@@ -1,0 +1,34 @@
+// A job in rviz as it runs: the toolpaths of every operation so far (namespaces "<operation>/toolpath<t>/...",
+// each hideable), and the stock after the latest operation as a triangle mesh coloured by the material it leaves on
+// the part (the stock's top above the design's, seen from the operation's setup), with a legend of the colours.
+#pragma once
+#include <std_msgs/Header.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <string>
+#include <vector>
+
+#include "rosmill/job/run_job.hpp"
+#include "rosmill/ros/namespaces.hpp"
+
+namespace rosmill::edge {
+
+// The colour of `left` mm of material on the part: magenta below the design (a gouge deeper than `tolerance`),
+// green within `tolerance` of it, then through yellow to red at `full` mm and above; grey where the stock stands
+// over no part (NaN).
+std_msgs::ColorRGBA material_left_colour(float left, double tolerance, double full);
+
+class JobMarkers {
+ public:
+  explicit JobMarkers(std_msgs::Header header) : header_(std::move(header)) {}
+  // Adds the operation's toolpaths; returns every operation's so far, starting with a DELETEALL.
+  const visualization_msgs::MarkerArray& add_operation(const job::OperationView& view);
+  // The stock the operation left, coloured, and the legend beside it (namespaces "stock", "legend").
+  visualization_msgs::MarkerArray stock(const job::OperationView& view) const;
+
+ private:
+  std_msgs::Header header_;
+  visualization_msgs::MarkerArray toolpaths_;
+};
+
+}  // namespace rosmill::edge

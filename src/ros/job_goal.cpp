@@ -1,0 +1,170 @@
+#include "rosmill/ros/job_goal.hpp"
+
+#include <ros/ros.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "rosmill/error.hpp"
+#include "rosmill/job/job_spec.hpp"
+#include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/finish_goal.hpp"
+#include "rosmill/ros/job_markers.hpp"
+#include "rosmill/ros/params.hpp"
+
+namespace rosmill::edge {
+namespace {
+
+constexpr double kMm3ToM3 = 1e-9;
+
+job::JobSpec goal_job(const PlanJobGoal& goal) {
+  if (!goal.job_file.empty()) return job::read_job(goal.job_file);
+  if (goal.job_yaml.empty()) throw Error("goal", "names no job: give job_file (a path) or job_yaml (the text)");
+  const std::string folder = goal.folder.empty() ? std::filesystem::current_path().string() : goal.folder;
+  return job::parse_job(goal.job_yaml, "goal job_yaml", folder);
+}
+
+msg::JobOperationReport to_operation_msg(const job::OperationReport& r) {
+  msg::JobOperationReport m;
+  m.name = r.name;
+  m.strategy = r.strategy;
+  m.tool = r.tool;
+  m.setup = r.setup;
+  m.moves = static_cast<uint32_t>(r.moves);
+  m.cutting_length = to_metres(r.cutting_mm);
+  m.rapid_length = to_metres(r.rapid_mm);
+  m.air_cut_share = r.air_cut_share;
+  m.removed_volume = r.removed_mm3 * kMm3ToM3;
+  m.time = r.time_s;
+  m.planning_time = r.plan_seconds;
+  m.min_left = to_metres(r.min_left_mm);
+  m.max_left = to_metres(r.max_left_mm);
+  m.program = r.program;
+  return m;
+}
+
+}  // namespace
+
+PlanJobResult to_job_result(const job::JobReport& report) {
+  PlanJobResult result;
+  for (const job::OperationReport& r : report.operations) result.operations.push_back(to_operation_msg(r));
+  result.cancelled = report.cancelled;
+  result.stock_volume = report.stock_mm3 * kMm3ToM3;
+  result.left_volume = report.left_mm3 * kMm3ToM3;
+  result.air_cut_share = report.air_cut_share;
+  result.time = report.time_s;
+  result.min_left = to_metres(report.operations.empty() ? 0.0 : report.min_left_mm);
+  result.max_left = to_metres(report.max_left_mm);
+  result.report_json = job::to_json(report).dump();
+  return result;
+}
+
+PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& context, bool& cancelled) {
+  cancelled = false;
+  PlanJobResult result;
+  try {
+    job::JobSpec spec = goal_job(goal);
+    std::shared_ptr<const Mesh> received;
+    if (goal.part_source == "mesh")
+      received = context.received_mesh();
+    else if (!goal.part_source.empty())
+      throw Error("part_source", "must be \"\" (the job's part) or \"mesh\", got \"" + goal.part_source + "\"");
+    job::JobOptions options;
+    options.tools = context.tools;
+    options.presets = context.presets;
+    options.out_dir = goal.output_dir;
+    options.per_operation = goal.per_operation;
+    options.dialect = context.dialect;
+    options.checks = context.checks;
+    options.part = received.get();
+    if (!goal.output_dir.empty() && goal.output_dir.front() != '/')
+      throw Error("output_dir", "must be an absolute folder, got '" + goal.output_dir + "'");
+    std::vector<std::pair<Job, SetupFrame>> planned;  // each operation's toolpaths, for the programs
+    options.operation_done = [&](const job::OperationView& view) {
+      planned.emplace_back(view.toolpaths, view.setup);
+      if (context.show) context.show(view);
+    };
+    const uint32_t operations = static_cast<uint32_t>(spec.operations.size());
+    auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+    options.progress = [&](size_t op, double fraction) {
+      if (context.cancel_requested()) return false;
+      const auto now = std::chrono::steady_clock::now();
+      if (fraction > 0 && fraction < 1 && now - last < std::chrono::milliseconds(100)) return true;
+      last = now;
+      PlanJobFeedback fb;
+      fb.operation = static_cast<uint32_t>(op);
+      fb.operations = operations;
+      fb.name = op < spec.operations.size() ? spec.operations[op].name : "";
+      fb.stage = fraction >= 1 ? "done" : "running";
+      fb.operation_progress = static_cast<float>(fraction);
+      fb.progress = static_cast<float>((op + fraction) / std::max<uint32_t>(operations, 1));
+      context.feedback(fb);
+      return true;
+    };
+    const job::JobReport report = job::run_job(spec, options);
+    result = to_job_result(report);
+    for (const auto& [first, end] : job::program_groups(spec, planned.size(), goal.per_operation)) {
+      Job toolpaths;
+      for (size_t k = first; k < end; ++k)
+        toolpaths.insert(toolpaths.end(), planned[k].first.begin(), planned[k].first.end());
+      std_msgs::Header header;
+      header.frame_id = context.setup_frame(planned[first].second);
+      header.stamp = ::ros::Time::now();
+      result.programs.push_back(to_job_msg(toolpaths, planned[first].second, header));
+    }
+    cancelled = report.cancelled;
+    result.success = !report.cancelled;
+    result.message = report.cancelled ? "cancelled after " + std::to_string(report.operations.size()) + " of " +
+                                            std::to_string(operations) + " operations"
+                                      : "ran " + std::to_string(operations) + " operations";
+  } catch (const std::exception& e) {
+    result.success = false;
+    result.message = e.what();
+  }
+  return result;
+}
+
+JobActionServer::JobActionServer(::ros::NodeHandle& nh, const ::ros::NodeHandle& pnh, const std::string& frame_id,
+                                 const ToolTable& tools, const PresetTable& presets,
+                                 std::function<std::shared_ptr<const Mesh>()> received_mesh)
+    : frame_id_(frame_id), server_(nh, "plan_job", [this](const PlanJobGoalConstPtr& g) { on_goal(g); }, false) {
+  context_.tools = &tools;
+  context_.presets = &presets;
+  context_.dialect = string_param(pnh, "dialect", "linuxcnc");
+  gcode::find_dialect(context_.dialect);  // validates the name now
+  const std::string machine = string_param(pnh, "machine", "");
+  if (!machine.empty()) context_.checks.machine = gcode::load_machine_limits(machine);
+  require_machine_ = machine.empty() && !bool_param(pnh, "no_limits", false);
+  context_.checks.rs274 = bool_param(pnh, "verify_rs274", false);
+  context_.received_mesh = std::move(received_mesh);
+  context_.setup_frame = [this](const SetupFrame& setup) { return setup_frames_.publish(frame_id_, setup); };
+  context_.cancel_requested = [this] { return server_.isPreemptRequested(); };
+  context_.feedback = [this](const PlanJobFeedback& fb) { server_.publishFeedback(fb); };
+  job_markers_ = nh.advertise<visualization_msgs::MarkerArray>("job_markers", 1, true);
+  stock_markers_ = nh.advertise<visualization_msgs::MarkerArray>("stock_markers", 1, true);
+  server_.start();
+}
+
+void JobActionServer::on_goal(const PlanJobGoalConstPtr& goal) {
+  std_msgs::Header header;
+  header.frame_id = frame_id_;
+  header.stamp = ::ros::Time::now();
+  JobMarkers view(header);
+  JobGoalContext context = context_;
+  context.show = [&](const job::OperationView& v) {
+    job_markers_.publish(view.add_operation(v));
+    stock_markers_.publish(view.stock(v));
+  };
+  bool cancelled = false;
+  PlanJobResult result;
+  if (!goal->output_dir.empty() && require_machine_) {
+    result.message = "output_dir: programs are checked against the machine's limits: set the node's parameter "
+                     "machine (config/machine.yaml), or no_limits to true";
+  } else {
+    result = run_job_goal(*goal, context, cancelled);
+  }
+  if (!result.success) ROS_WARN("plan_job: %s", result.message.c_str());
+  finish_goal(server_, result, cancelled, result.success);
+}
+
+}  // namespace rosmill::edge

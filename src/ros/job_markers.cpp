@@ -1,0 +1,82 @@
+#include "rosmill/ros/job_markers.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/markers.hpp"
+#include "rosmill/stock/material_left.hpp"
+#include "rosmill/stock/stock_surface.hpp"
+
+namespace rosmill::edge {
+namespace {
+
+constexpr double kTolerance = 0.05;  // mm: within this of the design the part is done (green)
+constexpr double kFull = 2.0;        // mm: this much left and more is red
+
+visualization_msgs::Marker legend_line(const std_msgs::Header& header, int id, const Vec3& at, const std::string& text,
+                                       const std_msgs::ColorRGBA& colour) {
+  visualization_msgs::Marker m = base_marker(header, "legend", id, visualization_msgs::Marker::TEXT_VIEW_FACING);
+  m.pose.position = to_point_msg(at);
+  m.scale.z = 0.004;  // text height, m
+  m.color = colour;
+  m.text = text;
+  return m;
+}
+
+}  // namespace
+
+std_msgs::ColorRGBA material_left_colour(float left, double tolerance, double full) {
+  if (std::isnan(left)) return rgba(0.6f, 0.6f, 0.6f, 0.5f);
+  if (left < -tolerance) return rgba(1.0f, 0.0f, 1.0f);
+  if (left <= tolerance) return rgba(0.1f, 0.8f, 0.1f);
+  const float t = static_cast<float>(std::min(1.0, (left - tolerance) / (full - tolerance)));
+  // green -> yellow over the first half, yellow -> red over the second
+  return t < 0.5f ? rgba(2 * t, 0.8f + 0.2f * 2 * t, 0.1f) : rgba(1.0f, 2 * (1 - t), 0.1f);
+}
+
+const visualization_msgs::MarkerArray& JobMarkers::add_operation(const job::OperationView& view) {
+  if (toolpaths_.markers.empty()) toolpaths_.markers.push_back(delete_all_marker(header_));
+  const visualization_msgs::MarkerArray op =
+      toolpath_markers(view.toolpaths, view.setup, header_, view.report.name + "/");
+  toolpaths_.markers.insert(toolpaths_.markers.end(), op.markers.begin() + 1, op.markers.end());  // not its DELETEALL
+  return toolpaths_;
+}
+
+visualization_msgs::MarkerArray JobMarkers::stock(const job::OperationView& view) const {
+  const Mesh surface = stock::stock_surface(view.stock);
+  std::vector<Vec3> centres(surface.faces.size());
+  for (size_t f = 0; f < surface.faces.size(); ++f) {
+    const auto& face = surface.faces[f];
+    centres[f] = (surface.vertices[face[0]] + surface.vertices[face[1]] + surface.vertices[face[2]]) / 3.0;
+  }
+  const std::vector<float> left = stock::material_left_at(view.stock, view.part, view.setup, centres);
+  visualization_msgs::MarkerArray array;
+  array.markers.push_back(delete_all_marker(header_));
+  visualization_msgs::Marker m = base_marker(header_, "stock", 0, visualization_msgs::Marker::TRIANGLE_LIST);
+  m.color = rgba(1, 1, 1);
+  for (size_t f = 0; f < surface.faces.size(); ++f) {
+    add_facet(m, surface, f);
+    m.colors.resize(m.points.size(), material_left_colour(left[f], kTolerance, kFull));
+  }
+  array.markers.push_back(m);
+  // The legend: beside the stock, one line per colour.
+  const Box3& b = surface.faces.empty() ? view.part.bbox : surface.bbox;
+  const Vec3 at(b.max.x() + 10.0, b.min.y(), b.max.z());
+  char full[64], tol[64];
+  std::snprintf(full, sizeof full, "red: %.1f mm or more left", kFull);
+  std::snprintf(tol, sizeof tol, "green: within %.2f mm of the design", kTolerance);
+  const std::vector<std::pair<std::string, std_msgs::ColorRGBA>> lines = {
+      {"stock after " + view.report.name, rgba(1, 1, 1)},
+      {tol, material_left_colour(0, kTolerance, kFull)},
+      {"yellow: 1 mm left", material_left_colour(1.0f, kTolerance, kFull)},
+      {full, material_left_colour(float(kFull), kTolerance, kFull)},
+      {"magenta: below the design (gouge)", material_left_colour(-1.0f, kTolerance, kFull)}};
+  for (size_t k = 0; k < lines.size(); ++k)
+    array.markers.push_back(
+        legend_line(header_, int(k), at - Vec3(0, 0, 6.0 * k), lines[k].first, lines[k].second));
+  return array;
+}
+
+}  // namespace rosmill::edge

@@ -1,0 +1,212 @@
+// rostest: the plan_job action of toolpath_planner (see plan_job.test).
+#include <actionlib/client/simple_action_client.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <ros/ros.h>
+#include <shape_msgs/Mesh.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <atomic>
+#include <filesystem>
+#include <mutex>
+#include <set>
+
+#include "rosmill/PlanJobAction.h"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/ros/convert.hpp"
+#include "rostest_support.hpp"
+
+using namespace rosmill;
+using namespace rosmill::edge;
+using Client = actionlib::SimpleActionClient<PlanJobAction>;
+using rosmill::rostest::Latest;
+
+namespace {
+
+const std::string kJobs = std::string(ROSMILL_SOURCE_DIR) + "/config/jobs/";
+
+class PlanJob : public testing::Test {
+ protected:
+  static void SetUpTestSuite() { ASSERT_TRUE(ros::service::waitForService("plan", ros::Duration(20.0))); }
+  // Sends `goal` and waits for its end (planning a job takes a few seconds; generous for a loaded machine).
+  PlanJobResultConstPtr run(Client& client, const PlanJobGoal& goal) {
+    client.sendGoal(goal);
+    EXPECT_TRUE(client.waitForResult(ros::Duration(100.0)));
+    return client.getResult();
+  }
+  void expect_alive() {
+    EXPECT_TRUE(ros::service::waitForService("plan", ros::Duration(2.0))) << "toolpath_planner died";
+  }
+  ros::NodeHandle nh;
+};
+
+std::string yaml_job(const std::string& part, const std::string& operations) {
+  return "part: " + part + "\nresolution: 0.5\nstock: {box: {margin: 5}}\noperations:\n" + operations;
+}
+
+// The example job through the action: the same operations as the file, figures in SI units and as the CLI's JSON,
+// feedback that ends each operation with "done", the stock coloured per vertex, the toolpaths per operation, and
+// nothing cut below the design.
+TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
+  Latest<visualization_msgs::MarkerArray> stock(nh, "stock_markers"), paths(nh, "job_markers");
+  Client client("plan_job", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  std::mutex m;
+  std::set<std::string> done;
+  PlanJobGoal goal;
+  goal.job_file = kJobs + "box_cube.yaml";
+  client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
+                  [&](const PlanJobFeedbackConstPtr& fb) {
+                    std::lock_guard<std::mutex> lock(m);
+                    EXPECT_EQ(fb->operations, 2u);
+                    EXPECT_GE(fb->progress, 0.0f);
+                    EXPECT_LE(fb->progress, 1.0f);
+                    if (fb->stage == "done") done.insert(fb->name);
+                  });
+  ASSERT_TRUE(client.waitForResult(ros::Duration(100.0)));
+  ASSERT_EQ(client.getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << client.getResult()->message;
+  const PlanJobResult& r = *client.getResult();
+  ASSERT_EQ(r.operations.size(), 2u);
+  EXPECT_EQ(r.operations[0].name, "rough");
+  EXPECT_EQ(r.operations[1].name, "finish");
+  EXPECT_FALSE(r.cancelled);
+  {
+    std::lock_guard<std::mutex> lock(m);
+    EXPECT_EQ(done, (std::set<std::string>{"rough", "finish"}));
+  }
+  const nlohmann::json json = nlohmann::json::parse(r.report_json);
+  ASSERT_EQ(json["operations"].size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    const PlanJobResult::_operations_type::value_type& op = r.operations[k];
+    EXPECT_GT(op.removed_volume, 0.0);
+    EXPECT_NEAR(op.removed_volume, json["operations"][k]["removed_mm3"].get<double>() * 1e-9, 1e-12);
+    EXPECT_NEAR(op.cutting_length, json["operations"][k]["cutting_mm"].get<double>() * 1e-3, 1e-9);
+    EXPECT_GE(op.air_cut_share, 0.0);
+    EXPECT_LE(op.air_cut_share, 1.0);
+    EXPECT_GT(op.time, 0.0);
+    EXPECT_TRUE(op.program.empty());  // no output_dir
+  }
+  // One program for the one setup, both operations' toolpaths in it, in the workpiece frame (+Z).
+  ASSERT_EQ(r.programs.size(), 1u);
+  EXPECT_EQ(r.programs[0].header.frame_id, "workpiece");
+  EXPECT_GE(r.programs[0].toolpaths.size(), 2u);
+  EXPECT_GT(r.stock_volume, r.left_volume);
+  EXPECT_GE(r.min_left, -1e-6);  // never below the design (1 micrometre)
+  EXPECT_LT(r.max_left, 0.005);  // the finish leaves at most a few tenths on the cube's faces
+
+  const auto s = stock.wait(10.0);
+  ASSERT_TRUE(s);
+  bool mesh = false, legend = false;
+  for (const auto& marker : s->markers) {
+    if (marker.ns == "stock") {
+      mesh = true;
+      EXPECT_EQ(marker.type, visualization_msgs::Marker::TRIANGLE_LIST);
+      EXPECT_GT(marker.points.size(), 100u);
+      EXPECT_EQ(marker.colors.size(), marker.points.size());
+      EXPECT_EQ(marker.header.frame_id, "workpiece");
+    }
+    legend = legend || marker.ns == "legend";
+  }
+  EXPECT_TRUE(mesh);
+  EXPECT_TRUE(legend);
+  const auto p = paths.wait(10.0);
+  ASSERT_TRUE(p);
+  std::set<std::string> operations;
+  for (const auto& marker : p->markers)
+    if (!marker.ns.empty()) operations.insert(marker.ns.substr(0, marker.ns.find('/')));
+  EXPECT_EQ(operations, (std::set<std::string>{"rough", "finish"}));
+}
+
+// A job given as text on the mesh the planner received: the box stock is the received part's bounds grown by the
+// margin, and the programs are written into output_dir, checked against the machine.
+TEST_F(PlanJob, TextJobOnTheReceivedMeshWritesCheckedPrograms) {
+  const Mesh cone = make_primitive("cone");
+  ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
+  rosmill::rostest::InputCount inputs(nh, "toolpath_planner: input");
+  const size_t before = inputs.now();
+  pub.publish(to_mesh_msg(cone));
+  ASSERT_TRUE(inputs.wait_beyond(before));
+  Client client("plan_job", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  char folder[] = "/tmp/rosmill-plan-job-XXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  PlanJobGoal goal;
+  goal.job_yaml = yaml_job("primitive:cube", "  - {name: rough, strategy: rough, tool: flat:10, stepover: 4, "
+                                              "stepdown: 3, allowance: 0.5}\n");
+  goal.part_source = "mesh";
+  goal.output_dir = folder;
+  const auto r = run(client, goal);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->success) << r->message;
+  const Box3& b = cone.bbox;
+  const Vec3 size = b.max - b.min;
+  const double box_mm3 = (size.x() + 10) * (size.y() + 10) * (size.z() + 5);
+  EXPECT_NEAR(r->stock_volume * 1e9, box_mm3, 0.03 * box_mm3);  // within the 0.5 mm cells' rounding
+  ASSERT_EQ(r->operations.size(), 1u);
+  EXPECT_TRUE(std::filesystem::is_regular_file(r->operations[0].program)) << r->operations[0].program;
+  EXPECT_EQ(std::filesystem::path(r->operations[0].program).parent_path(), std::filesystem::path(folder));
+  std::filesystem::remove_all(folder);
+}
+
+// Bad goals are aborted with their reason; the node stays up.
+TEST_F(PlanJob, BadGoalsAreRefusedWithTheirReason) {
+  Client client("plan_job", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  const std::string op = "  - {name: rough, strategy: rough, tool: flat:10}\n";
+  const std::vector<std::pair<PlanJobGoal, std::string>> cases = [&] {
+    std::vector<std::pair<PlanJobGoal, std::string>> c(5);
+    c[0].second = "names no job";
+    c[1].first.job_file = "/nonexistent/job.yaml";
+    c[1].second = "/nonexistent/job.yaml";
+    c[2].first.job_yaml = yaml_job("primitive:cube", "  - {name: rough, strategy: rough, tool: flat:10, stepover: -4}\n");
+    c[2].second = "stepover";
+    c[3].first.job_yaml = yaml_job("primitive:cube", op);
+    c[3].first.part_source = "cloud";
+    c[3].second = "part_source";
+    c[4].first.job_yaml = yaml_job("primitive:cube", op);
+    c[4].first.output_dir = "relative/folder";
+    c[4].second = "absolute";
+    return c;
+  }();
+  for (const auto& [goal, expected] : cases) {
+    const auto r = run(client, goal);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::ABORTED) << expected;
+    EXPECT_FALSE(r->success);
+    EXPECT_NE(r->message.find(expected), std::string::npos) << r->message;
+  }
+  expect_alive();
+}
+
+// Cancelled once the first operation is done: the goal ends PREEMPTED with the finished operations, not all.
+TEST_F(PlanJob, CancelKeepsTheFinishedOperations) {
+  Client client("plan_job", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  std::string ops;
+  for (int k = 0; k < 20; ++k)
+    ops += "  - {name: pass" + std::to_string(k) + ", strategy: raster, tool: ball:6, stepover: 1}\n";
+  PlanJobGoal goal;
+  goal.job_yaml = yaml_job("primitive:dome", ops);
+  std::atomic<bool> cancel_sent{false};
+  client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
+                  [&](const PlanJobFeedbackConstPtr& fb) {
+                    if (fb->stage == "done" && !cancel_sent.exchange(true)) client.cancelGoal();
+                  });
+  ASSERT_TRUE(client.waitForResult(ros::Duration(100.0)));
+  EXPECT_EQ(client.getState(), actionlib::SimpleClientGoalState::PREEMPTED);
+  const auto r = client.getResult();
+  EXPECT_TRUE(r->cancelled);
+  EXPECT_GE(r->operations.size(), 1u);
+  EXPECT_LT(r->operations.size(), 20u);
+  expect_alive();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_plan_job");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
