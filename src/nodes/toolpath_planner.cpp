@@ -12,27 +12,23 @@
 // `service_time_limit` seconds (the plan_toolpath action has no limit: it reports progress and can be cancelled).
 // The `plan_job` action runs a job (rosmill job's YAML) on the in-process stock, publishing the toolpaths of each
 // operation on `job_markers` and the stock it left on `stock_markers`.
-#include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <shape_msgs/Mesh.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
-#include <visualization_msgs/MarkerArray.h>
 
 #include <memory>
 
 #include "rosmill/Plan.h"
-#include "rosmill/PlanToolpathAction.h"
 #include "rosmill/error.hpp"
 #include "rosmill/ros/convert.hpp"
-#include "rosmill/ros/finish_goal.hpp"
 #include "rosmill/ros/input_diagnostics.hpp"
 #include "rosmill/ros/item_planner.hpp"
 #include "rosmill/ros/job_goal.hpp"
-#include "rosmill/ros/markers.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
+#include "rosmill/ros/plan_action.hpp"
 #include "rosmill/ros/plan_goal.hpp"
 #include "rosmill/ros/transform_wait.hpp"
 
@@ -48,15 +44,13 @@ class ToolpathPlanner {
         plan_on_input_(bool_param(pnh, "plan_on_input", true)),
         tf_listener_(tf_buffer_),
         diagnostics_(nh),
-        action_(nh, "plan_toolpath", [this](const PlanToolpathGoalConstPtr& goal) { on_goal(goal); }, false),
+        out_(nh, frame_id()),
+        plans_(nh, planner_, inputs_, out_),
         jobs_(nh, pnh, frame_id(), planner_.settings().tools, planner_.settings().presets,
               [this] { return inputs_.select("mesh").mesh; }) {
-    job_pub_ = nh.advertise<msg::ToolpathJob>("toolpath", 1, true);
-    marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("toolpath_markers", 1, true);
     mesh_sub_ = nh.subscribe("mesh", 1, &ToolpathPlanner::on_mesh, this);
     cloud_sub_ = nh.subscribe(string_param(pnh, "cloud_topic", "cloud"), 1, &ToolpathPlanner::on_cloud, this);
     plan_srv_ = nh.advertiseService("plan", &ToolpathPlanner::on_plan, this);
-    action_.start();
   }
 
  private:
@@ -102,15 +96,6 @@ class ToolpathPlanner {
                               "cloud in frame '" + header.frame_id + "'");
   }
 
-  void publish(const PlanOutcome& out) {
-    job_pub_.publish(out.job_msg);
-    std_msgs::Header header = out.job_msg.header;
-    header.frame_id = frame_id();  // the markers are drawn back in the workpiece frame
-    marker_pub_.publish(toolpath_markers(out.job, out.setup, header));
-    ROS_INFO("toolpath_planner: %u toolpaths, %u moves for setup %s in %.3f s", out.statistics.toolpaths,
-             out.statistics.moves, out.setup.name.c_str(), out.statistics.planning_time);
-  }
-
   // A newer input supersedes this plan, which stops at its next progress check.
   void plan_on_input(const std::string& source, uint64_t generation) {
     msg::PlanItem item;
@@ -118,7 +103,7 @@ class ToolpathPlanner {
     item.source = source;
     const PlanDeadline deadline(time_limit_, [this, generation] { return inputs_.current(generation); });
     try {
-      publish(planner_.plan(item, inputs_, deadline.progress()));
+      out_.publish(planner_.plan(item, inputs_, deadline.progress()));
     } catch (const std::exception& e) {
       if (!inputs_.current(generation))
         ROS_INFO("toolpath_planner: the plan of the %s before was superseded by a newer input", source.c_str());
@@ -131,7 +116,7 @@ class ToolpathPlanner {
     const PlanDeadline deadline(time_limit_);
     try {
       PlanOutcome out = planner_.plan(plan_item_of(req), inputs_, deadline.progress());
-      if (!req.preview) publish(out);
+      if (!req.preview) out_.publish(out);
       res.job = std::move(out.job_msg);
       res.statistics = out.statistics;
       res.success = true;
@@ -144,24 +129,6 @@ class ToolpathPlanner {
     return true;
   }
 
-  void on_goal(const PlanToolpathGoalConstPtr& goal) {
-    PlanGoalHooks hooks;
-    hooks.cancel_requested = [this] { return action_.isPreemptRequested(); };
-    hooks.feedback = [this](const PlanToolpathFeedback& fb) { action_.publishFeedback(fb); };
-    hooks.plan_item = [&](size_t i, const PlanProgress& progress) {
-      PlanOutcome out = planner_.plan(goal->items[i], inputs_, progress);
-      if (action_.isPreemptRequested()) throw Error("plan", "cancelled");
-      if (!goal->preview) publish(out);
-      msg::PlanItemResult r;
-      r.job = std::move(out.job_msg);
-      r.statistics = out.statistics;
-      return r;
-    };
-    bool cancelled = false;
-    const PlanToolpathResult result = run_plan_goal(*goal, hooks, cancelled);
-    finish_goal(action_, result, cancelled, result.success);
-  }
-
   ItemPlanner planner_;
   double tf_timeout_, time_limit_;
   bool plan_on_input_;
@@ -169,9 +136,9 @@ class ToolpathPlanner {
   tf2_ros::Buffer tf_buffer_;
   tf2_ros::TransformListener tf_listener_;
   InputDiagnostics diagnostics_;
-  actionlib::SimpleActionServer<PlanToolpathAction> action_;
-  JobActionServer jobs_;  // the plan_job action
-  ::ros::Publisher job_pub_, marker_pub_;
+  ToolpathPublisher out_;
+  PlanActionServer plans_;  // the plan_toolpath action
+  JobActionServer jobs_;    // the plan_job action
   ::ros::Subscriber mesh_sub_, cloud_sub_;
   ::ros::ServiceServer plan_srv_;
 };
