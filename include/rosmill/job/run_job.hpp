@@ -14,6 +14,7 @@
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/job/job_spec.hpp"
 #include "rosmill/planner/presets.hpp"
+#include "rosmill/stock/in_process_stock.hpp"
 
 namespace rosmill::core::job {
 
@@ -28,10 +29,22 @@ struct JobOptions {
   // removed from the stock; in between while it is planned). Returning false cancels the job: the operations
   // finished so far are kept in the report (and their programs written), the rest are not run.
   std::function<bool(size_t operation, double fraction)> progress;
+  // false: every operation plans as `rosmill plan` would, against its own box or stock mesh, not the stock the
+  // operations before left (and a rest operation runs whole): the behaviour before jobs knew the stock, for
+  // comparisons.
+  bool plan_on_stock = true;
+  // Called after each operation with the stock it left (to publish or inspect it).
+  std::function<void(size_t operation, const stock::InProcessStock& stock)> on_stock;
+  // Links over the material keep this much above it (mm): the machine's clearance over the stock.
+  double link_clearance = 2.0;
+  // The machine's axes' accelerations for the time estimate (mm/s^2, toolpath_stats.hpp; zero: feeds alone).
+  Vec3 max_acceleration = Vec3::Zero();
 };
 
 struct OperationReport {
   std::string name, strategy, tool, setup;
+  bool rest = false;
+  size_t rest_cells = 0;  // a rest operation: the cells of the stock's grid it was sent to
   size_t moves = 0;
   double cutting_mm = 0, rapid_mm = 0, air_feed_mm = 0, air_cut_share = 0;
   double removed_mm3 = 0, time_s = 0, plan_seconds = 0, remove_seconds = 0;
