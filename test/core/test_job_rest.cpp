@@ -68,8 +68,8 @@ TEST(StockAwareRough, BoxOverTheCubeRemovesTheSlabOnceAndThenNothing) {
   const std::string dir = scratch("slab");
   write_stl(dir + "/box.stl", build_mesh(stock_test::box_corners(Vec3(0, 0, 0), Vec3(60, 60, 65))));
   const std::string op = "  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 2.5, allowance: 0}\n";
-  const JobSpec spec = parse_job("part: primitive:cube\nresolution: 0.5\nstock: {mesh: box.stl}\noperations:\n" + op + op,
-                                 "job.yaml", dir);
+  const std::string head = "part: primitive:cube\nresolution: 0.5\nstock: {mesh: box.stl}\noperations:\n";
+  const JobSpec spec = parse_job(head + op + op, "job.yaml", dir);
   const JobReport r = run_job(spec, {});
   ASSERT_EQ(r.operations.size(), 2u);
   EXPECT_NEAR(r.stock_mm3, 60.0 * 60 * 65, 1e-6);
@@ -157,7 +157,8 @@ TEST(RestMachining, FieldsAreChecked) {
   EXPECT_NE(error_of("  - {strategy: raster, tool: ball:3, rest: true}\n").find("job.yaml:3 operations[0].rest: the "
                                                                                   "first operation"),
             std::string::npos);
-  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3, rest: maybe}\n").find("rest: expected true or false"),
+  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3, rest: maybe}\n")
+                .find("rest: expected true or false"),
             std::string::npos);
   EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3, rest_threshold: 0.2}\n").find("only a rest"),
             std::string::npos);
@@ -192,7 +193,8 @@ void write_scan(const std::string& path) {
 TEST(StockAwareRough, ScannedStockCutsLessAirThanItsBoundingBox) {
   const std::string dir = scratch("scan");
   write_scan(dir + "/scan.pcd");
-  const std::string op = "operations:\n  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 3, allowance: 0.5}\n";
+  const std::string op =
+      "operations:\n  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 3, allowance: 0.5}\n";
   const JobSpec spec =
       parse_job("part: primitive:dome\nstock: {cloud: scan.pcd, units: mm, table_z: 0}\n" + op, "scan.yaml", dir);
   const JobReport scan = run_job(spec, {});
