@@ -5,6 +5,7 @@
 // tool changes between operations), or one per operation with --per-operation (DIR/NN_NAME.ngc). Prints per operation
 // the material removed, the air-cutting share and the estimated time, and the same for the job.
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include "command.hpp"
@@ -30,6 +31,13 @@ void run(const JobArgs& a) {
   o.per_operation = a.per_operation;
   o.dialect = a.dialect;
   if (!a.out.empty()) o.checks.machine = machine_to_check(a.machine, a.no_limits);
+  // The machine's accelerations time the moves and its clearance over the stock is what links keep over it,
+  // whether or not programs are written (with --no-limits, when there is a machine file).
+  if (!a.no_limits || !a.machine.empty() || std::filesystem::exists(default_config("machine.yaml"))) {
+    const gcode::MachineLimits m = gcode::load_machine_limits(machine_file(a.machine));
+    o.max_acceleration = m.max_acceleration;
+    if (m.clearance_over_stock > 0) o.link_clearance = m.clearance_over_stock;
+  }
   const job::JobReport r = job::run_job(spec, o);
   if (a.json) {
     std::printf("%s\n", job::to_json(r).dump().c_str());

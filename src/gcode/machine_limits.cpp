@@ -78,6 +78,10 @@ MachineLimits load_machine_limits(const std::string& path) {
   m.max_spindle_rpm = positive(root, "max_spindle_rpm", path);
   m.clearance_over_stock = number(root["clearance_over_stock"], "clearance_over_stock", path);
   if (m.clearance_over_stock < 0) throw Error(path, "field 'clearance_over_stock' must be >= 0");
+  if (const YAML::Node acc = root["max_acceleration"]) {
+    if (!acc.IsMap()) throw Error(path, "field 'max_acceleration' must be {x: A, y: A, z: A} (mm/s^2)");
+    for (int a = 0; a < 3; ++a) m.max_acceleration[a] = positive(acc, axes[a], path + " max_acceleration");
+  }
   return m;
 }
 
@@ -189,7 +193,7 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
     if (any[2] && lo[2] + lim.work_offset.z() < lim.table_z - 1e-9)
       add(st.line, "table", "tool tip at machine z " + fmt(lo[2] + lim.work_offset.z()) + " below the table top " +
                                 fmt(lim.table_z));
-    if (m.rapid && std::isfinite(stock_top) && (m.known_to & 4)) {
+    if (m.rapid && !o.rapids_checked_by_stock && std::isfinite(stock_top) && (m.known_to & 4)) {
       // A rapid ends above the clearance; one that travels sideways must also start there.
       const bool sideways = m.to.x() != m.from.x() || m.to.y() != m.from.y();
       const double low = sideways && (m.known_from & 4) ? std::min(m.from.z(), m.to.z()) : m.to.z();

@@ -21,7 +21,6 @@ class Fields {
     if (!node.IsMap()) throw Error(where_at(node, ""), "expected a mapping of fields");
     for (const auto& kv : node) {
       const std::string key = kv.first.Scalar();
-      if (key == "rest") throw Error(where_at(kv.first, key), "rest machining is not available yet");
       if (!known.count(key)) {
         std::string list;
         for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
@@ -48,18 +47,28 @@ class Fields {
   double number(const std::string& key, double fallback, double lo, double hi) const {
     const YAML::Node v = node_[key];
     if (!v) return fallback;
-    double x = NAN;
-    try {
-      x = v.as<double>();
-    } catch (const YAML::Exception&) {
-      throw Error(where_at(v, key), "expected a number" + (v.IsScalar() ? ", got '" + v.Scalar() + "'" : ""));
-    }
+    const double x = converted<double>(v, key, "expected a number");
     if (!std::isfinite(x) || x < lo || x > hi) {
       std::ostringstream m;
       m << "must lie in [" << lo << ", " << hi << "], got " << v.Scalar();
       throw Error(where_at(v, key), m.str());
     }
     return x;
+  }
+
+  bool flag(const std::string& key, bool fallback) const {
+    const YAML::Node v = node_[key];
+    if (!v) return fallback;
+    return converted<bool>(v, key, "expected true or false");
+  }
+
+  template <class T>
+  T converted(const YAML::Node& v, const std::string& key, const std::string& expected) const {
+    try {
+      return v.as<T>();
+    } catch (const YAML::Exception&) {
+      throw Error(where_at(v, key), expected + (v.IsScalar() ? ", got '" + v.Scalar() + "'" : ""));
+    }
   }
 
   std::string where_at(const YAML::Node& at, const std::string& key) const {
@@ -106,7 +115,8 @@ StockSpec read_stock(const YAML::Node& node, const std::string& file, const std:
 
 OperationSpec read_operation(const YAML::Node& node, const std::string& file, size_t index) {
   const Fields f(node, file, "operations[" + std::to_string(index) + "]",
-                 {"name", "strategy", "tool", "stepover", "stepdown", "allowance", "tolerance", "setup"});
+                 {"name", "strategy", "tool", "stepover", "stepdown", "allowance", "tolerance", "setup", "rest",
+                  "rest_threshold"});
   OperationSpec op;
   op.line = node.Mark().line + 1;
   op.strategy = f.text("strategy", "", true);
@@ -117,6 +127,12 @@ OperationSpec read_operation(const YAML::Node& node, const std::string& file, si
   op.allowance = f.number("allowance", 0.0, 0, 100);
   op.tolerance = f.number("tolerance", NAN, 1e-6, 10);
   op.setup = f.text("setup", "+Z");
+  op.rest = f.flag("rest", false);
+  op.rest_threshold = f.number("rest_threshold", 0.1, 0, 100);
+  if (f.has("rest_threshold") && !op.rest)
+    throw Error(f.where("rest_threshold"), "only a rest operation (rest: true) has one");
+  if (op.rest && index == 0)
+    throw Error(f.where("rest"), "the first operation has no earlier one to leave rest material");
   return op;
 }
 

@@ -62,20 +62,49 @@ std::string program_path(const std::string& dir, size_t index, const std::string
   return (std::filesystem::path(dir) / (prefix + safe + ".ngc")).string();
 }
 
+// The stock seen from a setup and the design's top over the same cells.
+struct PartView {
+  stock::HeightField stock;
+  std::vector<float> design;
+  // A cell of the part: the design stands there above the floor, and the stock has material.
+  bool on_part(size_t c) const {
+    return design[c] > stock.bottom + 1e-6 && stock.top[c] != stock::kNoMaterial;
+  }
+};
+
+PartView part_view(const stock::InProcessStock& stock, const Mesh& part, const SetupFrame& setup) {
+  PartView v{stock.view(setup), {}};
+  v.design = stock::design_heights(mesh_in_setup(part, setup), v.stock.grid, v.stock.bottom);
+  return v;
+}
+
 // The least and the most material the stock leaves on the part, seen from the operation's setup: the stock's top
 // minus the design's, over the cells the design covers (above the floor it stands on). Negative: a gouge.
-std::pair<double, double> material_left(const stock::InProcessStock& stock, const Mesh& part,
-                                        const SetupFrame& setup) {
-  const stock::HeightField view = stock.view(setup);
-  const std::vector<float> design = stock::design_heights(mesh_in_setup(part, setup), view.grid, view.bottom);
+std::pair<double, double> material_left(const PartView& v) {
   double lo = INFINITY, hi = -INFINITY;
-  for (size_t c = 0; c < design.size(); ++c) {
-    if (!(design[c] > view.bottom + 1e-6) || view.top[c] == stock::kNoMaterial) continue;
-    const double left = double(view.top[c]) - design[c];
+  for (size_t c = 0; c < v.design.size(); ++c) {
+    if (!v.on_part(c)) continue;
+    const double left = double(v.stock.top[c]) - v.design[c];
     lo = std::min(lo, left);
     hi = std::max(hi, left);
   }
   return {lo, hi};
+}
+
+// What planning is told of the stock: its top from the operation's setup and, for a rest operation, the cells of
+// the part where more than the allowance and the threshold is left. Returns the number of rest cells.
+size_t material_for(const PartView& v, const OperationSpec& op, MaterialTop& m) {
+  const stock::GridSpec& g = v.stock.grid;
+  m.x0 = g.x0, m.y0 = g.y0, m.cell = g.cell, m.nx = g.nx, m.ny = g.ny;
+  m.top = v.stock.top;
+  m.rest.clear();
+  if (!op.rest) return 0;
+  // The cells where the design stands and the stock left more than the allowance and the threshold over it.
+  m.rest.assign(m.top.size(), 0);
+  size_t n = 0;
+  for (size_t c = 0; c < m.top.size(); ++c)
+    n += m.rest[c] = v.on_part(c) && m.top[c] - v.design[c] > op.allowance + op.rest_threshold;
+  return n;
 }
 
 // The job's programs: one per run of operations in the same setup (the part stays clamped; the tools change with
@@ -84,6 +113,10 @@ std::pair<double, double> material_left(const stock::InProcessStock& stock, cons
 void write_programs(const JobSpec& job, const std::vector<Job>& planned, const JobOptions& options,
                     JobReport& report) {
   std::vector<std::pair<std::string, gcode::Program>> programs;
+  // Every rapid was swept through the in-process stock, which knows the stock's top under it: the links low over
+  // the material need not clear the whole stock's top.
+  gcode::ProgramChecks checks = options.checks;
+  checks.limits.rapids_checked_by_stock = true;
   for (const auto& [first, end] : program_groups(job, planned.size(), options.per_operation)) {
     Job toolpaths;
     for (size_t k = first; k < end; ++k) toolpaths.insert(toolpaths.end(), planned[k].begin(), planned[k].end());
@@ -92,7 +125,7 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
     const std::string path = program_path(options.out_dir, programs.size(), name);
     gcode::PostOptions post = gcode::post_options_for(options.dialect);
     post.title = "rosmill job " + job.source + ": " + name;
-    programs.emplace_back(path, gcode::prepare_program(toolpaths, post, options.checks).program);
+    programs.emplace_back(path, gcode::prepare_program(toolpaths, post, checks).program);
     for (size_t k = first; k < end; ++k) report.operations[k].program = path;
   }
   std::filesystem::create_directories(options.out_dir);
@@ -133,6 +166,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     r.name = op.name;
     r.strategy = op.strategy;
     r.setup = op.setup;
+    r.rest = op.rest;
     PlanningRequest request;
     request.input.mesh = &part;
     request.input.setup = named_setup(op.setup, where + ".setup");
@@ -150,6 +184,11 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     if (!std::isnan(op.tolerance)) request.params.tolerance = op.tolerance;
     if (job.stock.kind == StockSpec::Kind::Box) request.params.stock_margin = job.stock.margin;
     if (stock_mesh) request.params.stock_mesh = &*stock_mesh;
+    // Every operation plans on the material the ones before left (and the raw stock's real shape).
+    MaterialTop material;
+    const size_t rest_cells = material_for(part_view(stock, part, request.input.setup), op, material);
+    if (options.plan_on_stock) request.params.material = &material;
+    request.params.link_clearance = options.link_clearance;
     r.tool = request.params.tool.name;
     // Planning takes the first 90 % of an operation's progress, the removal from the stock the rest.
     bool stopped = false;
@@ -157,7 +196,8 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     auto t0 = std::chrono::steady_clock::now();
     Job toolpaths;
     try {
-      toolpaths = plan(request);
+      // A rest operation with no rest material left has nothing to cut.
+      if (!op.rest || rest_cells > 0 || !options.plan_on_stock) toolpaths = plan(request);
     } catch (const Error&) {
       if (!stopped) throw;
       report.cancelled = true;
@@ -178,9 +218,10 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     r.air_cut_share = removal.air_cut_share();
     r.collision_line = removal.first_rapid_source;
     r.remove_seconds = removal.seconds;
-    std::tie(r.min_left_mm, r.max_left_mm) = material_left(stock, part, request.input.setup);
+    std::tie(r.min_left_mm, r.max_left_mm) = material_left(part_view(stock, part, request.input.setup));
+    r.rest_cells = rest_cells;
     for (const Toolpath& tp : toolpaths) {
-      const ToolpathStats s = toolpath_stats(tp, job.rapid_feed);
+      const ToolpathStats s = toolpath_stats(tp, job.rapid_feed, options.max_acceleration);
       r.cutting_mm += s.cutting_length;
       r.rapid_mm += s.rapid_length;
       r.time_s += s.estimated_seconds;
@@ -217,7 +258,8 @@ nlohmann::json to_json(const JobReport& report) {
                         {"air_cut_share", r.air_cut_share}, {"removed_mm3", r.removed_mm3},
                         {"time_s", r.time_s},       {"plan_seconds", r.plan_seconds},
                         {"rapid_collision_line", r.collision_line},
-                        {"min_left_mm", r.min_left_mm},     {"max_left_mm", r.max_left_mm}};
+                        {"min_left_mm", r.min_left_mm},     {"max_left_mm", r.max_left_mm},
+                        {"rest", r.rest},                   {"rest_cells", r.rest_cells}};
     if (!r.program.empty()) o["program"] = r.program;
     ops.push_back(o);
   }

@@ -18,6 +18,10 @@ void check_plan_params(const PlanParams& p) {
   check_range(p.angle_deg, -360, 360, "parameter angle", "degrees");
   check_range(p.stock_margin, 0, 1000, "parameter stock_margin", "mm");
   check_range(p.safe_clearance, 0, 1000, "parameter safe_clearance", "mm", Bound::Open);
+  check_range(p.link_clearance, 0, 1000, "parameter link_clearance", "mm", Bound::Open);
+  check_range(p.approach, 0, 1000, "parameter approach", "mm");
+  if (!std::isnan(p.air_gap)) check_range(p.air_gap, 0, 1000, "parameter air_gap", "mm");
+  if (p.material) p.material->check("parameter material");
 }
 
 }  // namespace rosmill::core

@@ -41,6 +41,9 @@ PlanFrame make_frame(const Surface& surface, const PlanParams& params) {
   f.stock.max.x() += params.stock_margin, f.stock.max.y() += params.stock_margin;
   f.stock.max.z() += params.stock_margin;
   if (params.stock_mesh) f.stock = params.stock_mesh->bbox;
+  // A job's material: the levels start at its top and the safe height clears it, however high a scan stands.
+  if (params.material && std::isfinite(params.material->highest()))
+    f.stock.max.z() = std::max(params.material->highest(), f.part.max.z());
   f.safe_z = f.stock.max.z() + params.safe_clearance;
   return f;
 }
@@ -76,6 +79,18 @@ void MoveWriter::enter(const Vec3& p, double free_z) {
     pos_ = Vec3(p.x(), p.y(), free_z);
     tp_.passes.back().moves.push_back({pos_, MoveType::Feed, tp_.tool.feed});
   }
+  plunge_to(p);
+}
+
+void MoveWriter::link_to(const Vec3& p, double link_z, double clear_z) {
+  if (at_safe_ || !(link_z < f_.safe_z)) link_z = f_.safe_z;
+  auto rapid = [&](const Vec3& to) {
+    pos_ = to;
+    tp_.passes.back().moves.push_back({pos_, MoveType::Rapid, 0.0});
+  };
+  if (pos_.z() < link_z) rapid(Vec3(pos_.x(), pos_.y(), link_z));
+  if ((pos_.head<2>() - p.head<2>()).norm() > 0) rapid(Vec3(p.x(), p.y(), pos_.z()));
+  if (clear_z < pos_.z() && clear_z > p.z()) rapid(Vec3(p.x(), p.y(), clear_z));
   plunge_to(p);
 }
 

@@ -3,18 +3,36 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 
+#include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/plan/stock.hpp"
 
 namespace rosmill::core {
 namespace {
 
-// One scan line sampled once: positions along it and the CL heights of the widened cutter.
+// One scan line sampled once: positions along it, the CL heights of the widened cutter and (with a job's
+// material) the highest material under it.
 struct SampledLine {
   Vec2 origin, dir;
-  std::vector<double> s, h;
+  std::vector<double> s, h, material;
 };
+
+// Where the cutter at level z meets material of a job's map: unions of [s - half, s + half] over the samples with
+// material above z under the widened cutter, gaps of air shorter than `air_gap` bridged (one feed through a short
+// gap costs less than a retract and a re-entry), kept to the line's ends.
+std::vector<std::pair<double, double>> material_spans(const SampledLine& line, double z, double half,
+                                                      double air_gap) {
+  std::vector<std::pair<double, double>> spans;
+  for (size_t i = 0; i < line.s.size(); ++i) {
+    if (!(line.material[i] > z + 1e-6)) continue;
+    const double a = std::max(line.s[i] - half, line.s.front()), b = std::min(line.s[i] + half, line.s.back());
+    if (!spans.empty() && a <= spans.back().second + air_gap) spans.back().second = b;
+    else spans.emplace_back(a, b);
+  }
+  return spans;
+}
 
 // Free spans of a line at level z: unions of [s - half, s + half] over samples whose widened CL is <= z.
 std::vector<std::pair<double, double>> free_spans(const SampledLine& line, double z, double half) {
@@ -94,6 +112,7 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
       const Vec2 p = a + s * L.dir;
       L.s.push_back(s);
       L.h.push_back(cl_height(surface, fw, p.x(), p.y()));
+      if (params.material) L.material.push_back(params.material->highest_under(p, R + half));
     }
   });
 
@@ -103,10 +122,20 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
   for (double z = f.stock.max.z() - f.stepdown; z > floor + 1e-9; z -= f.stepdown) levels.push_back(z);
   levels.push_back(floor);
   std::unique_ptr<StockReach> reach;
-  if (params.stock_mesh)
+  if (params.stock_mesh && !params.material)
     reach = std::make_unique<StockReach>(*params.stock_mesh, levels, f.stock.max.z(), R, f.tolerance);
-  // A straight link from `from` to `to` at a level stays in the stock's reach (always, for the box).
+  const double air_gap = std::isnan(params.air_gap) ? 2 * R : params.air_gap;
+  // A job's material, lowered as the levels cut it (only where a cut certainly took it): links pass over it.
+  std::optional<MaterialTop> left;
+  if (params.material) left = *params.material;
+  const CutterProfile profile(f.cutter);
+  auto cut_at_level = [&](const Vec2& from, const Vec2& to, double z) {
+    if (left) left->lower_along(from, to, R, z, [&](double d) { return profile.height(d); });
+  };
+  // A straight link from `from` to `to` at a level stays in the stock's reach (always, for the box); over a
+  // job's material it is at most the air gap long.
   auto link_in_reach = [&](size_t li, const Vec2& from, const Vec2& to) {
+    if (left) return (to - from).norm() <= air_gap;
     if (!reach) return true;
     const double len = (to - from).norm();
     if (len < 1e-9) return true;
@@ -118,19 +147,29 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
   tp.strategy = "rough";
   tp.tool = params.tool;
   MoveWriter w(tp, f);
+  // Over a job's material a piece is reached by a rapid just over the material on the way (link_clearance above
+  // it) instead of the safe height, checked along the whole link against what is left.
+  // The rapid down stops the approach over the material under the cutter there (or over at_z).
+  auto go_to = [&](const Vec2& a, double at_z) {
+    const Vec2 from = w.position().head<2>();
+    const double c = params.link_clearance;
+    const double over = std::max(left->highest_along(from, a, R) + c, std::max(w.position().z(), at_z));
+    const double under = left->clear_height(a, R, [&](double d) { return profile.height(d); });
+    w.link_to(Vec3(a.x(), a.y(), at_z), over, std::max(under, at_z) + params.approach);
+  };
   double above = f.stock.max.z();
   for (size_t li = 0; li < levels.size(); ++li) {
     const double z = levels[li];
-    w.begin_pass("level z " + std::to_string(z));
-    bool reverse = false;
+    bool reverse = false, begun = !left;  // over a job's material a level that meets none has no pass at all
+    if (begun) w.begin_pass("level z " + std::to_string(z));
     for (const SampledLine& L : lines) {
       if (L.s.empty()) continue;
       auto spans = free_spans(L, z, half);
       std::vector<std::pair<double, double>> keep;
-      if (reach) {
-        keep = reach->along(li, L.origin, L.dir, L.s.back());
-        spans = intersect_spans(spans, keep);
-      }
+      if (reach) keep = reach->along(li, L.origin, L.dir, L.s.back());
+      if (left) keep = material_spans(L, z, half, air_gap);
+      if (reach || left) spans = intersect_spans(spans, keep);
+      if (!spans.empty() && !begun) w.begin_pass("level z " + std::to_string(z)), begun = true;
       // A piece end where the line crosses the stock's reach: the cutter there is a radius clear of the slab's
       // material (and the slabs above were cleared or air), so it goes straight down, no ramp.
       auto in_air = [&](double s) {
@@ -157,25 +196,31 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
           if (free) {
             w.feed(Vec3(a.x(), a.y(), z));
             w.feed(Vec3(b.x(), b.y(), z));
+            cut_at_level(from, a, z);
+            cut_at_level(a, b, z);
             continue;
           }
         }
         // A piece with one end in air is entered there, whatever the zigzag's direction.
         if (!in_air(sp.first) && in_air(sp.second)) std::swap(sp.first, sp.second), std::swap(a, b);
         if (in_air(sp.first)) {
-          w.enter(Vec3(a.x(), a.y(), z));
+          if (left) go_to(a, z);
+          else w.enter(Vec3(a.x(), a.y(), z));
         } else {
-          w.enter(Vec3(a.x(), a.y(), above));
+          if (left) go_to(a, above);
+          else w.enter(Vec3(a.x(), a.y(), above));
           ramp_in(w, a, b, above, z, options.ramp_slope);
         }
         w.feed(Vec3(b.x(), b.y(), z));
+        cut_at_level(a, b, z);
       }
       reverse = !reverse;
     }
-    w.retract();
+    if (!left) w.retract();
     above = z;
     check_cancel(progress, 0.8 + 0.2 * double(li + 1) / levels.size());
   }
+  w.retract();
   return {tp};
 }
 

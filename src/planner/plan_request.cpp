@@ -6,6 +6,7 @@
 #include "rosmill/cloud/cloud_surface.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
+#include "rosmill/plan/rest_moves.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 
 namespace rosmill::core {
@@ -55,6 +56,13 @@ Job run(const StrategyEntry& entry, const std::string& name, const PlanningReque
   PlanReport report;
   const StrategyCall call{entry.needs_mesh ? nullptr : &surface.get(), r.input.mesh, params, progress, &report};
   Job job = entry.function(call);
+  // Rest machining: whatever the strategy, only where an earlier tool left rest material.
+  if (params.material && params.material->has_rest()) {
+    RestOptions rest;
+    rest.link_clearance = params.link_clearance;
+    rest.approach = params.approach;
+    job = keep_to_rest(job, *params.material, rest);
+  }
   for (Toolpath& tp : job) tp.strategy = name;
   if (r.reports) {
     report.strategy = name;

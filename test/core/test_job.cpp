@@ -53,7 +53,7 @@ TEST(Job, FieldsAreCheckedWithTheirLine) {
   EXPECT_NE(error_of("part: primitive:cube\nstock: {box: {margin: 5}, mesh: a.stl}\n" + ops).find("exactly one of"),
             std::string::npos);
   EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: raster, tool: ball:3, rest: true}\n")
-                .find("rest machining is not available yet"),
+                .find("job.yaml:3 operations[0].rest: the first operation has no earlier one"),
             std::string::npos);
   EXPECT_NE(error_of("part: primitive:cube\noperations: [\n").find("not valid YAML"), std::string::npos);
   // A strategy and a setup the planner does not know: refused when the job runs, naming the operation.
@@ -157,11 +157,11 @@ TEST(Job, CastStockFromAMesh) {
 }
 
 // The example jobs run as they are, from any folder. A casting or a scanned block holds less material than the
-// box around the part; the roughing's air-cutting share from each is printed (roughing does not yet plan from the
-// stock, so it is not yet smaller).
+// box around the part, and roughing that plans on the stock cuts clearly less air from it; the roughing's
+// air-cutting share from each is printed.
 TEST(Job, ExampleJobsRunFromAnyFolder) {
   const std::string dir = ::testing::TempDir() + "rosmill_job_examples";
-  for (const char* name : {"box_cube", "cast_cone", "scanned_dome"}) {
+  for (const char* name : {"box_cube", "cast_cone", "scanned_dome", "rest_pocket"}) {
     const std::string file = std::string(ROSMILL_SOURCE_DIR) + "/config/jobs/" + name + ".yaml";
     std::filesystem::remove_all(dir);
     const CliRun run = run_rosmill_in(::testing::TempDir(), "job '" + file + "' -o '" + dir + "' --json");
@@ -178,11 +178,16 @@ TEST(Job, ExampleJobsRunFromAnyFolder) {
     JobSpec spec = read_job(file);
     spec.operations.resize(1);  // the roughing
     const JobReport real = run_job(spec, options);
+    JobOptions blind = options;  // planned as before jobs knew the stock: on the box or the stock mesh alone
+    blind.plan_on_stock = false;
+    const JobReport before = run_job(spec, blind);
     spec.stock = StockSpec{};  // the box around the part, 5 mm larger
     const JobReport box = run_job(spec, options);
-    std::printf("%s: roughing air-cutting share %.3f from its own stock, %.3f from the box\n", name,
-                real.operations[0].air_cut_share, box.operations[0].air_cut_share);
+    std::printf("%s: roughing air-cutting share %.3f planned on its own stock (%.3f planned without it), %.3f from "
+                "the box\n", name, real.operations[0].air_cut_share, before.operations[0].air_cut_share,
+                box.operations[0].air_cut_share);
     EXPECT_LT(real.stock_mm3, box.stock_mm3) << name;
+    EXPECT_LT(real.operations[0].air_cut_share, 0.5 * before.operations[0].air_cut_share) << name;
     EXPECT_GT(real.operations[0].removed_mm3, 0.0) << name;
   }
   std::filesystem::remove_all(dir);
@@ -205,7 +210,9 @@ TEST(Job, ProgressReportsEachOperationAndCancelKeepsTheFinishedOnes) {
   for (size_t i = 1; i < calls.size(); ++i) {
     // Never backwards: the operation index grows, and within one operation the fraction does too.
     ASSERT_GE(calls[i].first, calls[i - 1].first);
-    if (calls[i].first == calls[i - 1].first) EXPECT_GE(calls[i].second, calls[i - 1].second);
+    if (calls[i].first == calls[i - 1].first) {
+      EXPECT_GE(calls[i].second, calls[i - 1].second);
+    }
   }
   EXPECT_EQ(calls.front(), std::make_pair(size_t(0), 0.0));
   EXPECT_EQ(calls.back(), std::make_pair(size_t(1), 1.0));

@@ -18,6 +18,8 @@ struct MachineLimits {
   double max_feed = 0.0;
   double max_spindle_rpm = 0.0;
   double clearance_over_stock = 0.0;  // rapids end at least this high over the stock top
+  // Per axis (mm/s^2; zero where the file gives none): the time estimate's accelerations.
+  Vec3 max_acceleration = Vec3::Zero();
 };
 
 // Reads and validates the YAML file; throws Error naming the file and the field.
@@ -35,6 +37,9 @@ struct LimitCheckOptions {
   // Top of the stock in program coordinates; NaN: the highest Z of the cutting moves that travel in XY (the stock
   // reaches at least there).
   double stock_top = NAN;
+  // The caller swept every rapid through a model of the stock that knows its top under each one (a job's
+  // in-process stock refuses a rapid into material): a rapid then need not clear the whole stock's top.
+  bool rapids_checked_by_stock = false;
   size_t max_violations = 20;
 };
 

@@ -8,6 +8,7 @@
 //   stock: {box: {margin: 5}} # or {mesh: cast.stl} or {cloud: scan.pcd, table_z: 0, units: m}
 //   operations:
 //     - {name: rough, strategy: rough, tool: flat:10, stepover: 4, stepdown: 2.5, allowance: 0.5, setup: +Z}
+//     - {name: rest, strategy: raster, tool: ball:3, rest: true, rest_threshold: 0.1}
 #pragma once
 #include <cmath>
 #include <string>
@@ -31,6 +32,10 @@ struct OperationSpec {
   std::string tool;      // a tool id of the tool table, or ball:D, flat:D, bull:D:r
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = NAN;
   std::string setup = "+Z";
+  // Rest machining: only where the stock the operations before left stands above the design by more than the
+  // allowance plus rest_threshold (mm).
+  bool rest = false;
+  double rest_threshold = 0.1;
   int line = 0;          // where it starts in the job file
 };
 

@@ -36,10 +36,20 @@ struct JobOptions {
   std::function<void(const OperationView&)> operation_done;
   // Given: the part (mm, workpiece frame), instead of reading the job's `part` (e.g. the mesh a ROS node received).
   const Mesh* part = nullptr;
+  // false: every operation plans as `rosmill plan` would, against its own box or stock mesh, not the stock the
+  // operations before left (and a rest operation runs whole): the behaviour before jobs knew the stock, for
+  // comparisons.
+  bool plan_on_stock = true;
+  // Links over the material keep this much above it (mm): the machine's clearance over the stock.
+  double link_clearance = 2.0;
+  // The machine's axes' accelerations for the time estimate (mm/s^2, toolpath_stats.hpp; zero: feeds alone).
+  Vec3 max_acceleration = Vec3::Zero();
 };
 
 struct OperationReport {
   std::string name, strategy, tool, setup;
+  bool rest = false;
+  size_t rest_cells = 0;  // a rest operation: the cells of the stock's grid it was sent to
   size_t moves = 0;
   double cutting_mm = 0, rapid_mm = 0, air_feed_mm = 0, air_cut_share = 0;
   double removed_mm3 = 0, time_s = 0, plan_seconds = 0, remove_seconds = 0;

@@ -7,6 +7,7 @@
 
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/mesh.hpp"
+#include "rosmill/plan/material_top.hpp"
 
 namespace rosmill::core {
 
@@ -31,6 +32,15 @@ struct PlanParams {
   // see plan/stock.hpp). Its bounding box then gives the levels' top and the safe height.
   const Mesh* stock_mesh = nullptr;
   double safe_clearance = 5.0; // safe_z above the stock top (mm)
+  // The material as a job's stock left it (material_top.hpp; not owned; null: the box or the stock mesh). Roughing
+  // then starts at its top, cuts only where it has material and links over it at link_clearance instead of at the
+  // safe height; with rest cells every strategy's moves are kept to where rest material is (rest_moves.hpp).
+  const MaterialTop* material = nullptr;
+  double link_clearance = 2.0; // mm a link over the material keeps above it
+  // mm over the material under the cutter where the rapid down into a cut over a job's material stops (the rest
+  // at the plunge feed): the feed plane of CAM systems.
+  double approach = 0.5;
+  double air_gap = NAN;        // longest feed through air roughing bridges between two cuts (mm); NaN: the diameter
   Sampling sampling = Sampling::Chord;
 };
 

@@ -39,6 +39,10 @@ class MoveWriter {
   // Retract to safe_z (if not there), rapid above p, plunge to p at the plunge feed. With `free_z` between p and
   // safe_z (air a previous level cleared), the descent to it goes at the cutting feed.
   void enter(const Vec3& p, double free_z = NAN);
+  // A link that need not climb to safe_z (the caller checked the way against the material): a rapid up to
+  // link_z, across to above p, down to clear_z, then the plunge to p. From safe_z, or with link_z at or over it,
+  // the rapid across runs at safe_z.
+  void link_to(const Vec3& p, double link_z, double clear_z);
   // Plunge vertically down to height z (air above cleared stock) without a retract.
   void plunge_to(const Vec3& p);
   void feed(const Vec3& p);

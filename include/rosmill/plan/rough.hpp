@@ -5,7 +5,12 @@
 // is entered from above the level just cleared and ramps down into the material along itself. With a stock mesh
 // (PlanParams::stock_mesh) the pieces are further kept to where the cutter reaches the stock's material at that
 // level (plan/stock.hpp), so air the box would have cut is left alone; a piece that starts where the cutter
-// enters the stock's reach from outside goes straight down there, in air, instead of ramping.
+// enters the stock's reach from outside goes straight down there, in air, instead of ramping. With a job's
+// material (PlanParams::material, material_top.hpp) the levels start at the material's own top, a piece is kept
+// to where the cutter meets material above its level (gaps of air up to PlanParams::air_gap bridged, so no feed
+// runs through more air than that), and the cutter goes from piece to piece by rapids just over the material it
+// passes (link_clearance above the highest within reach of the whole link, the material lowered as the levels
+// cut it) instead of the safe height.
 #pragma once
 #include "rosmill/plan/plan_support.hpp"
 

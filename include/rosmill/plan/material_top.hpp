@@ -1,0 +1,87 @@
+// The workpiece's material as planning sees it: the top of material per square cell of an XY grid in the plan's
+// frame (minus infinity where a cell has none), and optionally the cells that hold rest material. Planning knows
+// no stock model; a job fills this from its in-process stock seen from the operation's setup, so that roughing
+// cuts only where material is and links low over it, and a rest operation keeps to the material an earlier tool
+// left. A height per cell (not polygons like Region) because that is what the stock is and what every query
+// here asks: "the highest material under this cutter" is a maximum over the cells the cutter's disc covers.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rosmill/geometry/types.hpp"
+
+namespace rosmill::core {
+
+struct MaterialTop {
+  double x0 = 0.0, y0 = 0.0;  // lower-left corner of cell (0, 0), mm
+  double cell = 1.0;          // cell edge, mm
+  int nx = 0, ny = 0;
+  std::vector<float> top;     // nx * ny, row by row (j * nx + i): top of material, -infinity where none
+  std::vector<uint8_t> rest;  // empty, or nx * ny: 1 where material stands above the design by more than the
+                              // allowance and the rest threshold (rest machining keeps to these)
+
+  // Throws Error naming `where` when the sizes disagree or the cell is not a positive number.
+  void check(const std::string& where) const;
+  bool has_rest() const { return !rest.empty(); }
+  double highest() const;  // over the whole grid; -infinity when empty
+  // The highest material a cutter of `radius` with its axis on the segment a-b may meet: over the cells whose
+  // centre lies within radius + one cell of the segment (a cell's material may reach half a cell beyond its
+  // centre, and its neighbour's another half). -infinity when none.
+  double highest_along(const Vec2& a, const Vec2& b, double radius) const;
+  double highest_under(const Vec2& p, double radius) const { return highest_along(p, p, radius); }
+  // The lowest tip height at p at which a cutter (`radius`; lift(d): its bottom's height above the tip at distance d
+  // from the axis) stands clear of the material at every cell centre under it: what the stock model, which samples
+  // the same centres, finds the cutter touching as it comes down there. -infinity when there is no material.
+  template <class Lift>
+  double clear_height(const Vec2& p, double radius, const Lift& lift) const;
+  // True when a rest cell's centre lies within `radius` of p.
+  bool rest_near(const Vec2& p, double radius) const;
+  // What a cutter with its tip at z along a-b has certainly cut: every cell whose whole square lies within the
+  // disc swept by `radius` is lowered to at most z + lift(d), d the farthest its square gets from the axis (lift:
+  // the cutter's bottom at that distance above its tip; 0 for a flat end mill).
+  template <class Lift>
+  void lower_along(const Vec2& a, const Vec2& b, double radius, double z, const Lift& lift);
+
+ private:
+  // Calls f(index, distance of the cell centre to the segment) for the cells whose centre is within `reach`.
+  template <class F>
+  void cells_near(const Vec2& a, const Vec2& b, double reach, const F& f) const;
+};
+
+// Distance from p to the segment a-b.
+double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b);
+
+template <class F>
+void MaterialTop::cells_near(const Vec2& a, const Vec2& b, double reach, const F& f) const {
+  if (nx <= 0 || ny <= 0) return;
+  const auto clamp_index = [](double u, int n) { return u < 0 ? 0 : u > n - 1 ? n - 1 : static_cast<int>(u); };
+  const int i0 = clamp_index(std::floor((std::min(a.x(), b.x()) - reach - x0) / cell), nx);
+  const int i1 = clamp_index(std::ceil((std::max(a.x(), b.x()) + reach - x0) / cell), nx);
+  const int j0 = clamp_index(std::floor((std::min(a.y(), b.y()) - reach - y0) / cell), ny);
+  const int j1 = clamp_index(std::ceil((std::max(a.y(), b.y()) + reach - y0) / cell), ny);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const double d = segment_distance(Vec2(x0 + (i + 0.5) * cell, y0 + (j + 0.5) * cell), a, b);
+      if (d <= reach) f(static_cast<size_t>(j) * nx + i, d);
+    }
+}
+
+template <class Lift>
+double MaterialTop::clear_height(const Vec2& p, double radius, const Lift& lift) const {
+  double h = -INFINITY;
+  cells_near(p, p, radius, [&](size_t c, double d) { h = std::max(h, double(top[c]) - lift(d)); });
+  return h;
+}
+
+template <class Lift>
+void MaterialTop::lower_along(const Vec2& a, const Vec2& b, double radius, double z, const Lift& lift) {
+  const double corner = 0.5 * cell * std::sqrt(2.0);  // centre to corner of a cell
+  cells_near(a, b, radius - corner, [&](size_t c, double d) {
+    top[c] = std::min(top[c], static_cast<float>(z + lift(d + corner)));
+  });
+}
+
+}  // namespace rosmill::core
