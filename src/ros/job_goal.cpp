@@ -111,6 +111,7 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
       header.frame_id = context.setup_frame(planned[first].second);
       header.stamp = ::ros::Time::now();
       result.programs.push_back(to_job_msg(toolpaths, planned[first].second, header));
+      result.programs.back().rapids_checked_by_stock = true;  // run_job refuses a job with a rapid into the stock
     }
     cancelled = report.cancelled;
     result.success = !report.cancelled;

@@ -57,7 +57,9 @@ std::string ProgramRunner::write_program(const msg::ToolpathJob& msg, const Job&
   if (job.empty()) throw Error("job", "has no toolpath (none received on the toolpath topic yet?)");
   gcode::PostOptions options = settings_.post;
   options.title = "rosmill gcode_bridge: " + msg.toolpaths[0].strategy + ", setup " + msg.toolpaths[0].setup;
-  program = gcode::prepare_program(job, options, settings_.checks).program;
+  gcode::ProgramChecks checks = settings_.checks;
+  checks.limits.rapids_checked_by_stock = msg.rapids_checked_by_stock;
+  program = gcode::prepare_program(job, options, checks).program;
   const std::string path = settings_.program_dir + "/rosmill-" + std::to_string(::ros::WallTime::now().sec) + "-" +
                            std::to_string(++program_counter_) + ".ngc";
   gcode::write_program(path, program);

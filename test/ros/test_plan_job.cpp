@@ -90,6 +90,7 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
   ASSERT_EQ(r.programs.size(), 1u);
   EXPECT_EQ(r.programs[0].header.frame_id, "workpiece");
   EXPECT_GE(r.programs[0].toolpaths.size(), 2u);
+  EXPECT_TRUE(r.programs[0].rapids_checked_by_stock);
   EXPECT_GT(r.stock_volume, r.left_volume);
   EXPECT_GE(r.min_left, -1e-6);  // never below the design (1 micrometre)
   EXPECT_LT(r.max_left, 0.005);  // the finish leaves at most a few tenths on the cube's faces
