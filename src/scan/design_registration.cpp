@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
+#include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
@@ -65,9 +66,12 @@ struct Design {
 // largest eigenvalue (near 0: a direction the seen surface does not fix).
 double estimate_uncertainty(const MeshDistance& distance, const std::vector<Vec3>& in_design, const Mesh& mesh,
                             const Vec3& centre, double length, double inlier_distance, RegistrationResult& r) {
+  std::vector<SurfaceDistance> nearest(in_design.size());
+  tbb::parallel_for(size_t(0), in_design.size(), [&](size_t i) { nearest[i] = distance.query(in_design[i]); });
   Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
-  for (const Vec3& p : in_design) {
-    const SurfaceDistance s = distance.query(p);
+  for (size_t i = 0; i < in_design.size(); ++i) {
+    const SurfaceDistance& s = nearest[i];
+    const Vec3& p = in_design[i];
     if (std::abs(s.signed_distance) > inlier_distance) continue;
     const Vec3& n = mesh.normals[s.face];
     Eigen::Matrix<double, 6, 1> j;
@@ -150,17 +154,21 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   const auto fine_start = std::chrono::steady_clock::now();
   const std::vector<Vec3> fine = thin_evenly(scan.points, o.fine_points);
   r.scan_points_used = fine.size();
+  // The pairing distance shrinks from the coarse fit's reach to the inlier distance; the first steps need few
+  // points, only the last one all of the fine set.
+  const std::vector<Vec3> middle = thin_evenly(fine, std::max<size_t>(o.fine_points / 4, 50));
   const auto refine = [&](const Eigen::Matrix4d& t0) {
-    Eigen::Matrix4d t = icp.align(fine, t0, std::max(2 * leaf, 4 * o.inlier_distance), 30);
-    t = icp.align(fine, t, 2 * o.inlier_distance, 30);
-    t = icp.align(fine, t, o.inlier_distance, 30);
+    Eigen::Matrix4d t = icp.align(middle, t0, std::max(2 * leaf, 4 * o.inlier_distance), 30);
+    t = icp.align(middle, t, 2 * o.inlier_distance, 30);
+    t = icp.align(fine, t, o.inlier_distance, 15);
     return measure(distance, fine, t, o.inlier_distance);
   };
   const Fit best = refine(fits.front().scan_to_design);
   std::vector<Eigen::Matrix4d> distinct{fits.front().scan_to_design};
   for (size_t i = 1; i < fits.size() && r.alternatives.size() < 5; ++i) {
     const Fit& f = fits[i];
-    if (f.share < fits.front().share - 2 * o.ambiguity_share || f.rms > 2 * o.ambiguity_rms * fits.front().rms) break;
+    if (f.share < fits.front().share - o.ambiguity_share) break;  // sorted: no later one is closer
+    if (f.rms > o.ambiguity_rms * fits.front().rms + 0.1 * leaf) continue;
     if (std::any_of(distinct.begin(), distinct.end(), [&](const auto& d) { return same_pose(d, f.scan_to_design, leaf); }))
       continue;
     distinct.push_back(f.scan_to_design);

@@ -56,8 +56,8 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
   icp.setInputSource(source);
   icp.setMaxCorrespondenceDistance(max_distance);
   icp.setMaximumIterations(iterations);
-  icp.setTransformationEpsilon(1e-12);             // squared translation step, mm^2
-  icp.setTransformationRotationEpsilon(1 - 1e-12);  // cosine of the rotation step
+  icp.setTransformationEpsilon(1e-12);            // squared translation step: 1e-6 mm
+  icp.setTransformationRotationEpsilon(1 - 5e-13);  // cosine of the rotation step: 1e-6 rad
   icp.setEuclideanFitnessEpsilon(-1);              // never stop on the fitness alone
   Cloud aligned;
   icp.align(aligned);

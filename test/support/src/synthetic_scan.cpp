@@ -1,5 +1,6 @@
 #include "rosmill/testing/synthetic_scan.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Geometry>
@@ -33,6 +34,24 @@ Eigen::Matrix4d random_rigid(std::mt19937_64& rng, double max_translation) {
   t.topLeftCorner<3, 3>() = q.toRotationMatrix();
   for (int i = 0; i < 3; ++i) t(i, 3) = uniform(rng);
   return t;
+}
+
+Eigen::Matrix4d nudge(double mm, double deg, const Vec3& axis) {
+  Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
+  t.topLeftCorner<3, 3>() = Eigen::AngleAxisd(deg * M_PI / 180, axis.normalized()).toRotationMatrix();
+  t.topRightCorner<3, 1>() = mm * axis.normalized();
+  return t;
+}
+
+double box_corner_error(const Mesh& design, const Eigen::Matrix4d& error) {
+  double worst = 0;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner((c & 1 ? design.bbox.max : design.bbox.min).x(), (c & 2 ? design.bbox.max : design.bbox.min).y(),
+                      (c & 4 ? design.bbox.max : design.bbox.min).z());
+    const Vec3 moved = error.topLeftCorner<3, 3>() * corner + error.topRightCorner<3, 1>();
+    worst = std::max(worst, (moved - corner).norm());
+  }
+  return worst;
 }
 
 std::vector<Vec3> sensors_above(const Mesh& design, int oblique, double distance) {

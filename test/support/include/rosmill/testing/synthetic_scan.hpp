@@ -22,6 +22,12 @@ PointCloud synthetic_scan(const Mesh& design, const std::vector<Vec3>& sensors, 
 // [-max_translation, max_translation]^3.
 Eigen::Matrix4d random_rigid(std::mt19937_64& rng, double max_translation);
 
+// A small rigid error: a turn of `deg` degrees about `axis` (through the origin) and `mm` along it.
+Eigen::Matrix4d nudge(double mm, double deg, const Vec3& axis);
+
+// How far a pose error moves the design: the largest displacement of its box's corners (mm).
+double box_corner_error(const Mesh& design, const Eigen::Matrix4d& error);
+
 // Sensors above the part: straight above its centre and `oblique` more at 45 degrees around it, at `distance`
 // from the centre of the design's box.
 std::vector<Vec3> sensors_above(const Mesh& design, int oblique, double distance);
