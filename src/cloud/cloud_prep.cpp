@@ -16,6 +16,7 @@
 
 #include "rosmill/cloud/cloud_grid.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -114,12 +115,6 @@ Eigen::Matrix4d plane_to_xy(const Plane& pl) {
   return t;
 }
 
-void transform_points(const Eigen::Matrix4d& t, std::vector<Vec3>& pts) {
-  const Eigen::Matrix3d r = t.topLeftCorner<3, 3>();
-  const Vec3 o = t.topRightCorner<3, 1>();
-  for (Vec3& p : pts) p = r * p + o;
-}
-
 std::vector<Vec3> voxel_downsample(const std::vector<Vec3>& pts, double leaf) {
   Box3 box;
   for (const Vec3& p : pts) box.add(p);
@@ -159,12 +154,7 @@ std::vector<Vec3> remove_outliers(const std::vector<Vec3>& pts, int k, double st
 void check_options(const CloudPrepOptions& o) {
   const std::string w = "cloud preparation";
   if (!o.transform.allFinite()) throw Error(w, "the transform holds a NaN or infinite number");
-  if (o.orientation == Orientation::Transform) {
-    const Eigen::Matrix3d rot = o.transform.topLeftCorner<3, 3>();
-    const bool last_row = o.transform.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1), 1e-9);
-    if (!last_row || !(rot.transpose() * rot).isIdentity(1e-6) || rot.determinant() < 0)
-      throw Error(w, "the transform must be rigid (a rotation and a translation, no scale, shear or mirror)");
-  }
+  if (o.orientation == Orientation::Transform) check_rigid(o.transform, w);
   if (!(o.plane_threshold > 0) || !std::isfinite(o.plane_threshold))
     throw Error(w, "the plane threshold must be a positive number of mm");
   if (!(o.lowest_fraction > 0 && o.lowest_fraction <= 1)) throw Error(w, "the lowest fraction must be in (0, 1]");
@@ -253,7 +243,7 @@ PointCloud prepare_cloud(const std::vector<Vec3>& input, const CloudPrepOptions&
   }
   r.transform = t;
   r.points_out = pts.size();
-  report_density(pts, o.hole_cell, r);
+  if (report) report_density(pts, o.hole_cell, r);  // the density and hole maps cost time and only report
   PointCloud out;
   out.points = std::move(pts);
   out.recompute_bbox();

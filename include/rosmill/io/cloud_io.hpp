@@ -20,6 +20,10 @@ struct CloudInfo {
 // Throws Error naming the file when it is missing, unreadable, or holds no finite point.
 PointCloud read_cloud(const std::string& path, const CloudReadOptions& options = {}, CloudInfo* info = nullptr);
 
+// Writes a binary PCD of x y z (float) in `units` (metres by default, the ROS custom the reader assumes).
+// Throws Error naming the file when the cloud is empty or the file cannot be written.
+void write_cloud(const std::string& path, const PointCloud& cloud, Units units = Units::Metre);
+
 // True when the path names a cloud file (.pcd, .ply) rather than a mesh (.stl).
 bool is_cloud_path(const std::string& path);
 // True when the path names a cloud by its extension or, whatever its name, by its first bytes ("ply", a PCD

@@ -1,0 +1,50 @@
+// Multi-view fusion: several scans, each with the sensor's pose, brought into one frame and fused.
+//
+//   1. Each view's points go through its pose (view frame -> common frame, mm).
+//   2. Refinement, because poses from a robot or a calibration are off by a little: the first view is the
+//      reference; each further view is aligned by point-to-plane ICP onto the views before it, then, for
+//      `rounds` - 1 more rounds, each onto all the others (one view against the rest, as Pulli, "Multiview
+//      registration for large data sets" (1999), does it). A view that meets no other within
+//      `max_correction` is refused: its pose is wrong or the views do not overlap.
+//   3. The union is thinned by a voxel grid and cleared of outliers (PCL, the cloud preparation's filters).
+#pragma once
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rosmill/geometry/point_cloud.hpp"
+
+namespace rosmill::core::scan {
+
+struct ScanView {
+  PointCloud cloud;                                    // mm, in the view's (sensor's) frame
+  Eigen::Matrix4d pose = Eigen::Matrix4d::Identity();  // view frame -> common frame, mm
+  std::string name;                                    // for errors ("view 2", a file name)
+};
+
+struct FusionOptions {
+  bool refine = true;
+  int rounds = 2;                // 1: each view onto those before it only
+  double max_correction = 5.0;   // mm: ICP pairs points at most this far apart
+  double min_overlap = 0.05;     // share of a view's points that must lie near the others after refinement
+  size_t icp_points = 15000;     // per view and per reference, evenly thinned
+  double voxel = 0.0;            // mm: voxel grid leaf of the fused cloud; 0 = off
+  int outlier_neighbours = 0;    // statistical outlier removal over K neighbours; 0 = off
+  double outlier_stddev = 2.0;
+  void check() const;
+};
+
+struct FusionReport {
+  size_t points_in = 0, points_out = 0;
+  std::vector<Eigen::Matrix4d> corrections;  // per view: applied on top of its pose (identity for the first)
+  std::vector<double> overlaps;              // per view: share of its points near the others, after refinement
+  double seconds = 0;
+};
+
+// Throws Error naming the view on bad input (no views, an empty view, a pose with NaN or not rigid, a view that
+// meets no other) and on bad options.
+PointCloud fuse_views(const std::vector<ScanView>& views, const FusionOptions& options = {},
+                      FusionReport* report = nullptr);
+
+}  // namespace rosmill::core::scan

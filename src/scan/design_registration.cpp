@@ -1,0 +1,233 @@
+#include "rosmill/scan/design_registration.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <tbb/parallel_for.h>
+
+#include "rosmill/error.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/scan/covered_share.hpp"
+#include "rosmill/scan/mesh_distance.hpp"
+#include "rosmill/scan/plane_icp.hpp"
+#include "rosmill/scan/principal_axes.hpp"
+#include "rosmill/scan/surface_sample.hpp"
+#include "rosmill/scan/thinning.hpp"
+
+namespace rosmill::core::scan {
+namespace {
+
+const char* const kWhere = "registration";
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct Fit {
+  Eigen::Matrix4d scan_to_design = Eigen::Matrix4d::Identity();
+  double share = 0, rms = 0;
+};
+
+Fit measure(const MeshDistance& design, const std::vector<Vec3>& scan, const Eigen::Matrix4d& scan_to_design,
+            double inlier_distance) {
+  Fit fit;
+  fit.scan_to_design = scan_to_design;
+  const std::vector<double> d = design.distances(transformed_points(scan_to_design, scan));
+  double sum_sq = 0;
+  size_t inliers = 0;
+  for (double x : d)
+    if (x <= inlier_distance) {
+      sum_sq += x * x;
+      ++inliers;
+    }
+  fit.share = d.empty() ? 0 : double(inliers) / double(d.size());
+  fit.rms = inliers ? std::sqrt(sum_sq / double(inliers)) : std::numeric_limits<double>::infinity();
+  return fit;
+}
+
+bool better(const Fit& a, const Fit& b) { return a.share > b.share + 1e-9 || (a.share >= b.share - 1e-9 && a.rms < b.rms); }
+
+bool same_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, double length) {
+  const Eigen::Matrix4d d = rigid_inverse(a) * b;
+  return rotation_angle_deg(d) < 2.0 && translation_length(d) < length;
+}
+
+struct Design {
+  SurfaceSample sample;
+  double area = 0, size = 0;
+};
+
+// The pose's covariance from the point-to-plane normal equations at the fit: rows (p x n, n) per inlier, with
+// the rotation columns scaled by the part's size so that the eigenvalues compare. Returns the smallest over the
+// largest eigenvalue (near 0: a direction the seen surface does not fix).
+double estimate_uncertainty(const MeshDistance& distance, const std::vector<Vec3>& in_design, const Mesh& mesh,
+                            const Vec3& centre, double length, double inlier_distance, RegistrationResult& r) {
+  std::vector<SurfaceDistance> nearest(in_design.size());
+  tbb::parallel_for(size_t(0), in_design.size(), [&](size_t i) { nearest[i] = distance.query(in_design[i]); });
+  Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
+  for (size_t i = 0; i < in_design.size(); ++i) {
+    const SurfaceDistance& s = nearest[i];
+    const Vec3& p = in_design[i];
+    if (std::abs(s.signed_distance) > inlier_distance) continue;
+    const Vec3& n = mesh.normals[s.face];
+    Eigen::Matrix<double, 6, 1> j;
+    j << (p - centre).cross(n) / length, n;
+    h += j * j.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(h);
+  const double ratio = es.eigenvalues()[5] > 0 ? es.eigenvalues()[0] / es.eigenvalues()[5] : 0;
+  if (ratio < 1e-12) {
+    r.translation_sigma = r.rotation_sigma_deg = std::numeric_limits<double>::infinity();
+    return ratio;
+  }
+  const Eigen::Matrix<double, 6, 6> cov = r.rms * r.rms * es.eigenvectors() *
+                                          es.eigenvalues().cwiseInverse().asDiagonal() * es.eigenvectors().transpose();
+  const Eigen::Matrix3d rot = cov.topLeftCorner<3, 3>() / (length * length), tra = cov.bottomRightCorner<3, 3>();
+  r.rotation_sigma_deg = std::sqrt(std::max(0.0, rot.eigenvalues().real().maxCoeff())) * 180 / M_PI;
+  r.translation_sigma = std::sqrt(std::max(0.0, tra.eigenvalues().real().maxCoeff()));
+  return ratio;
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+void RegistrationOptions::check() const {
+  const auto positive = [](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) throw Error(std::string("registration option ") + name, "must be a positive number");
+  };
+  positive(inlier_distance, "inlier_distance");
+  positive(max_rms, "max_rms");
+  positive(moment_tolerance, "moment_tolerance");
+  positive(ambiguity_share, "ambiguity_share");
+  if (!(ambiguity_rms >= 1) || !std::isfinite(ambiguity_rms))
+    throw Error("registration option ambiguity_rms", "must be a factor >= 1");
+  for (auto [v, name] : {std::pair{min_inlier_share, "min_inlier_share"}, {min_overlap, "min_overlap"}})
+    if (!(v >= 0 && v <= 1)) throw Error(std::string("registration option ") + name, "must lie in [0, 1]");
+  if (design_points < 100 || coarse_points < 50 || fine_points < 50)
+    throw Error("registration options", "design_points >= 100, coarse_points >= 50 and fine_points >= 50 are needed");
+}
+
+RegistrationResult register_design(const Mesh& design, const PointCloud& scan, const RegistrationOptions& o) {
+  o.check();
+  check_has_area(design, "registration: the design");
+  if (scan.points.size() < 50) throw Error(kWhere, "the scan has " + std::to_string(scan.points.size()) +
+                                                       " points; at least 50 are needed");
+  const auto start = std::chrono::steady_clock::now();
+  RegistrationResult r;
+  const SurfaceSample target = sample_surface(design, o.design_points, o.seed);
+  const double area = std::accumulate(design.areas.begin(), design.areas.end(), 0.0);
+  const double size = design.bbox.size().norm();
+  const Vec3 centre = principal_frame(target.points).centroid;
+  const MeshDistance distance(design);
+  const PlaneIcp icp(target.points, target.normals);
+
+  // Global: every principal-axes candidate pulled in by coarse ICP.
+  const double leaf = std::sqrt(area / double(o.coarse_points));
+  const std::vector<Vec3> coarse = thin_by_voxel(scan.points, leaf);
+  if (coarse.size() < 10) throw Error(kWhere, "the scan is too small for the design: " + std::to_string(coarse.size()) +
+                                                  " points at the design's sampling of " + fixed(leaf, 3) + " mm");
+  const PrincipalFrame design_frame = principal_frame(target.points);
+  const std::vector<Eigen::Matrix4d> candidates =
+      principal_axes_candidates(design_frame, principal_frame(coarse), o.moment_tolerance);
+  r.candidates = candidates.size();
+  std::vector<Fit> fits;
+  for (const Eigen::Matrix4d& c : candidates) {
+    Eigen::Matrix4d t = icp.align(coarse, rigid_inverse(c), 0.2 * size, 25);
+    t = icp.align(coarse, t, 3 * leaf, 25);
+    fits.push_back(measure(distance, coarse, t, leaf));
+  }
+  std::sort(fits.begin(), fits.end(), better);
+  r.global_seconds = seconds_since(start);
+
+  // Fine: the best and the distinct poses that fit about as well at the coarse level.
+  const auto fine_start = std::chrono::steady_clock::now();
+  const std::vector<Vec3> fine = thin_evenly(scan.points, o.fine_points);
+  r.scan_points_used = fine.size();
+  // The pairing distance shrinks from the coarse fit's reach to the inlier distance; the first steps need few
+  // points, only the last one all of the fine set.
+  const std::vector<Vec3> middle = thin_evenly(fine, std::max<size_t>(o.fine_points / 4, 50));
+  const auto refine = [&](const Eigen::Matrix4d& t0) {
+    Eigen::Matrix4d t = icp.align(middle, t0, std::max(2 * leaf, 4 * o.inlier_distance), 30);
+    t = icp.align(middle, t, 2 * o.inlier_distance, 30);
+    t = icp.align(fine, t, o.inlier_distance, 15);
+    return measure(distance, fine, t, o.inlier_distance);
+  };
+  const Fit best = refine(fits.front().scan_to_design);
+  std::vector<Eigen::Matrix4d> distinct{fits.front().scan_to_design};
+  for (size_t i = 1; i < fits.size() && r.alternatives.size() < 5; ++i) {
+    const Fit& f = fits[i];
+    if (f.share < fits.front().share - o.ambiguity_share) break;  // sorted: no later one is closer
+    if (f.rms > o.ambiguity_rms * fits.front().rms + 0.1 * leaf) continue;
+    if (std::any_of(distinct.begin(), distinct.end(), [&](const auto& d) { return same_pose(d, f.scan_to_design, leaf); }))
+      continue;
+    distinct.push_back(f.scan_to_design);
+    const Fit alt = refine(f.scan_to_design);
+    if (alt.share >= best.share - o.ambiguity_share && alt.rms <= o.ambiguity_rms * best.rms + 1e-3 &&
+        !same_pose(alt.scan_to_design, best.scan_to_design, o.inlier_distance))
+      r.alternatives.push_back(rigid_inverse(alt.scan_to_design));
+  }
+  r.transform = rigid_inverse(best.scan_to_design);
+  r.rms = best.rms;
+  r.inlier_share = best.share;
+  const std::vector<Vec3> in_design = transformed_points(best.scan_to_design, fine);
+  r.overlap = covered_share(thin_evenly(target.points, 5000), in_design,
+                             o.inlier_distance + 2 * std::sqrt(area / double(fine.size())));
+  const double conditioning =
+      estimate_uncertainty(distance, in_design, design, centre, 0.5 * size, o.inlier_distance, r);
+  r.fine_seconds = seconds_since(fine_start);
+
+  std::ostringstream why;
+  if (!r.alternatives.empty()) {
+    why << r.alternatives.size() + 1 << " distinct poses fit about equally (inlier share within "
+        << o.ambiguity_share << ", RMS within a factor " << o.ambiguity_rms << ")";
+    const int equal = near_equal_moments(design_frame.moments, o.moment_tolerance);
+    if (equal) why << "; the design has " << equal << " near-equal principal moments (a symmetric part)";
+  }
+  if (conditioning < 1e-4) {
+    if (why.tellp() > 0) why << "; ";
+    why << "the scanned surface does not fix every direction of the pose (it can slide or turn on itself: "
+           "conditioning " << conditioning << ")";
+  }
+  r.ambiguity = why.str();
+  r.ambiguous = !r.ambiguity.empty();
+
+  if (r.inlier_share < o.min_inlier_share)
+    throw Error(kWhere, "refused: only " + fixed(100 * r.inlier_share, 1) + "% of the scan lies within " +
+                            fixed(o.inlier_distance, 3) + " mm of the design (minimum " +
+                            fixed(100 * o.min_inlier_share, 1) + "%): the scan does not show this part, or shows "
+                            "much besides it (crop the table and clamps)");
+  if (r.rms > o.max_rms)
+    throw Error(kWhere, "refused: the RMS distance " + fixed(r.rms, 4) + " mm exceeds the maximum " +
+                            fixed(o.max_rms, 4) + " mm");
+  if (r.overlap < o.min_overlap)
+    throw Error(kWhere, "refused: the scan covers " + fixed(100 * r.overlap, 1) + "% of the design (minimum " +
+                            fixed(100 * o.min_overlap, 1) + "%)");
+  return r;
+}
+
+std::string format_registration(const RegistrationResult& r) {
+  std::ostringstream s;
+  s << "transform (design -> scan, mm, row-major):\n";
+  for (int i = 0; i < 4; ++i)
+    s << "  " << fixed(r.transform(i, 0), 9) << ' ' << fixed(r.transform(i, 1), 9) << ' ' << fixed(r.transform(i, 2), 9)
+      << ' ' << fixed(r.transform(i, 3), 6) << '\n';
+  s << "rms: " << fixed(r.rms, 5) << " mm\ninlier share: " << fixed(r.inlier_share, 4) << "\noverlap: "
+    << fixed(r.overlap, 4) << "\nuncertainty (1 sigma): " << r.translation_sigma << " mm, " << r.rotation_sigma_deg
+    << " deg\nambiguous: " << (r.ambiguous ? "yes (" + r.ambiguity + ")" : std::string("no")) << "\ncandidates: "
+    << r.candidates << ", scan points used: " << r.scan_points_used << "\ntime: global " << fixed(r.global_seconds, 3)
+    << " s, fine " << fixed(r.fine_seconds, 3) << " s\n";
+  return s.str();
+}
+
+}  // namespace rosmill::core::scan

@@ -1,0 +1,110 @@
+// Design-to-scan registration with no initial guess: synthetic scans of bundled parts (sensor-like noise, partial
+// views) under random rigid poses are recovered to 0.05 mm and 0.05 degrees; a symmetric part is reported
+// ambiguous; a scan of another part is refused.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include "error_of.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/io/stl.hpp"
+#include "rosmill/scan/design_registration.hpp"
+#include "rosmill/testing/synthetic_scan.hpp"
+
+using namespace rosmill::core;
+
+namespace {
+
+Mesh model(const char* file, Units units = Units::Millimetre) {
+  StlReadOptions o;
+  o.units = units;
+  return read_stl(std::string(ROSMILL_TEST_DATA) + "/" + file, o);
+}
+
+struct Errors {
+  double translation = 0, rotation = 0;
+};
+
+// Registers `poses` random poses of a partial scan of `design` and returns the largest errors.
+Errors recover(const Mesh& design, int poses, int oblique_views, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Errors worst;
+  const auto sensors = synthetic::sensors_above(design, oblique_views, 1000);
+  for (int i = 0; i < poses; ++i) {
+    const PointCloud seen = synthetic::synthetic_scan(design, sensors, 30000, 0.02, seed + i);
+    const Eigen::Matrix4d truth = synthetic::random_rigid(rng, 200);
+    PointCloud scan;
+    scan.points = transformed_points(truth, seen.points);
+    scan.recompute_bbox();
+    const scan::RegistrationResult r = scan::register_design(design, scan);
+    if (i == 0)
+      std::printf("  %zu scan points, %zu candidates: global %.3f s, fine %.3f s\n", scan.points.size(), r.candidates,
+                  r.global_seconds, r.fine_seconds);
+    const Eigen::Matrix4d error = rigid_inverse(truth) * r.transform;
+    // The translation error where it matters: the largest displacement of the part's box corners.
+    const double moved = synthetic::box_corner_error(design, error);
+    worst.translation = std::max(worst.translation, moved);
+    worst.rotation = std::max(worst.rotation, rotation_angle_deg(error));
+    EXPECT_FALSE(r.ambiguous) << "pose " << i << ": " << r.ambiguity;
+    EXPECT_LT(r.rms, 0.03) << "pose " << i;
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST(ScanRegister, MountRushTopViewTwentyPoses) {
+  const Errors e = recover(model("mount_rush.stl"), 20, 0, 17);
+  std::printf("mount_rush.stl, one view from above: max translation error %.5f mm, max rotation error %.5f deg\n",
+              e.translation, e.rotation);
+  EXPECT_LE(e.translation, 0.05);
+  EXPECT_LE(e.rotation, 0.05);
+}
+
+TEST(ScanRegister, FeatureTypeThreeViewsTwentyPoses) {
+  const Errors e = recover(model("featuretype.STL", Units::Inch), 20, 2, 29);
+  std::printf("featuretype.STL, three views: max translation error %.5f mm, max rotation error %.5f deg\n",
+              e.translation, e.rotation);
+  EXPECT_LE(e.translation, 0.05);
+  EXPECT_LE(e.rotation, 0.05);
+}
+
+TEST(ScanRegister, CubeIsAmbiguous) {
+  const Mesh cube = make_primitive("cube");
+  std::mt19937_64 rng(5);
+  const Eigen::Matrix4d truth = synthetic::random_rigid(rng, 100);
+  PointCloud scan;
+  scan.points = transformed_points(truth, synthetic::synthetic_scan(cube, synthetic::sensors_above(cube, 4, 1000),
+                                                                    30000, 0.02, 3).points);
+  const scan::RegistrationResult r = scan::register_design(cube, scan);
+  EXPECT_TRUE(r.ambiguous);
+  EXPECT_NE(r.ambiguity.find("near-equal principal moments"), std::string::npos) << r.ambiguity;
+  EXPECT_GE(r.alternatives.size(), 1u);
+  // Whichever pose it chose puts the cube where the scan is: each alternative is a symmetry of the cube.
+  EXPECT_LT(r.rms, 0.03);
+  EXPECT_GT(r.inlier_share, 0.99);
+}
+
+TEST(ScanRegister, AnotherPartIsRefused) {
+  const Mesh design = model("mount_rush.stl");
+  const Mesh other = model("pycam-textbox.stl");
+  const PointCloud scan = synthetic::synthetic_scan(other, synthetic::sensors_above(other, 0, 1000), 30000, 0.02, 9);
+  const std::string error = error_of([&] { scan::register_design(design, scan); });
+  EXPECT_NE(error.find("refused"), std::string::npos) << error;
+}
+
+TEST(ScanRegister, BadInputIsRefusedWithTheReason) {
+  const Mesh design = model("mount_rush.stl");
+  PointCloud few;
+  few.points.assign(10, Vec3(1, 2, 3));
+  EXPECT_NE(error_of([&] { scan::register_design(design, few); }).find("at least 50"), std::string::npos);
+  scan::RegistrationOptions bad;
+  bad.min_inlier_share = 1.5;
+  const PointCloud scan = synthetic::synthetic_scan(design, synthetic::sensors_above(design, 0, 1000), 5000, 0.02, 1);
+  EXPECT_NE(error_of([&] { scan::register_design(design, scan, bad); }).find("min_inlier_share"), std::string::npos);
+  const Mesh flat = build_mesh({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)});
+  EXPECT_NE(error_of([&] { scan::register_design(flat, scan); }).find("design"), std::string::npos);
+}

@@ -1,0 +1,35 @@
+// A synthetic scanner for the tests and benchmarks of registration, fusion and inspection: points drawn on the
+// design's surface (area-weighted), kept where the surface faces the sensor (back faces culled; no occlusion by
+// other parts of the surface), with isotropic Gaussian noise; and random rigid poses from fixed seeds.
+#pragma once
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rosmill/geometry/mesh.hpp"
+#include "rosmill/geometry/point_cloud.hpp"
+
+namespace rosmill::core::synthetic {
+
+// The points (design frame, mm) of `samples` surface samples that some sensor in `sensors` (positions, design
+// frame) faces, each moved by noise of standard deviation `noise` mm per axis.
+PointCloud synthetic_scan(const Mesh& design, const std::vector<Vec3>& sensors, size_t samples, double noise,
+                          uint64_t seed);
+
+// A uniformly random rotation (a normalised Gaussian quaternion) and a translation uniform in
+// [-max_translation, max_translation]^3.
+Eigen::Matrix4d random_rigid(std::mt19937_64& rng, double max_translation);
+
+// A small rigid error: a turn of `deg` degrees about `axis` (through the origin) and `mm` along it.
+Eigen::Matrix4d nudge(double mm, double deg, const Vec3& axis);
+
+// How far a pose error moves the design: the largest displacement of its box's corners (mm).
+double box_corner_error(const Mesh& design, const Eigen::Matrix4d& error);
+
+// Sensors above the part: straight above its centre and `oblique` more at 45 degrees around it, at `distance`
+// from the centre of the design's box.
+std::vector<Vec3> sensors_above(const Mesh& design, int oblique, double distance);
+
+}  // namespace rosmill::core::synthetic
