@@ -45,10 +45,12 @@ std::string fmt(double v) {
 
 }  // namespace
 
-MachineLimits load_machine_limits(const std::string& path) {
+MachineLimits load_machine_limits(const std::string& path) { return parse_machine_limits(read_input_file(path), path); }
+
+MachineLimits parse_machine_limits(const std::string& yaml_text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::Load(read_input_file(path));
+    root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     throw Error(path, std::string("not valid YAML: ") + e.what());
   }

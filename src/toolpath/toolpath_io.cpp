@@ -135,8 +135,9 @@ void write_toolpath_file(const std::string& path, const std::vector<Toolpath>& j
   if (!out) throw Error(path, "write failed");
 }
 
-std::vector<Toolpath> read_toolpath_file(const std::string& path) {
-  const std::string text = read_input_file(path);
+std::vector<Toolpath> read_toolpath_file(const std::string& path) { return parse_toolpath_text(read_input_file(path), path); }
+
+std::vector<Toolpath> parse_toolpath_text(const std::string& text, const std::string& path) {
   json doc;
   try {
     doc = json::parse(text);
