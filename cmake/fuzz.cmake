@@ -10,7 +10,8 @@ function(rosmill_fuzz_target name)
   target_compile_definitions(fuzz_${name} PRIVATE ROSMILL_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   set_target_properties(fuzz_${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/fuzz)
   add_dependencies(rosmill_fuzz fuzz_${name})
-  add_test(NAME fuzz_${name} COMMAND ${CMAKE_COMMAND} -E env ROSMILL_FUZZ_NO_BUILD=1 ROSMILL_BUILD_DIR=${CMAKE_BINARY_DIR}
+  add_test(NAME fuzz_${name} COMMAND ${CMAKE_COMMAND} -E env ROSMILL_FUZZ_NO_BUILD=1
+    ROSMILL_BUILD_DIR=${CMAKE_BINARY_DIR}
     ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fuzz ${name} ${ROSMILL_FUZZ_TEST_SECONDS})
   set_tests_properties(fuzz_${name} PROPERTIES TIMEOUT 300)
 endfunction()

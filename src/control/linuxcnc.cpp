@@ -149,7 +149,9 @@ ControllerStatus LinuxcncController::poll(double timeout_s) {
     std::istringstream pos(get("abs_act_pos"));
     status_.position_known = static_cast<bool>(pos >> status_.position.x() >> status_.position.y() >> status_.position.z());
     const std::string err = get("error");
-    if (line > 0) {
+    // A line outside the program (a stale or garbled reply) says nothing about it: it must not move the
+    // acknowledged line past the program's end, where a resume would start.
+    if (line > 0 && line <= status_.total_lines) {
       status_.current_line = line;
       status_.acknowledged_line = std::max(status_.acknowledged_line, line - 1);
     }

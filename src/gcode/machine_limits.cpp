@@ -45,7 +45,9 @@ std::string fmt(double v) {
 
 }  // namespace
 
-MachineLimits load_machine_limits(const std::string& path) { return parse_machine_limits(read_input_file(path), path); }
+MachineLimits load_machine_limits(const std::string& path) {
+  return parse_machine_limits(read_input_file(path), path);
+}
 
 MachineLimits parse_machine_limits(const std::string& yaml_text, const std::string& path) {
   YAML::Node root;

@@ -19,9 +19,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::read_or_refuse([&] {
     grbl.connect();
     grbl.start(program, {});
-    // Each poll reads at least one piece of the input, so the input's end (the peer closing) is reached.
+    // The peer never keeps the driver waiting (each read gets bytes, or the end of the connection), so a poll
+    // reads on until its time is up or the input ends, and the input's end (the peer closing) is reached.
     for (size_t polls = 0; polls <= size + 1; ++polls) {
-      const core::control::ControllerStatus s = grbl.poll(0.0);
+      const core::control::ControllerStatus s = grbl.poll(0.05);
       fuzz::require(s.acknowledged_line <= s.total_lines, "acknowledged beyond the program's end");
       fuzz::require(s.state != RunState::Disconnected || !s.error.empty(), "a lost connection without a reason");
       if (s.state == RunState::Disconnected || s.state == RunState::Finished) break;

@@ -10,15 +10,21 @@
 
 namespace {
 
-// The folder the driver writes its program into (the controller would read it there): one for the run.
-const std::string& program_dir() {
-  static const std::string dir = [] {
+// The folder the driver writes its program into (the controller would read it there): one for the run, removed
+// at its end.
+struct ProgramDir {
+  std::string path;
+  ProgramDir() {
     char name[] = "/tmp/rosmill-fuzz-linuxcnc-XXXXXX";
     if (!mkdtemp(name)) rosmill::fuzz::finding("cannot make a program folder");
-    std::atexit([] { std::filesystem::remove_all(program_dir()); });
-    return std::string(name);
-  }();
-  return dir;
+    path = name;
+  }
+  ~ProgramDir() { std::filesystem::remove_all(path); }
+};
+
+const std::string& program_dir() {
+  static const ProgramDir dir;
+  return dir.path;
 }
 
 }  // namespace

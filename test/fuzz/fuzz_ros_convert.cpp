@@ -18,7 +18,7 @@ double number(FuzzedDataProvider& in) {
   if (in.ConsumeBool()) return in.ConsumeFloatingPointInRange<double>(-10.0, 10.0);
   double v = 0;
   const auto bytes = in.ConsumeBytes<uint8_t>(sizeof v);
-  std::memcpy(&v, bytes.data(), bytes.size());
+  if (!bytes.empty()) std::memcpy(&v, bytes.data(), bytes.size());
   return v;
 }
 
