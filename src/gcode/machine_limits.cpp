@@ -58,7 +58,8 @@ MachineLimits parse_machine_limits(const std::string& yaml_text, const std::stri
   }
   if (!root.IsMap()) throw Error(path, "expected a map of machine fields");
   MachineLimits m;
-  m.name = root["name"] ? root["name"].as<std::string>() : "";
+  if (root["name"] && !root["name"].IsScalar()) throw Error(path, "field 'name' must be a text");
+  m.name = root["name"] ? root["name"].Scalar() : "";
   const YAML::Node env = root["envelope"];
   if (!env || !env.IsMap()) throw Error(path, "field 'envelope' (x, y, z: [min, max]) is missing");
   static const char* axes[3] = {"x", "y", "z"};

@@ -12,6 +12,7 @@
 #include "rosmill/control/grbl.hpp"
 #include "rosmill/control/linuxcnc.hpp"
 #include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/job/job_spec.hpp"
 #include "rosmill/planner/presets.hpp"
@@ -51,6 +52,14 @@ TEST(FuzzFindings, TemplateWeightThatIsNotANumberIsRefused) {
                                          "presets.yaml");
   ASSERT_EQ(good.templates.size(), 1u);
   EXPECT_DOUBLE_EQ(good.templates[0].weights[1], 0.75);
+}
+
+// fuzz_tables: a machine name that is a sequence ("name: []", after the selector byte 2) escaped as yaml-cpp's bad
+// conversion.
+TEST(FuzzFindings, MachineNameThatIsNotTextIsRefused) {
+  EXPECT_NE(error_of([] { gcode::parse_machine_limits("name: []", "machine.yaml"); })
+                .find("machine.yaml: field 'name' must be a text"),
+            std::string::npos);
 }
 
 // fuzz_job_yaml: a part name longer than a file name may be made std::filesystem::exists() throw its own error.
