@@ -87,3 +87,13 @@ foreach(bench_source ${ROSMILL_ROS_BENCHES})
     ROSMILL_NODE_DIR="${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION}")
   add_dependencies(bench_ros_${bench_name} ${ROSMILL_NODES})
 endforeach()
+
+# --- plain gtests of the ROS layer (no master): test/ros/unit/*.cpp, one executable each.
+file(GLOB ROSMILL_ROS_UNIT_TESTS CONFIGURE_DEPENDS test/ros/unit/*.cpp)
+foreach(test_source ${ROSMILL_ROS_UNIT_TESTS})
+  get_filename_component(test_name ${test_source} NAME_WE)
+  add_executable(${test_name} ${test_source})
+  target_link_libraries(${test_name} PRIVATE rosmill_ros GTest::gtest GTest::gtest_main)
+  target_include_directories(${test_name} PRIVATE test/core)  # error_of.hpp
+  gtest_discover_tests(${test_name} DISCOVERY_TIMEOUT 60)
+endforeach()

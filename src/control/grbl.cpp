@@ -4,6 +4,7 @@
 #include "rosmill/control/grbl.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 
 #include "rosmill/error.hpp"
@@ -19,6 +20,20 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 // GRBL's receive buffer holds the line's code: the reader's first step (comments and spaces out) saves room.
 std::string compact(const std::string& line, const std::string& where) {
   return gcode::code_of(line, gcode::Place{where, 0});
+}
+
+// x,y,z of a status report's position field ("1.000,2.000,3.000", more axes after them ignored). A field cut short
+// or garbled is not a position: false, and the position stays what it was, rather than numbers read past it.
+bool read_position(const std::string& field, Vec3& position) {
+  const char* p = field.c_str();
+  for (int a = 0; a < 3; ++a) {
+    char* end = nullptr;
+    position[a] = std::strtod(p, &end);
+    if (end == p || !std::isfinite(position[a])) return false;
+    if (*end != (a < 2 ? ',' : '\0') && !(a == 2 && *end == ',')) return false;
+    p = end + 1;
+  }
+  return true;
 }
 
 }  // namespace
@@ -157,12 +172,9 @@ void GrblController::parse_status(const std::string& s) {
   for (const char* key : {"MPos:", "WPos:"}) {
     const size_t at = s.find(key);
     if (at == std::string::npos) continue;
-    const char* p = s.c_str() + at + 5;
-    for (int a = 0; a < 3; ++a) {
-      char* end;
-      status_.position[a] = std::strtod(p, &end);
-      p = end + 1;
-    }
+    Vec3 position;
+    if (!read_position(s.substr(at + 5, s.find_first_of("|>", at) - (at + 5)), position)) continue;
+    status_.position = position;
     status_.position_known = true;
   }
   const size_t ln = s.find("Ln:");

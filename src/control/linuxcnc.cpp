@@ -31,8 +31,9 @@ std::string file_stem(const std::string& name) {
 
 }  // namespace
 
-LinuxcncController::LinuxcncController(std::string host, int port, const ControllerOptions& o)
-    : host_(std::move(host)), port_(port), opt_(o) {}
+LinuxcncController::LinuxcncController(std::string host, int port, const ControllerOptions& o,
+                                       std::function<std::unique_ptr<Transport>()> open)
+    : host_(std::move(host)), port_(port), open_(std::move(open)), opt_(o) {}
 
 std::string LinuxcncController::describe() const { return "linuxcnc://" + host_ + ":" + std::to_string(port_); }
 
@@ -60,7 +61,7 @@ void LinuxcncController::set(const std::string& what) {
 std::string LinuxcncController::get(const std::string& what) { return reply_for("get " + what, upper(first_word(what))); }
 
 void LinuxcncController::connect() {
-  transport_ = open_tcp(host_, port_);
+  transport_ = open_ ? open_() : open_tcp(host_, port_);
   reader_ = std::make_unique<LineReader>(*transport_);
   const std::string hello = reply_for("hello EMC rosmill 1.0", "HELLO");
   if (hello.rfind("ACK", 0) != 0) throw Error(describe(), "handshake refused: HELLO " + hello);
@@ -148,7 +149,9 @@ ControllerStatus LinuxcncController::poll(double timeout_s) {
     std::istringstream pos(get("abs_act_pos"));
     status_.position_known = static_cast<bool>(pos >> status_.position.x() >> status_.position.y() >> status_.position.z());
     const std::string err = get("error");
-    if (line > 0) {
+    // A line outside the program (a stale or garbled reply) says nothing about it: it must not move the
+    // acknowledged line past the program's end, where a resume would start.
+    if (line > 0 && line <= status_.total_lines) {
       status_.current_line = line;
       status_.acknowledged_line = std::max(status_.acknowledged_line, line - 1);
     }

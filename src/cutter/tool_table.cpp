@@ -91,7 +91,8 @@ Tool read_tool(const YAML::Node& node, const std::string& source, size_t index) 
   if (!node.IsMap()) throw Error(where, "must be a map of fields");
   if (node["id"] && node["id"].IsScalar()) where = source + ": tool " + node["id"].Scalar();
   for (const auto& kv : node) {
-    const std::string key = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) throw Error(where, "a field name must be a text");
+    const std::string key = kv.first.Scalar();
     if (!kFields.count(key)) throw Error(where, "unknown field '" + key + "'");
   }
   const EntryReader e(node, where);

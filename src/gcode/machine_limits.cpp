@@ -46,15 +46,20 @@ std::string fmt(double v) {
 }  // namespace
 
 MachineLimits load_machine_limits(const std::string& path) {
+  return parse_machine_limits(read_input_file(path), path);
+}
+
+MachineLimits parse_machine_limits(const std::string& yaml_text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::Load(read_input_file(path));
+    root = YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     throw Error(path, std::string("not valid YAML: ") + e.what());
   }
   if (!root.IsMap()) throw Error(path, "expected a map of machine fields");
   MachineLimits m;
-  m.name = root["name"] ? root["name"].as<std::string>() : "";
+  if (root["name"] && !root["name"].IsScalar()) throw Error(path, "field 'name' must be a text");
+  m.name = root["name"] ? root["name"].Scalar() : "";
   const YAML::Node env = root["envelope"];
   if (!env || !env.IsMap()) throw Error(path, "field 'envelope' (x, y, z: [min, max]) is missing");
   static const char* axes[3] = {"x", "y", "z"};

@@ -153,14 +153,15 @@ PointCloud read_cloud(const std::string& path, const CloudReadOptions& options, 
   size_t dropped = 0;
   for (size_t i = 0; i < n; ++i) {
     const uint8_t* point = blob.data.data() + i * blob.point_step;
-    const Vec3 p(load_value(point + axes[0]->offset, axes[0]->datatype),
-                 load_value(point + axes[1]->offset, axes[1]->datatype),
-                 load_value(point + axes[2]->offset, axes[2]->datatype));
+    // Judged in millimetres: a coordinate near the largest double in metres is infinite once scaled.
+    const Vec3 p = scale * Vec3(load_value(point + axes[0]->offset, axes[0]->datatype),
+                                load_value(point + axes[1]->offset, axes[1]->datatype),
+                                load_value(point + axes[2]->offset, axes[2]->datatype));
     if (!p.allFinite()) {
       ++dropped;
       continue;
     }
-    cloud.points.push_back(scale * p);
+    cloud.points.push_back(p);
   }
   if (n == 0) throw Error(path, "empty point cloud (no points)");
   if (cloud.points.empty())

@@ -87,6 +87,14 @@ std::string resolve(const std::string& path, const std::string& folder) {
   return p.is_absolute() ? path : (std::filesystem::path(folder) / p).lexically_normal().string();
 }
 
+// Whether a named file exists; a name the system cannot look up (too long, a loop of links) is refused at `where`.
+bool file_exists(const std::string& path, const std::string& where) {
+  std::error_code failure;
+  const bool exists = std::filesystem::exists(path, failure);
+  if (failure) throw Error(where, "cannot look up " + path + ": " + failure.message());
+  return exists;
+}
+
 StockSpec read_stock(const YAML::Node& node, const std::string& file, const std::string& folder) {
   const Fields f(node, file, "stock", {"box", "mesh", "cloud", "table_z", "units"});
   StockSpec s;
@@ -103,8 +111,8 @@ StockSpec read_stock(const YAML::Node& node, const std::string& file, const std:
   s.file = resolve(f.text(f.has("mesh") ? "mesh" : "cloud", ""), folder);
   const bool primitive = s.file.rfind("primitive:", 0) == 0;
   if (primitive && s.kind == StockSpec::Kind::Cloud) throw Error(f.where("cloud"), "a cloud stock must be a file");
-  if (!primitive && !std::filesystem::exists(s.file))
-    throw Error(f.where(f.has("mesh") ? "mesh" : "cloud"), "no file " + s.file);
+  const std::string field = f.has("mesh") ? "mesh" : "cloud";
+  if (!primitive && !file_exists(s.file, f.where(field))) throw Error(f.where(field), "no file " + s.file);
   if (s.kind == StockSpec::Kind::Mesh && (f.has("table_z") || f.has("units")))
     throw Error(f.where("table_z"), "only a cloud stock has table_z and units (a mesh takes the job's units)");
   s.table_z = f.number("table_z", 0.0, -1e5, 1e5);
@@ -149,7 +157,7 @@ JobSpec parse_job(const std::string& text, const std::string& name, const std::s
   JobSpec job;
   job.source = name;
   job.part = resolve(f.text("part", "", true), folder);
-  if (job.part.rfind("primitive:", 0) != 0 && !std::filesystem::exists(job.part))
+  if (job.part.rfind("primitive:", 0) != 0 && !file_exists(job.part, f.where("part")))
     throw Error(f.where("part"), "no file " + job.part);
   if (f.has("units")) job.units = parse_units(f.text("units", "mm"), f.where("units"));
   job.resolution = f.number("resolution", 0.5, 0.01, 100);

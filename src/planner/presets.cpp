@@ -70,7 +70,17 @@ PlanTemplate read_template(const YAML::Node& node, const PresetTable& table, con
   }
   double sum = 0;
   if (node["weights"]) {
-    for (const YAML::Node& w : node["weights"]) t.weights.push_back(w.as<double>()), sum += t.weights.back();
+    if (!node["weights"].IsSequence()) throw Error(at, "field 'weights' must list one share per stage");
+    for (const YAML::Node& w : node["weights"]) {
+      double share = NAN;
+      try {
+        share = w.as<double>();
+      } catch (const YAML::Exception&) {
+      }
+      if (!std::isfinite(share) || share < 0) throw Error(at, "field 'weights' must hold numbers >= 0");
+      t.weights.push_back(share);
+      sum += share;
+    }
     if (t.weights.size() != t.stages.size() || !(std::abs(sum - 1.0) < 1e-6))
       throw Error(at, "field 'weights' must give one share per stage, summing to 1");
   } else {

@@ -225,7 +225,8 @@ core::Tool from_tool_msg(const msg::Tool& m, const std::string& where) {
   t.cutter.corner_radius = to_mm(m.corner_radius);
   t.cutter.flute_length = to_mm(m.flute_length);
   t.cutter.shank_diameter = to_mm(m.shank_diameter);
-  if (!(t.cutter.diameter > 0)) throw Error(where, "diameter must be positive");
+  if (!(t.cutter.diameter > 0) || !std::isfinite(t.cutter.diameter))
+    throw Error(where, "diameter must be positive and finite");
   t.spindle_rpm = m.spindle_rpm;
   t.feed = m.feed_rate / kMetrePerSecondPerMmPerMinute;
   t.plunge_feed = m.plunge_rate / kMetrePerSecondPerMmPerMinute;
@@ -314,6 +315,10 @@ core::Toolpath from_toolpath_msg(const msg::Toolpath& m, const std::string& wher
   tp.safe_z = to_mm(m.safe_z);
   tp.clearance_z = to_mm(m.clearance_z);
   tp.start = from_point_msg(m.start);
+  // The heights and the start are where the program retracts to and begins: a NaN there is a wrong program.
+  if (!std::isfinite(tp.safe_z) || !std::isfinite(tp.clearance_z))
+    throw Error(where, "safe_z and clearance_z must be finite");
+  if (!tp.start.allFinite()) throw Error(where, "start is not finite");
   tp.passes.resize(m.passes.size());
   for (size_t p = 0; p < m.passes.size(); ++p) {
     tp.passes[p].name = m.passes[p].name;
@@ -326,6 +331,7 @@ core::Toolpath from_toolpath_msg(const msg::Toolpath& m, const std::string& wher
       if (!moves[i].to.allFinite()) throw Error(at, "position is not finite");
       moves[i].type = from_move_type_msg(in.move_type, at);
       moves[i].feed = in.feed_rate / kMetrePerSecondPerMmPerMinute;
+      if (!std::isfinite(moves[i].feed) || moves[i].feed < 0) throw Error(at, "feed_rate must be finite and >= 0");
       if (moves[i].type != MoveType::Rapid && !(moves[i].feed > 0))
         throw Error(at, "a feed or plunge move needs a positive feed_rate");
     }

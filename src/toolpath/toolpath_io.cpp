@@ -31,6 +31,14 @@ Vec3 vec3(const json& j, const std::string& where) {
   return v;
 }
 
+// An optional text field: `fallback` when absent; a value of another type is an error, not a library exception.
+std::string text_field(const json& j, const char* key, const std::string& fallback, const std::string& where) {
+  const auto it = j.find(key);
+  if (it == j.end()) return fallback;
+  if (!it->is_string()) throw Error(where, std::string("field '") + key + "' is not a text");
+  return it->get<std::string>();
+}
+
 CutterType cutter_type(const std::string& name, const std::string& where) {
   if (name == "flat") return CutterType::FlatEnd;
   if (name == "ball") return CutterType::BallEnd;
@@ -58,9 +66,11 @@ json tool_to_json(const Tool& t) {
 Tool tool_from_json(const json& j, const std::string& where) {
   if (!j.is_object()) throw Error(where, "tool is not an object");
   Tool t;
-  t.id = static_cast<int>(number(j, "id", where));
-  t.name = j.value("name", "");
-  t.cutter.type = cutter_type(j.value("type", ""), where);
+  const double id = number(j, "id", where);
+  if (!(id >= 0 && id <= 1e6)) throw Error(where, "field 'id' must lie in [0, 1e6]");
+  t.id = static_cast<int>(id);
+  t.name = text_field(j, "name", "", where);
+  t.cutter.type = cutter_type(text_field(j, "type", "", where), where);
   t.cutter.diameter = number(j, "diameter", where);
   t.cutter.corner_radius = number(j, "corner_radius", where);
   t.cutter.flute_length = number(j, "flute_length", where);
@@ -91,7 +101,7 @@ json toolpath_to_json(const Toolpath& tp) {
 Toolpath toolpath_from_json(const json& doc, const std::string& where) {
   if (!doc.is_object()) throw Error(where, "toolpath is not an object");
   Toolpath tp;
-  tp.strategy = doc.value("strategy", "");
+  tp.strategy = text_field(doc, "strategy", "", where);
   tp.tool = tool_from_json(doc.value("tool", json()), where + ": tool");
   tp.safe_z = number(doc, "safe_z", where);
   tp.clearance_z = number(doc, "clearance_z", where);
@@ -100,8 +110,9 @@ Toolpath toolpath_from_json(const json& doc, const std::string& where) {
   if (!passes.is_array()) throw Error(where, "field 'passes' missing or not an array");
   for (size_t i = 0; i < passes.size(); ++i) {
     const std::string pw = where + ": pass " + std::to_string(i);
+    if (!passes[i].is_object()) throw Error(pw, "pass is not an object");
     ToolpathPass pass;
-    pass.name = passes[i].value("name", "");
+    pass.name = text_field(passes[i], "name", "", pw);
     const json& moves = passes[i].value("moves", json());
     if (!moves.is_array()) throw Error(pw, "field 'moves' missing or not an array");
     pass.moves.reserve(moves.size());
@@ -111,7 +122,7 @@ Toolpath toolpath_from_json(const json& doc, const std::string& where) {
       if (!m.is_array() || m.size() != 5) throw Error(mw, "expected [x, y, z, type, feed]");
       Move mv;
       mv.to = vec3(m, mw);
-      if (!m[3].is_number_integer() || m[3].get<int>() < 0 || m[3].get<int>() > 2)
+      if (!m[3].is_number_integer() || m[3] < 0 || m[3] > 2)
         throw Error(mw, "move type must be 0 (rapid), 1 (feed) or 2 (plunge)");
       mv.type = static_cast<MoveType>(m[3].get<int>());
       if (!m[4].is_number() || !std::isfinite(m[4].get<double>()) || m[4].get<double>() < 0)
@@ -136,16 +147,19 @@ void write_toolpath_file(const std::string& path, const std::vector<Toolpath>& j
 }
 
 std::vector<Toolpath> read_toolpath_file(const std::string& path) {
-  const std::string text = read_input_file(path);
+  return parse_toolpath_text(read_input_file(path), path);
+}
+
+std::vector<Toolpath> parse_toolpath_text(const std::string& text, const std::string& path) {
   json doc;
   try {
     doc = json::parse(text);
   } catch (const json::exception& e) {
     throw Error(path, std::string("not valid JSON: ") + e.what());
   }
-  if (!doc.is_object() || doc.value("format", "") != "rosmill-toolpath")
+  if (!doc.is_object() || text_field(doc, "format", "", path) != "rosmill-toolpath")
     throw Error(path, "not a rosmill toolpath file (field \"format\" must be \"rosmill-toolpath\")");
-  if (doc.value("units", "mm") != "mm") throw Error(path, "units must be \"mm\"");
+  if (text_field(doc, "units", "mm", path) != "mm") throw Error(path, "units must be \"mm\"");
   const json& list = doc.value("toolpaths", json());
   if (!list.is_array() || list.empty()) throw Error(path, "field 'toolpaths' missing, empty or not an array");
   std::vector<Toolpath> job;

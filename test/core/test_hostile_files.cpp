@@ -87,7 +87,9 @@ class HostileFiles : public ::testing::Test {
 }  // namespace
 
 TEST_F(HostileFiles, EveryReaderRefusesADeviceUpFront) {
-  for (const auto& [name, read] : readers()) {
+  for (const auto& reader : readers()) {  // not a structured binding: C++17 lambdas cannot capture one
+    const std::string& name = reader.first;
+    const auto& read = reader.second;
     const auto t0 = std::chrono::steady_clock::now();
     const std::string e = error_of([&] { read("/dev/zero"); });
     EXPECT_NE(e.find("/dev/zero: is a character device, not a regular file"), std::string::npos) << name << ": " << e;
@@ -98,7 +100,9 @@ TEST_F(HostileFiles, EveryReaderRefusesADeviceUpFront) {
 TEST_F(HostileFiles, EveryReaderRefusesAFifoWithoutWaitingForAWriter) {
   const std::string fifo = (dir_ / "part.stl").string();
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  for (const auto& [name, read] : readers()) {
+  for (const auto& reader : readers()) {  // not a structured binding: C++17 lambdas cannot capture one
+    const std::string& name = reader.first;
+    const auto& read = reader.second;
     const std::string e = error_of([&] { read(fifo); });
     EXPECT_NE(e.find("is a FIFO (named pipe), not a regular file"), std::string::npos) << name << ": " << e;
   }
@@ -107,7 +111,9 @@ TEST_F(HostileFiles, EveryReaderRefusesAFifoWithoutWaitingForAWriter) {
 TEST_F(HostileFiles, EveryReaderRefusesAnEmptyFileAndADirectory) {
   const std::string empty = (dir_ / "empty.yaml").string();
   std::ofstream(empty).close();
-  for (const auto& [name, read] : readers()) {
+  for (const auto& reader : readers()) {  // not a structured binding: C++17 lambdas cannot capture one
+    const std::string& name = reader.first;
+    const auto& read = reader.second;
     EXPECT_NE(error_of([&] { read(empty); }).find("empty file"), std::string::npos) << name;
     EXPECT_NE(error_of([&] { read(dir_.string()); }).find("is a directory"), std::string::npos) << name;
   }
@@ -118,7 +124,9 @@ TEST_F(HostileFiles, EveryReaderRefusesAFileBeyondTheLimitWithoutReadingIt) {
   const std::string big = (dir_ / "big.stl").string();
   std::ofstream(big).close();
   fs::resize_file(big, kMaxInputBytes + 1);
-  for (const auto& [name, read] : readers()) {
+  for (const auto& reader : readers()) {  // not a structured binding: C++17 lambdas cannot capture one
+    const std::string& name = reader.first;
+    const auto& read = reader.second;
     const auto t0 = std::chrono::steady_clock::now();
     const std::string e = error_of([&] { read(big); });
     EXPECT_NE(e.find("big.stl: file of 1073741825 bytes is larger than the 1073741824 bytes (1024 MiB) rosmill reads"),

@@ -3,6 +3,7 @@
 // a folder the controller reads, then opens and runs it; status comes from polling.
 #pragma once
 #include <chrono>
+#include <functional>
 
 #include "rosmill/control/controller.hpp"
 #include "rosmill/control/transport.hpp"
@@ -12,7 +13,9 @@ namespace rosmill::core::control {
 
 class LinuxcncController : public Controller {
  public:
-  LinuxcncController(std::string host, int port, const ControllerOptions& o);
+  // `open` makes the connection; empty: TCP to host:port (a test gives another transport).
+  LinuxcncController(std::string host, int port, const ControllerOptions& o,
+                     std::function<std::unique_ptr<Transport>()> open = {});
 
   std::string describe() const override;
   void connect() override;
@@ -34,6 +37,7 @@ class LinuxcncController : public Controller {
 
   std::string host_;
   int port_;
+  std::function<std::unique_ptr<Transport>()> open_;
   ControllerOptions opt_;
   std::unique_ptr<Transport> transport_;
   std::unique_ptr<LineReader> reader_;

@@ -24,6 +24,8 @@ struct MachineLimits {
 
 // Reads and validates the YAML file; throws Error naming the file and the field.
 MachineLimits load_machine_limits(const std::string& path);
+// The same from YAML text; `path` stands for the file in messages.
+MachineLimits parse_machine_limits(const std::string& yaml_text, const std::string& path);
 
 struct LimitViolation {
   size_t line = 0;       // 1-based program line

@@ -19,6 +19,8 @@ Toolpath toolpath_from_json(const nlohmann::json& t, const std::string& where);
 
 void write_toolpath_file(const std::string& path, const std::vector<Toolpath>& job);
 std::vector<Toolpath> read_toolpath_file(const std::string& path);
+// The same from the file's text; `path` stands for the file in messages.
+std::vector<Toolpath> parse_toolpath_text(const std::string& text, const std::string& path);
 
 nlohmann::json tool_to_json(const Tool& tool);
 Tool tool_from_json(const nlohmann::json& j, const std::string& where);

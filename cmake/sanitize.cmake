@@ -1,0 +1,15 @@
+# The sanitizer build (cmake -DROSMILL_SANITIZE=ON, clang): the core areas, the rosmill tool and the core gtests
+# under AddressSanitizer and UndefinedBehaviorSanitizer, and the fuzz targets (test/fuzz, libFuzzer). No catkin:
+# the core has no ROS dependency; the one fuzz target of the ROS edge builds its message headers itself.
+# scripts/fuzz and `scripts/test --sanitize` configure it in build-sanitize.
+if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+  message(FATAL_ERROR "ROSMILL_SANITIZE needs clang (libFuzzer): configure with -DCMAKE_CXX_COMPILER=clang++-14")
+endif()
+# Every undefined behaviour stops the program (a test fails, the fuzzer keeps the input) instead of being logged.
+# fuzzer-no-link: the coverage feedback libFuzzer steers by, in the libraries; the sanitizer runtime answers its
+# hooks in programs that are not fuzz targets (the gtests, the tool).
+set(ROSMILL_SANITIZERS -fsanitize=address,undefined -fno-sanitize-recover=all)
+add_compile_options(${ROSMILL_SANITIZERS} -fsanitize=fuzzer-no-link -fno-omit-frame-pointer -gline-tables-only)
+add_link_options(${ROSMILL_SANITIZERS})
+# -O1: the sanitizers' recommendation (readable reports, quick builds); assertions stay on.
+set(CMAKE_CXX_FLAGS_RELEASE "-O1")
