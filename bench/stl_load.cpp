@@ -7,20 +7,19 @@
 // each file, which also pays for the fresh pages it writes (costly on this VM class); the median is of the three
 // loads after it, the steady state of a node loading part after part.
 // Usage: bench_stl_load [STL_DIR]
-#include <zlib.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/heap_reuse.hpp"
+#include "rosmill/testing/unpacked.hpp"
 #include "rosmill/testing/wavy_solid.hpp"
 #include "rosmill/io/stl.hpp"
 
@@ -53,19 +52,6 @@ Timing timed(const Load& load) {
   for (int k = 0; k < 3; ++k) t.push_back(seconds());
   std::sort(t.begin(), t.end());
   return {first, t[1]};
-}
-
-// gzip -> plain file, so that the ASCII row times parsing and not inflation.
-std::string unpacked(const std::string& gz, const fs::path& dir) {
-  const fs::path out = dir / fs::path(gz).stem();
-  gzFile in = gzopen(gz.c_str(), "rb");
-  if (!in) throw Error(gz, "cannot open");
-  std::ofstream o(out, std::ios::binary);
-  std::vector<char> buf(1 << 20);
-  int n;
-  while ((n = gzread(in, buf.data(), unsigned(buf.size()))) > 0) o.write(buf.data(), n);
-  gzclose(in);
-  return out.string();
 }
 
 void row(const std::string& name, const std::string& path) {
@@ -114,7 +100,7 @@ int main(int argc, char** argv) {
     std::sort(files.begin(), files.end());
     for (const fs::path& f : files) {
       const std::string name = f.filename().string();
-      row(name, f.extension() == ".gz" ? unpacked(f.string(), tmp) : f.string());
+      row(name, f.extension() == ".gz" ? unpacked(f.string(), tmp.string()) : f.string());
     }
     const fs::path wavy = tmp / "wavy-2M.stl";
     write_stl(wavy.string(), build_mesh(wavy_solid_corners()), false);

@@ -1,44 +1,13 @@
 // rosmill info FILE [--units mm|inch|m] [--json]: the mesh report of an STL, or the summary of a point cloud.
 // Everything printed is in millimetres; --units says what the file's numbers are (default: mm for STL, m for
-// clouds, as CAD and ROS customs have it).
-#include <cstdio>
-#include <iostream>
-#include <nlohmann/json.hpp>
-
+// clouds, as CAD and ROS customs have it). This is rosmill-full's; the `rosmill` front adds the same command
+// without the cloud reader.
 #include "command.hpp"
-#include "rosmill/geometry/mesh_report.hpp"
+#include "info_command.hpp"
 #include "rosmill/io/cloud_io.hpp"
-#include "rosmill/io/stl.hpp"
 
 namespace rosmill::core::cli {
 namespace {
-
-nlohmann::json box_json(const Box3& box) {
-  return {{"min", {box.min.x(), box.min.y(), box.min.z()}}, {"max", {box.max.x(), box.max.y(), box.max.z()}}};
-}
-
-nlohmann::json mesh_info(const std::string& file, const std::string& units) {
-  StlReadOptions options;
-  if (!units.empty()) options.units = parse_units(units, "--units");
-  StlInfo info;
-  const Mesh mesh = read_stl(file, options, &info);
-  const MeshReport r = report(mesh);
-  nlohmann::json j = {{"kind", "mesh"},
-                      {"format", info.ascii ? "ascii" : "binary"},
-                      {"triangles", r.triangles},
-                      {"vertices", r.vertices},
-                      {"bbox", box_json(r.bbox)},
-                      {"closed", r.closed},
-                      {"open_edges", r.open_edges},
-                      {"nonmanifold_edges", r.nonmanifold_edges},
-                      {"inconsistent_edges", r.inconsistent_edges},
-                      {"degenerate", r.degenerate},
-                      {"area", r.area},
-                      {"stored_normal_mismatches", info.stored_normal_mismatches}};
-  if (r.closed) j["volume"] = r.volume;  // a signed-volume sum means nothing for an open surface
-  if (info.ascii) j["solids"] = info.solids;
-  return j;
-}
 
 nlohmann::json cloud_info(const std::string& file, const std::string& units) {
   CloudReadOptions options;
@@ -53,47 +22,7 @@ nlohmann::json cloud_info(const std::string& file, const std::string& units) {
           {"bbox", box_json(cloud.bbox)}};
 }
 
-std::string triple(const nlohmann::json& v) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "%.6g %.6g %.6g", v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
-  return buf;
-}
-
-// The same facts as the JSON, one per line, for a person.
-void print_text(const std::string& file, const nlohmann::json& j) {
-  std::printf("%s: %s (%s)\n", file.c_str(), j["kind"].get<std::string>().c_str(),
-              j["format"].get<std::string>().c_str());
-  const auto& box = j["bbox"];
-  for (const char* key : {"triangles", "vertices", "points", "points_in_file", "dropped_nonfinite", "solids"})
-    if (j.contains(key)) std::printf("  %-26s %zu\n", key, j[key].get<size_t>());
-  std::printf("  %-26s %s\n", "bbox min (mm)", triple(box["min"]).c_str());
-  std::printf("  %-26s %s\n", "bbox max (mm)", triple(box["max"]).c_str());
-  if (j["kind"] != "mesh") return;
-  std::printf("  %-26s %.6g\n", "area (mm^2)", j["area"].get<double>());
-  std::printf("  %-26s %s\n", "closed", j["closed"].get<bool>() ? "yes" : "no");
-  if (j.contains("volume")) std::printf("  %-26s %.6g\n", "volume (mm^3)", j["volume"].get<double>());
-  for (const char* key : {"open_edges", "nonmanifold_edges", "inconsistent_edges", "degenerate",
-                          "stored_normal_mismatches"})
-    std::printf("  %-26s %zu\n", key, j[key].get<size_t>());
-}
-
-CommandRegistration reg([](CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "print the report of a mesh (STL) or a point cloud (PCD, PLY)");
-  auto file = std::make_shared<std::string>();
-  auto units = std::make_shared<std::string>();
-  auto json = std::make_shared<bool>(false);
-  cmd->add_option("FILE", *file, "STL (also .stl.gz), PCD or PLY file")->required();
-  cmd->add_option("--units", *units, "units of the file's numbers: mm, inch or m (default mm for STL, m for clouds)")
-      ->check(CLI::IsMember({"mm", "inch", "in", "m"}));
-  cmd->add_flag("--json", *json, "print one JSON object");
-  cmd->callback([file, units, json] {
-    const nlohmann::json j = is_cloud_file(*file) ? cloud_info(*file, *units) : mesh_info(*file, *units);
-    if (*json)
-      std::cout << j.dump() << std::endl;
-    else
-      print_text(*file, j);
-  });
-});
+CommandRegistration reg([](CLI::App& app) { add_info_command(app, cloud_info); });
 
 }  // namespace
 }  // namespace rosmill::core::cli

@@ -1,10 +1,8 @@
-// rosmill: the core pipeline from the command line, no ROS master needed.
-#include <cstdio>
-#include <exception>
-
+// rosmill-full: every command of the rosmill tool (the `rosmill` front runs `info` on a mesh itself and hands
+// everything else to this program), the core pipeline from the command line, no ROS master needed.
 #include "command.hpp"
-#include "rosmill/error.hpp"
 #include "rosmill/heap_reuse.hpp"
+#include "run_cli.hpp"
 
 namespace rosmill::core::cli {
 std::vector<CommandSetup>& command_setups() {
@@ -15,19 +13,7 @@ std::vector<CommandSetup>& command_setups() {
 
 int main(int argc, char** argv) {
   rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
-  CLI::App app{"rosmill: from an STL part or a 3D scan to a milling program"};
-  app.require_subcommand(1);
+  CLI::App app{rosmill::core::cli::kAppDescription};
   for (auto& setup : rosmill::core::cli::command_setups()) setup(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const rosmill::core::Error& e) {
-    std::fprintf(stderr, "rosmill: error: %s\n", e.what());
-    return 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "rosmill: error: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  return rosmill::core::cli::run_cli(app, argc, argv);
 }

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "cloud_format.hpp"
 #include "cloud_header_check.hpp"
 #include "file_bytes.hpp"
 #include "rosmill/error.hpp"
@@ -19,39 +20,6 @@
 
 namespace rosmill::core {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-  const size_t slash = path.find_last_of('/');
-  const size_t dot = path.find_last_of('.');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
-// "pcd" or "ply" from the file's first bytes; empty when they are neither.
-std::string format_by_content(const std::string& path) {
-  char head[16] = {};
-  // Only a regular file is opened here (a FIFO would block the open): anything else is refused by the reader.
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return "";
-  std::ifstream in(path, std::ios::binary);
-  in.read(head, sizeof head);
-  const std::string start(head, static_cast<size_t>(in.gcount()));
-  if (start.rfind("ply\n", 0) == 0 || start.rfind("ply\r\n", 0) == 0) return "ply";
-  if (start.rfind("# .PCD", 0) == 0 || start.rfind("VERSION", 0) == 0 || start.rfind("FIELDS", 0) == 0)
-    return "pcd";
-  return "";
-}
-
-// "pcd" or "ply" from the file's first bytes, falling back on the extension.
-std::string cloud_format(const std::string& path) {
-  const std::string by_content = format_by_content(path);
-  if (!by_content.empty()) return by_content;
-  const std::string ext = lower_extension(path);
-  if (ext == "pcd" || ext == "ply") return ext;
-  throw Error(path, "not a point cloud file: neither PCD nor PLY (by content and extension)");
-}
 
 const pcl::PCLPointField* find_field(const pcl::PCLPointCloud2& cloud, const char* name) {
   for (const auto& f : cloud.fields)
@@ -115,16 +83,10 @@ void read_blob(const std::string& path, const std::string& format, pcl::PCLPoint
 
 }  // namespace
 
-bool is_cloud_path(const std::string& path) {
-  const std::string ext = lower_extension(path);
-  return ext == "pcd" || ext == "ply";
-}
-
-bool is_cloud_file(const std::string& path) { return is_cloud_path(path) || !format_by_content(path).empty(); }
 
 PointCloud read_cloud(const std::string& path, const CloudReadOptions& options, CloudInfo* info) {
   check_input_file(path);
-  const std::string format = cloud_format(path);
+  const std::string format = io::cloud_format(path);
   {
     const io::FileBytes bytes(path);
     if (bytes.gzipped()) throw Error(path, "compressed point cloud files are not supported (gunzip it first)");

@@ -1,6 +1,8 @@
 #include "rosmill/plan/mesh_surface.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 
 #include <tbb/blocked_range.h>
@@ -10,6 +12,7 @@ namespace rosmill::core {
 namespace {
 
 constexpr uint32_t kLeafSize = 4;
+constexpr double kNoStop = std::numeric_limits<double>::infinity();
 
 // Which corners and edges each face tests: a shared corner or edge is tested by one face only.
 std::vector<unsigned char> ownership(const Mesh& mesh) {
@@ -28,6 +31,14 @@ std::vector<unsigned char> ownership(const Mesh& mesh) {
       if (e.face_count == 0 || mesh.edge_faces[e.first_face] == f) own[f] |= 8u << i;
     }
   return own;
+}
+
+// Squared horizontal distance from (x, y) to an XY box (a tree node's or a triangle's).
+template <class Box>
+double box_distance_sq(const Box& b, double x, double y) {
+  const double dx = std::max({0.0, b.xmin - x, x - b.xmax});
+  const double dy = std::max({0.0, b.ymin - y, y - b.ymax});
+  return dx * dx + dy * dy;
 }
 
 }  // namespace
@@ -96,19 +107,25 @@ void MeshSurface::build(uint32_t node, uint32_t begin, uint32_t end, const std::
   build(right, mid, end, boxes, order);
 }
 
-Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint32_t& hint) const {
-  double best = kNoContact;
+// Branch and bound from `best` up: returns the highest contact above `best` (or `best` when none is), stopping
+// at the first one above `enough`. A drop starts from nothing and never stops early; the question "is the tip
+// held above z?" starts from z itself, so that every box whose highest point cannot lift the cutter above z is
+// never opened, and stops at the first triangle that does.
+double MeshSurface::highest_contact(const CutterProfile& cp, double x, double y, double best, double enough,
+                                    uint32_t& hint) const {
   uint32_t winner = hint;
-  if (hint < tris_.size()) best = triangle_contact(cp, x, y, tris_[hint]);
-  if (nodes_.empty()) return {bounds_.min.z(), false};
+  if (hint < tris_.size()) {
+    const double z = triangle_contact(cp, x, y, tris_[hint]);
+    if (z > best) best = z;
+    if (best > enough) return best;
+  }
+  if (nodes_.empty()) return best;
 
   // Upper bound of any contact inside a box: its top minus the cutter's height at the nearest distance. Boxes
   // and triangles are culled by the same reach as the contacts themselves.
   const double reach2 = cp.reach_sq(x, y);
   auto bound = [&](const Node& nd) {
-    const double dx = std::max({0.0, nd.xmin - x, x - nd.xmax});
-    const double dy = std::max({0.0, nd.ymin - y, y - nd.ymax});
-    const double d2 = dx * dx + dy * dy;
+    const double d2 = box_distance_sq(nd, x, y);
     if (d2 > reach2) return kNoContact;
     return nd.zmax - cp.height_sq(std::min(d2, cp.R2));
   };
@@ -128,13 +145,12 @@ Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint3
       for (uint32_t i = nd.first; i < nd.first + nd.count; ++i) {
         const ContactTriangle& t = tris_[i];
         if (t.zmax <= best) continue;
-        const double dx = std::max({0.0, t.xmin - x, x - t.xmax});
-        const double dy = std::max({0.0, t.ymin - y, y - t.ymax});
-        const double d2 = dx * dx + dy * dy;
+        const double d2 = box_distance_sq(t, x, y);
         if (d2 > reach2 || t.zmax - cp.height_sq(std::min(d2, cp.R2)) <= best) continue;
         const double z = triangle_contact(cp, x, y, t);
         if (z > best) best = z, winner = i;
       }
+      if (best > enough) break;
       continue;
     }
     const uint32_t l = e.node + 1, r = nd.first;
@@ -149,8 +165,84 @@ Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint3
     }
   }
   hint = winner;
+  return best;
+}
+
+Drop MeshSurface::drop_hinted(const CutterProfile& cp, double x, double y, uint32_t& hint) const {
+  const double best = highest_contact(cp, x, y, kNoContact, kNoStop, hint);
   if (best == kNoContact) return {bounds_.min.z(), false};
   return {best, true};
+}
+
+bool MeshSurface::held_above_hinted(const CutterProfile& cp, double x, double y, double z, uint32_t& hint) const {
+  return highest_contact(cp, x, y, z, z, hint) > z;
+}
+
+// The probe of a mesh: at each focus, the triangles whose box lies within the cutter's reach of some point of the
+// focus disc and whose top, less the cutter's height at their nearest possible distance, is above z (one walk of
+// the tree); a question then runs the culls and the contact over those, as the tree's leaves would.
+class MeshLevelProbe : public LevelProbe {
+ public:
+  MeshLevelProbe(const MeshSurface& mesh, const Cutter& cutter, double z) : m_(mesh), cp_(cutter), z_(z) {}
+
+  void focus(const Vec2& centre, double radius) override {
+    near_.clear();
+    if (m_.nodes_.empty()) return;
+    const double x = centre.x(), y = centre.y();
+    radius = radius * (1 + 1e-9) + 1e-9;  // a question a rounding beyond the disc is still answered in full
+    // The widest reach of any question in the disc (reach_sq grows with the coordinates' size).
+    const double reach = radius + std::sqrt(cp_.reach_sq(std::abs(x) + radius, std::abs(y) + radius));
+    auto bound = [&](const auto& b) {
+      const double d2 = box_distance_sq(b, x, y);
+      if (d2 > reach * reach) return kNoContact;
+      const double near = std::max(0.0, std::sqrt(d2) - radius);
+      return b.zmax - cp_.height_sq(std::min(near * near, cp_.R2));
+    };
+    uint32_t stack[128];
+    int top = 0;
+    if (bound(m_.nodes_[0]) > z_) stack[top++] = 0;
+    while (top > 0) {
+      const uint32_t id = stack[--top];
+      const MeshSurface::Node& nd = m_.nodes_[id];
+      if (nd.count > 0) {
+        for (uint32_t i = nd.first; i < nd.first + nd.count; ++i)
+          if (bound(m_.tris_[i]) > z_) near_.push_back(i);
+        continue;
+      }
+      const uint32_t l = id + 1, r = nd.first;
+      if (bound(m_.nodes_[r]) > z_) stack[top++] = r;
+      if (bound(m_.nodes_[l]) > z_) stack[top++] = l;
+    }
+  }
+
+  bool held_above(double x, double y) override {
+    const double reach2 = cp_.reach_sq(x, y);
+    for (size_t k = 0; k < near_.size(); ++k) {
+      const ContactTriangle& t = m_.tris_[near_[k]];
+      const double d2 = box_distance_sq(t, x, y);
+      if (d2 > reach2 || t.zmax - cp_.height_sq(std::min(d2, cp_.R2)) <= z_) continue;
+      if (triangle_contact(cp_, x, y, t) > z_) {
+        std::swap(near_[0], near_[k]);  // the next question, close by, is likely held by the same triangle
+        return true;
+      }
+    }
+    return false;
+  }
+
+ private:
+  const MeshSurface& m_;
+  CutterProfile cp_;
+  double z_;
+  std::vector<uint32_t> near_;
+};
+
+std::unique_ptr<LevelProbe> MeshSurface::level_probe(const Cutter& cutter, double z) const {
+  return std::make_unique<MeshLevelProbe>(*this, cutter, z);
+}
+
+bool MeshSurface::held_above(const Cutter& cutter, double x, double y, double z) const {
+  uint32_t hint = kNone;
+  return held_above_hinted(CutterProfile(cutter), x, y, z, hint);
 }
 
 Drop MeshSurface::drop(const Cutter& cutter, double x, double y) const {

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <unordered_map>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include "rosmill/plan/raster.hpp"
 
 namespace rosmill::core {
@@ -37,28 +40,35 @@ HeightGrid height_grid(const Surface& s, const PlanFrame& f, double step) {
   return g;
 }
 
+// The tip height t such that a drop d is above the level (d + allowance > z + kAbove, as cl_height adds it)
+// exactly when d > t: the surface is then asked "held above t?", which it answers without the exact drop.
+double held_threshold(double z, double allowance) {
+  const double target = z + kAbove;
+  double t = target - allowance;
+  while (t + allowance > target) t = std::nextafter(t, -HUGE_VAL);
+  while (std::nextafter(t, HUGE_VAL) + allowance <= target) t = std::nextafter(t, HUGE_VAL);
+  return t;
+}
+
 class LevelContour {
  public:
-  LevelContour(const Surface& s, const PlanFrame& f, const HeightGrid& g, double z) : s_(s), f_(f), g_(g), z_(z) {}
+  LevelContour(const Surface& s, const PlanFrame& f, const HeightGrid& g, double z)
+      : s_(s), f_(f), g_(g), z_(z), floor_in_(material(f.part.min.z() + f.allowance)),
+        held_z_(held_threshold(z, f.allowance)),
+        probes_([this] { return s_.level_probe(f_.drop_cutter, held_z_); }) {}
 
+  // The chains of crossed grid edges are traced first; the crossings (a bisection each) and then the chords'
+  // refinement are independent, and run on both cores.
   std::vector<Loop> loops() {
     link_cells();
-    std::vector<Loop> out;
-    std::unordered_map<uint64_t, bool> used;
-    for (const auto& [edge, nb] : adj_) {
-      if (used.count(edge)) continue;
-      Loop loop;
-      uint64_t prev = kNoEdge, cur = edge;
-      while (cur != kNoEdge && !used.count(cur)) {
-        used[cur] = true;
-        loop.push_back(crossing(cur));
-        const auto& n = adj_.at(cur);
-        const uint64_t next = n[0] != prev ? n[0] : n[1];
-        prev = cur;
-        cur = next;
-      }
-      if (loop.size() >= 3) out.push_back(refine(loop));
-    }
+    std::vector<uint64_t> edges;      // the chains one after another
+    std::vector<size_t> first = {0};  // chain c is edges[first[c], first[c + 1])
+    trace_chains(edges, first);
+    std::vector<Vec3> points(edges.size());
+    tbb::parallel_for(size_t(0), edges.size(), [&](size_t k) { points[k] = crossing(edges[k]); });
+    std::vector<Loop> out(first.size() - 1);
+    for (size_t c = 0; c + 1 < first.size(); ++c)
+      out[c] = refine(Loop(points.begin() + first[c], points.begin() + first[c + 1]));
     return out;
   }
 
@@ -66,8 +76,34 @@ class LevelContour {
   static constexpr uint64_t kNoEdge = ~uint64_t(0);
 
   bool material(double h) const { return h > z_ + kAbove; }
-  bool material_at(const Vec2& p) const { return material(cl_height(s_, f_, p.x(), p.y())); }
+  bool material_at(const Vec2& p) const { return floor_in_ || s_.held_above(f_.drop_cutter, p.x(), p.y(), held_z_); }
+  // The same through this thread's probe, focused where the questions are.
+  bool material_at(LevelProbe& probe, const Vec2& p) const { return floor_in_ || probe.held_above(p.x(), p.y()); }
+  LevelProbe& probe_at(const Vec2& centre, double radius) const {
+    LevelProbe& probe = *probes_.local();
+    if (!floor_in_) probe.focus(centre, radius);
+    return probe;
+  }
   bool node_in(int i, int j) const { return material(g_.h[size_t(j) * g_.nx + i]); }
+
+  // Follows the links from each edge not yet used: one chain of edge ids per loop of three or more crossings.
+  void trace_chains(std::vector<uint64_t>& edges, std::vector<size_t>& first) const {
+    std::unordered_map<uint64_t, bool> used;
+    for (const auto& [edge, nb] : adj_) {
+      if (used.count(edge)) continue;
+      uint64_t prev = kNoEdge, cur = edge;
+      while (cur != kNoEdge && !used.count(cur)) {
+        used[cur] = true;
+        edges.push_back(cur);
+        const auto& n = adj_.at(cur);
+        const uint64_t next = n[0] != prev ? n[0] : n[1];
+        prev = cur;
+        cur = next;
+      }
+      if (edges.size() - first.back() >= 3) first.push_back(edges.size());
+      else edges.resize(first.back());
+    }
+  }
 
   // Edge ids: 2k for the edge from node k to k + 1 (along x), 2k + 1 from k to k + nx (along y).
   uint64_t edge_id(int i, int j, bool along_y) const { return 2 * (uint64_t(j) * g_.nx + i) + (along_y ? 1 : 0); }
@@ -114,24 +150,27 @@ class LevelContour {
     const Vec2 a = g_.node(i, j), b = (id & 1) ? g_.node(i, j + 1) : g_.node(i + 1, j);
     Vec2 in = a, out = b;
     if (!node_in(i, j)) std::swap(in, out);
-    const Vec2 p = bisect(in, out);
+    const Vec2 p = bisect(probe_at(0.5 * (a + b), 0.5 * g_.step), in, out);
     return Vec3(p.x(), p.y(), z_);
   }
 
-  Vec2 bisect(Vec2 in, Vec2 out) const {
+  Vec2 bisect(LevelProbe& probe, Vec2 in, Vec2 out) const {
     while ((in - out).norm() > 0.05 * f_.tolerance) {
       const Vec2 m = 0.5 * (in + out);
-      (material_at(m) ? in : out) = m;
+      (material_at(probe, m) ? in : out) = m;
     }
     return out;
   }
 
   // Inserts contour points until every chord's midpoint is within half the tolerance of the contour.
   Loop refine(const Loop& loop) const {
+    std::vector<Loop> inserted(loop.size());
+    tbb::parallel_for(size_t(0), loop.size(),
+                      [&](size_t i) { split(loop[i], loop[(i + 1) % loop.size()], 0, inserted[i]); });
     Loop out;
     for (size_t i = 0; i < loop.size(); ++i) {
       out.push_back(loop[i]);
-      split(loop[i], loop[(i + 1) % loop.size()], 0, out);
+      out.insert(out.end(), inserted[i].begin(), inserted[i].end());
     }
     drop_collinear(out);
     return out;
@@ -145,12 +184,13 @@ class LevelContour {
     const Vec2 n(-d.y() / len, d.x() / len);
     const double reach = std::min(0.5 * len, g_.step);
     const Vec2 p = m - reach * n, q = m + reach * n;
-    const bool p_in = material_at(p), q_in = material_at(q), m_in = material_at(m);
+    LevelProbe& probe = probe_at(m, reach);
+    const bool p_in = material_at(probe, p), q_in = material_at(probe, q), m_in = material_at(probe, m);
     Vec2 c;
-    if (m_in && !p_in) c = bisect(m, p);
-    else if (m_in && !q_in) c = bisect(m, q);
-    else if (!m_in && p_in) c = bisect(p, m);
-    else if (!m_in && q_in) c = bisect(q, m);
+    if (m_in && !p_in) c = bisect(probe, m, p);
+    else if (m_in && !q_in) c = bisect(probe, m, q);
+    else if (!m_in && p_in) c = bisect(probe, p, m);
+    else if (!m_in && q_in) c = bisect(probe, q, m);
     else return;
     // A free midpoint close enough to the contour needs nothing; a midpoint in material always moves out.
     if (!m_in && (c - m).norm() <= 0.5 * f_.tolerance) return;
@@ -164,6 +204,9 @@ class LevelContour {
   const PlanFrame& f_;
   const HeightGrid& g_;
   double z_;
+  bool floor_in_;   // the part's floor (plus allowance) is above the level: everything is material
+  double held_z_;   // held_threshold of the level
+  mutable tbb::enumerable_thread_specific<std::unique_ptr<LevelProbe>> probes_;  // one per thread
   std::unordered_map<uint64_t, std::array<uint64_t, 2>> adj_;
 };
 

@@ -1,8 +1,10 @@
 // Waterline: closed CL loops at the exact level, clear of the part (the independent reference over all
 // triangles at every loop point and every 0.1 mm along the moves), and sane at the height of a flat face:
-// pycam-textbox.stl at z = -5.000, where OpenCAMLib returns hundreds of junk loops.
+// pycam-textbox.stl at z = -5.000, where OpenCAMLib returns hundreds of junk loops. The loops from the mesh's own
+// answers to "held above the level?" are those of its exact drops.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "rosmill/cutter/tool_table.hpp"
@@ -109,5 +111,70 @@ TEST(PlanWaterline, ClosedAndClearOnModelsAndPrimitives) {
     }
     EXPECT_GE(loops, 2u) << c.name;
     expect_no_gouge(w.tp, c.mesh, c.allowance, c.name);
+  }
+}
+
+namespace {
+
+// The mesh's drops only: held_above and the level probe are Surface's defaults, which drop the cutter and
+// compare, the way the waterline asked before the mesh answered those questions itself.
+class DropsOnly : public Surface {
+ public:
+  explicit DropsOnly(const MeshSurface& s) : s_(s) {}
+  Box3 bounds() const override { return s_.bounds(); }
+  Drop drop(const Cutter& c, double x, double y) const override { return s_.drop(c, x, y); }
+  void drop_many(const Cutter& c, const Vec2* xy, size_t n, Drop* out) const override { s_.drop_many(c, xy, n, out); }
+
+ private:
+  const MeshSurface& s_;
+};
+
+double distance_to_loops(const Vec3& p, const std::vector<Loop>& loops) {
+  double best = 1e300;
+  for (const Loop& loop : loops)
+    for (size_t k = 0; k < loop.size(); ++k) {
+      const Vec3 &a = loop[k], &b = loop[(k + 1) % loop.size()];
+      const Vec3 ab = b - a;
+      const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+      best = std::min(best, (a + t * ab - p).norm());
+    }
+  return best;
+}
+
+// Hausdorff distance between two sets of closed loops, vertices to the other side's chords, both ways.
+double hausdorff(const std::vector<Loop>& a, const std::vector<Loop>& b) {
+  double d = 0;
+  for (const Loop& loop : a)
+    for (const Vec3& p : loop) d = std::max(d, distance_to_loops(p, b));
+  for (const Loop& loop : b)
+    for (const Vec3& p : loop) d = std::max(d, distance_to_loops(p, a));
+  return d;
+}
+
+}  // namespace
+
+// The mesh answers "is the tip held above the level?" without the exact drop (a bound that starts at the level,
+// triangles gathered once per place): the loops are those of the drops, at OpenCAMLib's three levels.
+TEST(PlanWaterline, LoopsOfTheMeshQuestionsEqualTheLoopsOfTheDrops) {
+  for (const char* file : {"pycam-textbox.stl", "mount_rush.stl", "failedinpycam.stl"}) {
+    const Mesh mesh = read_stl(std::string(ROSMILL_TEST_DATA) + "/" + file);
+    const MeshSurface surface(mesh);
+    PlanParams p;
+    p.tool = default_tool(Cutter::ball(6));
+    p.tolerance = 0.01;
+    WaterlineOptions o;
+    const double zmin = mesh.bbox.min.z(), zmax = mesh.bbox.max.z();
+    for (double f : {0.25, 0.5, 0.75}) o.levels.push_back(zmin + f * (zmax - zmin));
+    std::vector<std::vector<Loop>> fast, drops;
+    waterline_on(surface, p, o, {}, &fast);
+    waterline_on(DropsOnly(surface), p, o, {}, &drops);
+    ASSERT_EQ(fast.size(), drops.size());
+    for (size_t i = 0; i < fast.size(); ++i) {
+      ASSERT_EQ(fast[i].size(), drops[i].size()) << file << " level " << o.levels[i];
+      ASSERT_FALSE(fast[i].empty()) << file << " level " << o.levels[i];
+      const double h = hausdorff(fast[i], drops[i]);
+      EXPECT_LE(h, p.tolerance) << file << " level " << o.levels[i];
+      std::printf("  %s z %.3f: %zu loops, Hausdorff distance %.3g mm\n", file, o.levels[i], fast[i].size(), h);
+    }
   }
 }

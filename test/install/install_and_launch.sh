@@ -16,7 +16,7 @@ trap cleanup EXIT
 fail() { echo "install test: FAILED: $*" >&2; exit 1; }
 
 cmake --install "$build" --prefix "$prefix" >"$work/install.log" || { cat "$work/install.log"; fail "cmake --install"; }
-for f in bin/rosmill lib/rosmill/gcode_bridge lib/rosmill/toolpath_planner lib/rosmill/stl_loader \
+for f in bin/rosmill bin/rosmill-full lib/rosmill/gcode_bridge lib/rosmill/toolpath_planner lib/rosmill/stl_loader \
          share/rosmill/package.xml share/rosmill/launch/bridge.launch share/rosmill/launch/demo.launch \
          share/rosmill/config/machine.yaml share/rosmill/config/tools.yaml share/rosmill/config/rosmill.rviz \
          include/rosmill/gcode/prepare_program.hpp share/rosmill/msg/ProgramStatus.msg \

@@ -19,13 +19,20 @@ class MeshSurface : public Surface {
   Drop drop(const Cutter& cutter, double x, double y) const override;
   // Parallel over both cores (TBB); consecutive points reuse the previous winner as the first bound.
   void drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const override;
+  // Opens only the boxes that could hold the tip above z and stops at the first triangle that does.
+  bool held_above(const Cutter& cutter, double x, double y, double z) const override;
+  // Gathers at each focus the triangles that could hold the tip above z there; each question then tests those
+  // only, the one that held last first.
+  std::unique_ptr<LevelProbe> level_probe(const Cutter& cutter, double z) const override;
 
   size_t triangle_count() const { return tris_.size(); }
 
   // Drop with a hint: the index of a triangle likely to hold the contact (updated to the winner).
   Drop drop_hinted(const CutterProfile& cp, double x, double y, uint32_t& hint) const;
+  bool held_above_hinted(const CutterProfile& cp, double x, double y, double z, uint32_t& hint) const;
 
  private:
+  friend class MeshLevelProbe;
   struct Node {
     double xmin, ymin, xmax, ymax, zmax;
     uint32_t first;  // leaf: first triangle; inner: index of the right child (the left is the next node)
@@ -34,6 +41,8 @@ class MeshSurface : public Surface {
   struct FaceBox {
     double xmin, xmax, ymin, ymax, zmax;
   };
+  double highest_contact(const CutterProfile& cp, double x, double y, double best, double enough,
+                         uint32_t& hint) const;
   void build(uint32_t node, uint32_t begin, uint32_t end, const std::vector<FaceBox>& boxes,
              std::vector<uint32_t>& order);
 

@@ -5,6 +5,7 @@
 // Cloud Datasets"), and where the input asks for no cut at all (missing data a cloud's hole policy skips).
 #pragma once
 #include <cstddef>
+#include <memory>
 
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/types.hpp"
@@ -22,6 +23,17 @@ struct SweepHit {
   double at = 0.0;     // where along the move that is (0 at a, 1 at b)
 };
 
+// Many "held above z?" questions at one height, asked in bursts near one place each (a waterline bisects along a
+// grid edge, then refines a chord): a surface may gather once per place what can answer them there.
+class LevelProbe {
+ public:
+  virtual ~LevelProbe() = default;
+  // The questions until the next focus lie within `radius` of `centre`.
+  virtual void focus(const Vec2& centre, double radius) = 0;
+  // Surface::held_above(cutter, x, y, z) for the probe's cutter and height, (x, y) within the focus.
+  virtual bool held_above(double x, double y) = 0;
+};
+
 class Surface {
  public:
   virtual ~Surface() = default;
@@ -31,6 +43,12 @@ class Surface {
   virtual Drop drop(const Cutter& cutter, double x, double y) const = 0;
   // Batch form: z for n points; the default loops over drop(). Implementations parallelise.
   virtual void drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const;
+  // True when the surface touches the cutter at (x, y) and holds its tip above z: drop(...) touched at a height
+  // above z, to the last bit. A question a surface can answer without finding the exact contact (a waterline
+  // asks it many times per loop point); the default drops the cutter.
+  virtual bool held_above(const Cutter& cutter, double x, double y, double z) const;
+  // A probe for held_above at one height, used by one thread at a time; the default asks held_above.
+  virtual std::unique_ptr<LevelProbe> level_probe(const Cutter& cutter, double z) const;
   // The deepest the surface goes into the cutter along the straight move from tip a to tip b when deeper than
   // `floor`, else {floor, 0}. The default compares the drop with the tip's height every R/16 (0.01 to 0.05 mm)
   // along the move, which is what a mesh answers; a cloud answers exactly from its points.
