@@ -106,7 +106,8 @@ int main(int argc, char** argv) {
   };
   const File files[] = {{"wavy-2M (binary)", wavy.string(), 4.0},
                         {"demo2 (ASCII)", demo2, 4.0},
-                        {"counter.unitsmm (binary)", std::string(ROSMILL_SHARED_DATA) + "/stl/counter.unitsmm.STL", 1.0},
+                        {"counter.unitsmm (binary)",
+                         std::string(ROSMILL_SHARED_DATA) + "/stl/counter.unitsmm.STL", 1.0},
                         {"cube, start-up (binary)", cube.string(), 0.0}};
   std::printf("rosmill %s: %zu shared libraries (ldd)\n", cli.c_str(), shared_libraries(cli));
   std::printf("whole process, wall clock, best of %d; faults = minor page faults of the child\n", runs);
