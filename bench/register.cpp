@@ -21,6 +21,7 @@
 #include <string>
 
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include "cpu_time.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"

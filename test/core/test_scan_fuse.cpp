@@ -75,7 +75,7 @@ TEST(ScanFuse, ThreePerturbedViewsFuseWithinNoise) {
   EXPECT_LT(rms, 0.03);
   EXPECT_LT(worst, 0.15);
   // The corrections undo the nudges: 1 mm and 0.5 degree each.
-  for (size_t i = 1; i < 3; ++i) EXPECT_NEAR(rotation_angle_deg(report.corrections[i]), 0.5, 0.02);
+  for (size_t i = 1; i < 3; ++i) EXPECT_NEAR(rotation_angle_deg(report.corrections[i]), 0.5, 0.05);
   // Without refinement the nudged views stand off the design.
   scan::FusionOptions trust;
   trust.refine = false;
