@@ -24,7 +24,8 @@ constexpr double kSlack = 1.1;
 // backwards, joined by the step across from one line's end to the next one's start.
 std::vector<Vec2> zigzag_route(const std::vector<ScanLine>& lines, double step) {
   std::vector<Vec2> route;
-  auto walk = [&](const Vec2& a, const Vec2& b) {
+  // By value: `a` may be route.back(), which push_back moves (AddressSanitizer found the reference read after it).
+  auto walk = [&](const Vec2 a, const Vec2 b) {
     const size_t n = std::max<size_t>(1, size_t(std::ceil((b - a).norm() / step)));
     for (size_t i = route.empty() ? 0 : 1; i <= n; ++i) route.push_back(a + (b - a) * (double(i) / double(n)));
   };
