@@ -22,26 +22,6 @@ struct InspectArgs : ScanInputs {
   bool registered = false;
 };
 
-nlohmann::ordered_json deviation_json(const scan::Deviation& d) {
-  return {{"mm", d.distance}, {"at", {d.place.x(), d.place.y(), d.place.z()}}};
-}
-
-nlohmann::ordered_json inspection_json(const scan::InspectionReport& r, const InspectArgs& a) {
-  nlohmann::ordered_json j;
-  if (!a.registered) j["registration"] = registration_json(r.registration);
-  j["points"] = r.deviations.size();
-  j["mean_mm"] = r.mean;
-  j["rms_mm"] = r.rms;
-  j["largest_excess"] = deviation_json(r.largest_excess);
-  j["largest_deficit"] = deviation_json(r.largest_deficit);
-  j["tolerance_mm"] = a.tolerance;
-  j["within_tolerance"] = r.within_tolerance;
-  j["above_tolerance"] = r.above_tolerance;
-  j["below_tolerance"] = r.below_tolerance;
-  j["histogram"] = {{"low_mm", r.histogram_low}, {"bin_mm", r.bin_width}, {"counts", r.histogram}};
-  return j;
-}
-
 // The scan seen from above (+x right, +y up), each pixel in the colour band of its point furthest from the design
 // (the verifier's bands: reds below the design, blues above), the legend beside it.
 void write_image(const std::string& path, const scan::InspectionReport& r, double tolerance) {
@@ -95,7 +75,7 @@ CommandRegistration reg([](CLI::App& app) {
     }
     if (!a->image.empty()) write_image(a->image, r, a->tolerance);
     if (a->json) {
-      std::cout << inspection_json(r, *a).dump() << std::endl;
+      std::cout << scan::inspection_json(r, a->tolerance, a->registered).dump() << std::endl;
       return;
     }
     if (!a->registered) std::cout << scan::format_registration(r.registration);

@@ -1,5 +1,5 @@
 // rosmill job JOB.yaml [-o DIR] [--json] [--tools FILE] [--presets FILE] [--dialect linuxcnc|grbl]
-//   [--machine FILE | --no-limits]
+//   [--machine FILE | --no-limits] [--work-offset x,y,z[,deg] | --work-offset REGISTRATION.json]
 // Runs the job's operations in order on the in-process stock: each planned, removed from the stock the ones
 // before left, and with -o written through the checked program pipeline: one program per setup (DIR/NN_setup_S.ngc,
 // tool changes between operations), or one per operation with --per-operation (DIR/NN_NAME.ngc). Prints per operation
@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "config_file.hpp"
+#include "work_offset_option.hpp"
 #include "rosmill/job/run_job.hpp"
 
 namespace rosmill::core::cli {
@@ -18,6 +19,7 @@ namespace {
 struct JobArgs {
   std::string file, out, tools, presets, dialect = "linuxcnc", machine;
   bool json = false, no_limits = false, per_operation = false;
+  WorkOffsetArgs work_offset;
 };
 
 void run(const JobArgs& a) {
@@ -30,6 +32,7 @@ void run(const JobArgs& a) {
   o.out_dir = a.out;
   o.per_operation = a.per_operation;
   o.dialect = a.dialect;
+  o.work_offset = work_offset_of(a.work_offset);
   if (!a.out.empty()) o.checks.machine = machine_to_check(a.machine, a.no_limits);
   // The machine's accelerations time the moves and its clearance over the stock is what links keep over it,
   // whether or not programs are written (with --no-limits, when there is a machine file).
@@ -73,6 +76,7 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--dialect", a->dialect, "linuxcnc or grbl")->capture_default_str();
   cmd->add_option("--machine", a->machine, "machine limits the programs are checked against");
   cmd->add_flag("--no-limits", a->no_limits, "write the programs without checking the machine's limits");
+  add_work_offset_option(cmd, a->work_offset);
   cmd->callback([a] { run(*a); });
 });
 

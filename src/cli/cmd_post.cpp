@@ -5,6 +5,7 @@
 
 #include "command.hpp"
 #include "config_file.hpp"
+#include "work_offset_option.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
@@ -18,6 +19,7 @@ struct PostArgs {
   std::string coolant = "flood";
   double stock_top = NAN;
   bool verify = false, no_limits = false;
+  WorkOffsetArgs work_offset;
 };
 
 gcode::Coolant parse_coolant(const std::string& s) {
@@ -47,6 +49,7 @@ void run(const PostArgs& a) {
   gcode::PostOptions o = a.options;
   o.coolant = parse_coolant(a.coolant);
   if (o.title.empty()) o.title = a.input;
+  o.work_offset = work_offset_of(a.work_offset);
   const Job job = read_toolpath_file(a.input);
   gcode::ProgramChecks checks;
   checks.machine = machine_to_check(a.machine, a.no_limits);
@@ -88,6 +91,7 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--stock-top", a->stock_top, "stock top z for the rapid clearance check (default: highest cut)");
   cmd->add_flag("--verify", a->verify, "run LinuxCNC's rs274 on the program and compare its moves with the toolpath");
   cmd->add_option("--map", a->map, "write the line -> (toolpath, pass, move) map as JSON");
+  add_work_offset_option(cmd, a->work_offset);
   cmd->callback([a] { run(*a); });
 });
 

@@ -1,5 +1,5 @@
 // What `rosmill register` and `rosmill inspect` share: the design and the scan read in their units, the
-// registration's thresholds as options, the result as JSON.
+// registration's thresholds as options.
 #pragma once
 #include <CLI/CLI.hpp>
 #include <memory>
@@ -9,6 +9,7 @@
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/scan/design_registration.hpp"
+#include "rosmill/scan/report_json.hpp"
 
 namespace rosmill::core::cli {
 
@@ -44,28 +45,6 @@ inline void add_scan_inputs(CLI::App* cmd, ScanInputs& a) {
   cmd->add_flag("--json", a.json, "print one JSON object");
 }
 
-inline nlohmann::ordered_json matrix_json(const Eigen::Matrix4d& t) {
-  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-  for (int i = 0; i < 4; ++i) rows.push_back({t(i, 0), t(i, 1), t(i, 2), t(i, 3)});
-  return rows;
-}
-
-inline nlohmann::ordered_json registration_json(const scan::RegistrationResult& r) {
-  nlohmann::ordered_json j;
-  j["transform"] = matrix_json(r.transform);
-  j["rms"] = r.rms;
-  j["inlier_share"] = r.inlier_share;
-  j["overlap"] = r.overlap;
-  j["ambiguous"] = r.ambiguous;
-  j["ambiguity"] = r.ambiguity;
-  j["alternatives"] = nlohmann::ordered_json::array();
-  for (const auto& a : r.alternatives) j["alternatives"].push_back(matrix_json(a));
-  j["translation_sigma_mm"] = std::isfinite(r.translation_sigma) ? nlohmann::ordered_json(r.translation_sigma) : nullptr;
-  j["rotation_sigma_deg"] = std::isfinite(r.rotation_sigma_deg) ? nlohmann::ordered_json(r.rotation_sigma_deg) : nullptr;
-  j["candidates"] = r.candidates;
-  j["scan_points_used"] = r.scan_points_used;
-  j["seconds"] = r.global_seconds + r.fine_seconds;
-  return j;
-}
+using scan::registration_json;
 
 }  // namespace rosmill::core::cli

@@ -27,8 +27,10 @@ std::vector<std::string> resume_preamble(const std::vector<std::string>& program
   // clear the part (unless given).
   gcode::Interpreter reader;
   double highest = -INFINITY;
+  std::vector<std::string> offsets;  // coordinate system data the skipped lines set (G10 L2): set it again
   for (size_t i = 0; i + 1 < o.from_line; ++i) {
     reader.read(program[i], i + 1);
+    if (reader.block().has_g(100)) offsets.push_back(program[i]);
     if (reader.moved() && (reader.move().known_to & 4)) highest = std::max(highest, reader.move().to.z());
   }
   const gcode::ModalState& s = reader.state();
@@ -36,6 +38,7 @@ std::vector<std::string> resume_preamble(const std::vector<std::string>& program
   const double safe = std::isnan(o.safe_z) ? highest : o.safe_z;
   const double unit = s.metric ? 1.0 : 1.0 / 25.4;  // positions are scanned in mm; write them in program units
   pre.push_back("(rosmill resume at line " + std::to_string(o.from_line) + ")");
+  pre.insert(pre.end(), offsets.begin(), offsets.end());
   pre.push_back(std::string(s.metric ? "G21" : "G20") + " G" + std::to_string(s.plane) + " " +
                 gcode::work_offset_code(s.work_offset) + " G90 G94");
   if (s.tool > 0) {

@@ -159,6 +159,8 @@ void Interpreter::non_modal_codes() {
       const long l = std::lround(block_.get('L'));
       if (l == 2 || l == 20)
         for (int a = 0; a < 3; ++a) state_.known[a] = state_.known[a] && !block_.has(kAxisLetter[a]);
+      // LinuxCNC's R turns the XY axes: both move.
+      if (l == 2 && block_.has('R')) state_.known[0] = state_.known[1] = false;
       return;
     }
     case 920:

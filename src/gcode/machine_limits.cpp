@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "rosmill/error.hpp"
@@ -73,7 +74,7 @@ MachineLimits parse_machine_limits(const std::string& yaml_text, const std::stri
   }
   if (const YAML::Node w = root["work_offset"]) {
     if (!w.IsSequence() || w.size() != 3) throw Error(path, "field 'work_offset' must be [x, y, z]");
-    for (int a = 0; a < 3; ++a) m.work_offset[a] = number(w[a], "work_offset", path);
+    for (int a = 0; a < 3; ++a) m.work_offset.origin[a] = number(w[a], "work_offset", path);
   }
   if (!root["table_z"]) throw Error(path, "field 'table_z' is missing");
   m.table_z = number(root["table_z"], "table_z", path);
@@ -101,7 +102,24 @@ struct Step {
   CanonMove move;
   double feed, rpm;
   int spindle;
+  WorkOffset offset;  // G54's origin on the machine when the move ran
 };
+
+// G54's origin set by the block, when it is coordinate system data the checker can follow: G10 L2 for G54 (P1, or
+// P0 while G54 is active) with all of X, Y and Z given; R (LinuxCNC's turn about Z) is 0 when absent, as the
+// machine file's G54 has none. Empty for any other block.
+std::optional<WorkOffset> followed_work_offset(const Interpreter& reader) {
+  const Block& b = reader.block();
+  if (!b.has_g(100) || std::lround(b.get('L')) != 2 || !b.has('P')) return std::nullopt;
+  const long p = std::lround(b.get('P'));
+  if (!(p == 1 || (p == 0 && reader.state().work_offset == 54))) return std::nullopt;
+  if (!(b.has('X') && b.has('Y') && b.has('Z'))) return std::nullopt;
+  const double unit = reader.state().metric ? 1.0 : 25.4;
+  WorkOffset w;
+  w.origin = Vec3(b.get('X'), b.get('Y'), b.get('Z')) * unit;
+  w.rotation_deg = b.has('R') ? b.get('R') : 0.0;
+  return w;
+}
 
 // What the checker cannot follow is refused rather than passed unchecked: moves to stored or machine positions,
 // offset changes, and work offsets other than the one the machine file gives. Feeds it cannot check and arcs
@@ -113,8 +131,9 @@ void refuse_unfollowed(const Interpreter& reader, int offset_before, Add&& add) 
     const int g = block.g[k];
     if (g == 280 || g == 300 || g == 530)
       add("unchecked move", g_name(g) + " goes to a stored or machine position the checker cannot follow");
-    if (g == 100 || g == 920 || g == 921 || g == 922 || g == 923)
-      add("unchecked move", g_name(g) + " changes an offset; later positions could not be checked");
+    if ((g == 100 && !followed_work_offset(reader)) || g == 920 || g == 921 || g == 922 || g == 923)
+      add("unchecked move", g_name(g) + " changes an offset; later positions could not be checked" +
+                                (g == 100 ? " (G10 L2 P1 with X, Y and Z, setting G54's origin, is followed)" : ""));
   }
   const ModalState& s = reader.state();
   if (s.work_offset != 54 && s.work_offset != offset_before)
@@ -147,6 +166,34 @@ void move_extent(const CanonMove& m, double lo[3], double hi[3], bool any[3]) {
   }
 }
 
+// The move's extent in machine coordinates: its program extent through the work offset. Turned, the extent's
+// corners are turned (for an arc a little more than it sweeps: the check errs on the safe side); an axis is known
+// in the machine only when every program axis it mixes is known.
+void machine_extent(const CanonMove& m, const WorkOffset& w, double lo[3], double hi[3], bool any[3]) {
+  move_extent(m, lo, hi, any);
+  if (w.rotation_deg != 0.0 && (any[0] || any[1])) {
+    const bool xy = any[0] && any[1];
+    double mlo[2] = {INFINITY, INFINITY}, mhi[2] = {-INFINITY, -INFINITY};
+    if (xy)
+      for (int c = 0; c < 4; ++c) {
+        const Vec3 corner = w.to_machine(Vec3(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], 0.0)) - w.origin;
+        for (int a = 0; a < 2; ++a) {
+          mlo[a] = std::min(mlo[a], corner[a]);
+          mhi[a] = std::max(mhi[a], corner[a]);
+        }
+      }
+    for (int a = 0; a < 2; ++a) {
+      lo[a] = mlo[a];
+      hi[a] = mhi[a];
+      any[a] = xy;
+    }
+  }
+  for (int a = 0; a < 3; ++a) {
+    lo[a] += w.origin[a];
+    hi[a] += w.origin[a];
+  }
+}
+
 }  // namespace
 
 std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, const MachineLimits& lim,
@@ -159,14 +206,16 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
   std::vector<Step> steps;
   Interpreter reader;
   double top = -INFINITY;
+  WorkOffset offset = lim.work_offset;
   for (size_t i = 0; i < lines.size(); ++i) {
     const int offset_before = reader.state().work_offset;
     reader.read(lines[i], i + 1);
     refuse_unfollowed(reader, offset_before, [&](std::string limit, std::string detail) {
       add(i, std::move(limit), std::move(detail));
     });
+    if (const std::optional<WorkOffset> set = followed_work_offset(reader)) offset = *set;
     const ModalState& s = reader.state();
-    steps.push_back({i, reader.moved(), reader.move(), s.feed, s.spindle_rpm, s.spindle});
+    steps.push_back({i, reader.moved(), reader.move(), s.feed, s.spindle_rpm, s.spindle, offset});
     // Cutting moves across the part (not plunges or feed retracts) run inside the stock.
     const CanonMove& m = reader.move();
     if (reader.moved() && !m.rapid && (m.known_to & 4) && (m.to.x() != m.from.x() || m.to.y() != m.from.y()))
@@ -184,10 +233,10 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
       add(st.line, "max feed", "F" + fmt(st.feed) + " mm/min over " + fmt(lim.max_feed));
     double lo[3], hi[3];
     bool any[3];
-    move_extent(m, lo, hi, any);
+    machine_extent(m, st.offset, lo, hi, any);
     for (int a = 0; a < 3; ++a) {
       if (!any[a]) continue;
-      const double mlo = lo[a] + lim.work_offset[a], mhi = hi[a] + lim.work_offset[a];
+      const double mlo = lo[a], mhi = hi[a];
       if (mlo < lim.envelope.min[a] - 1e-9)
         add(st.line, std::string("envelope ") + axis[a] + " min",
             "machine " + std::string(1, axis[a]) + " " + fmt(mlo) + " below the soft limit " + fmt(lim.envelope.min[a]));
@@ -195,8 +244,8 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
         add(st.line, std::string("envelope ") + axis[a] + " max",
             "machine " + std::string(1, axis[a]) + " " + fmt(mhi) + " above the soft limit " + fmt(lim.envelope.max[a]));
     }
-    if (any[2] && lo[2] + lim.work_offset.z() < lim.table_z - 1e-9)
-      add(st.line, "table", "tool tip at machine z " + fmt(lo[2] + lim.work_offset.z()) + " below the table top " +
+    if (any[2] && lo[2] < lim.table_z - 1e-9)
+      add(st.line, "table", "tool tip at machine z " + fmt(lo[2]) + " below the table top " +
                                 fmt(lim.table_z));
     if (m.rapid && !o.rapids_checked_by_stock && std::isfinite(stock_top) && (m.known_to & 4)) {
       // A rapid ends above the clearance; one that travels sideways must also start there.

@@ -255,6 +255,10 @@ Program post(const Job& job, const PostOptions& o) {
   if (!o.title.empty()) w.comment(o.title);
   w.comment("rosmill post, dialect " + d.name + ", mm");
   for (const Toolpath& tp : job) w.comment(tp.strategy + ": " + tool_text(tp.tool));
+  if (o.work_offset) {
+    w.comment("work offset G54 from the workpiece's pose on the table");
+    w.line(work_offset_block(*o.work_offset, d, o.decimals));
+  }
   w.line(d.setup_words);
   if (d.path_blending) w.line("G64 P" + fixed_text(o.blend_tolerance, o.decimals));
   for (size_t t = 0; t < job.size(); ++t) {

@@ -125,6 +125,7 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
     const std::string path = program_path(options.out_dir, programs.size(), name);
     gcode::PostOptions post = gcode::post_options_for(options.dialect);
     post.title = "rosmill job " + job.source + ": " + name;
+    post.work_offset = options.work_offset;
     programs.emplace_back(path, gcode::prepare_program(toolpaths, post, checks).program);
     for (size_t k = first; k < end; ++k) report.operations[k].program = path;
   }

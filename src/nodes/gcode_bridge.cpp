@@ -2,11 +2,14 @@
 // limits, optionally LinuxCNC's rs274 as a judge) -> a G-code file in program_dir -> a controller (LinuxCNC, GRBL
 // or a folder), run and watched by control::ProgramRun. `program_status` is published at status_rate while a
 // program runs, with its view on `program_markers` and a diagnostic on /diagnostics. Services ~start, ~pause,
-// ~resume, ~abort (std_srvs/Trigger) and the `run_program` action (feedback: the status; cancel aborts).
+// ~resume, ~abort (std_srvs/Trigger) and the `run_program` action (feedback: the status; cancel aborts). With
+// ~work_offset_frame (e.g. `workpiece`, published by scan_registrar) every program sets G54 to that frame's pose
+// in ~machine_frame (G10 L2 P1).
 #include <actionlib/server/simple_action_server.h>
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_listener.h>
 
 #include <mutex>
 
@@ -25,7 +28,8 @@ class GcodeBridge {
   GcodeBridge(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
       : settings_(runner_settings(pnh)),
         board_(nh, string_param(pnh, "frame_id", "workpiece"), settings_.controller),
-        runner_(settings_, board_),
+        tf_listener_(tf_),
+        runner_(settings_, board_, &tf_),
         updater_(nh, pnh),
         action_(nh, "run_program", [this](const RunProgramGoalConstPtr& goal) { on_goal(goal); }, false) {
     job_sub_ = nh.subscribe("toolpath", 1, &GcodeBridge::on_job, this);
@@ -93,6 +97,8 @@ class GcodeBridge {
 
   RunnerSettings settings_;
   ProgramStatusBoard board_;
+  tf2_ros::Buffer tf_;
+  tf2_ros::TransformListener tf_listener_;
   ProgramRunner runner_;
   int idle_ticks_ = 0;
   std::mutex job_mutex_;

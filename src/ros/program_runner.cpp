@@ -9,6 +9,7 @@
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/params.hpp"
 #include "rosmill/ros/program_status.hpp"
+#include "rosmill/ros/transform_wait.hpp"
 
 namespace rosmill::edge {
 namespace {
@@ -42,6 +43,10 @@ RunnerSettings runner_settings(const ::ros::NodeHandle& pnh) {
   else if (!bool_param(pnh, "no_limits", false))
     throw Error("parameter machine", "is required (the machine limits file, config/machine.yaml); set no_limits "
                                      "to true to run programs without checking the machine's limits");
+  s.machine_frame = string_param(pnh, "machine_frame", "table");
+  s.workpiece_frame = string_param(pnh, "work_offset_frame", "");
+  s.max_tilt_deg = double_param(pnh, "max_tilt_deg", 0.05, 0.0, 10.0);
+  s.transform_timeout = double_param(pnh, "transform_timeout", 2.0, 0.0, 60.0);
   s.controller_options.reply_timeout_s = double_param(pnh, "reply_timeout", 10.0, 0.1, 600.0);
   s.controller_options.dialect = s.post.dialect;
   s.controller_options.program_dir = s.program_dir;
@@ -50,13 +55,29 @@ RunnerSettings runner_settings(const ::ros::NodeHandle& pnh) {
   return s;
 }
 
-ProgramRunner::ProgramRunner(RunnerSettings settings, ProgramStatusBoard& board)
-    : settings_(std::move(settings)), board_(board) {}
+ProgramRunner::ProgramRunner(RunnerSettings settings, ProgramStatusBoard& board, const tf2_ros::Buffer* tf)
+    : settings_(std::move(settings)), board_(board), tf_(tf) {
+  if (!settings_.workpiece_frame.empty() && !tf_)
+    throw Error("parameter work_offset_frame", "set, but the bridge has no tf listener");
+}
 
-std::string ProgramRunner::write_program(const msg::ToolpathJob& msg, const Job& job, gcode::Program& program) {
+// Where the workpiece frame sits on the machine now (the registration's static transform), as a work offset.
+std::optional<gcode::WorkOffset> ProgramRunner::work_offset_now() const {
+  if (settings_.workpiece_frame.empty()) return std::nullopt;
+  const std::string where = "work offset from tf " + settings_.machine_frame + " -> " + settings_.workpiece_frame;
+  const Eigen::Isometry3d pose_m = wait_for_transform(*tf_, settings_.machine_frame, settings_.workpiece_frame,
+                                                      ::ros::Time(0), settings_.transform_timeout, where);
+  Eigen::Matrix4d pose = pose_m.matrix();
+  pose.topRightCorner<3, 1>() *= kMmPerMetre;
+  return gcode::work_offset_of_pose(pose, settings_.max_tilt_deg, where);
+}
+
+std::string ProgramRunner::write_program(const msg::ToolpathJob& msg, const Job& job, gcode::Program& program,
+                                         std::optional<gcode::WorkOffset>& offset) {
   if (job.empty()) throw Error("job", "has no toolpath (none received on the toolpath topic yet?)");
   gcode::PostOptions options = settings_.post;
   options.title = "rosmill gcode_bridge: " + msg.toolpaths[0].strategy + ", setup " + msg.toolpaths[0].setup;
+  options.work_offset = offset = work_offset_now();
   gcode::ProgramChecks checks = settings_.checks;
   checks.limits.rapids_checked_by_stock = msg.rapids_checked_by_stock;
   program = gcode::prepare_program(job, options, checks).program;
@@ -75,7 +96,8 @@ std::string ProgramRunner::start(const msg::ToolpathJob& job, const std::string&
   try {
     const Job core_job = from_job_msg(job);
     gcode::Program program;
-    const std::string path = write_program(job, core_job, program);
+    std::optional<gcode::WorkOffset> offset;
+    const std::string path = write_program(job, core_job, program, offset);
     control::SendOptions send;
     send.from_line = std::max<uint32_t>(from_line, 1);
     if (send.from_line > program.lines.size())
@@ -83,7 +105,9 @@ std::string ProgramRunner::start(const msg::ToolpathJob& job, const std::string&
                                    std::to_string(program.lines.size()) + " lines");
     auto controller = control::open_controller(url, settings_.controller_options);
     const gcode::MachineLimits* machine = settings_.checks.machine ? &*settings_.checks.machine : nullptr;
-    board_.begin(url, path, program.lines.size(), program_placement(job, core_job, machine));
+    const std::optional<gcode::WorkOffset> g54 = offset ? offset : machine ? std::optional(machine->work_offset)
+                                                                             : std::nullopt;
+    board_.begin(url, path, program.lines.size(), program_placement(job, core_job, g54));
     run_ = std::make_unique<control::ProgramRun>(
         std::move(controller), program.lines, send, settings_.stall_timeout,
         [this](const control::ControllerStatus& s, control::RunVerdict v) { board_.update(s, v); });

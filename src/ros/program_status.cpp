@@ -60,7 +60,7 @@ msg::ProgramStatus to_status_msg(const control::ControllerStatus& s, uint8_t sta
 }
 
 ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
-                                   const gcode::MachineLimits* machine) {
+                                   const std::optional<gcode::WorkOffset>& g54) {
   ProgramPlacement p;
   // The program is in the setup frame (the part re-fixtured); the status shows the tool on the part as it sits.
   Eigen::Quaterniond to_setup = Eigen::Quaterniond::Identity();
@@ -69,8 +69,8 @@ ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
     to_setup = Eigen::Quaterniond(q.w, q.x, q.y, q.z);
     if (to_setup.norm() < 1e-9) to_setup = Eigen::Quaterniond::Identity();
   }
-  p.machine_to_workpiece = Eigen::Isometry3d(to_setup.normalized().conjugate()) *
-                           Eigen::Translation3d(machine ? Vec3(-machine->work_offset) : Vec3::Zero());
+  const Eigen::Isometry3d program_on_machine(g54 ? g54->pose() : Eigen::Matrix4d::Identity());
+  p.machine_to_workpiece = Eigen::Isometry3d(to_setup.normalized().conjugate()) * program_on_machine.inverse();
   Box3 box;
   for (const core::Toolpath& tp : job) box.add(tp.bounds());
   const Vec3 centre = 0.5 * (box.min + box.max);

@@ -60,11 +60,17 @@ void refuse_unsimulated(const Block& b, const gcode::Place& where) {
     for (char c : std::string_view("FGHIJKMNPRSTXYZ")) bits |= 1u << (c - 'A');
     return bits;
   }();
-  if (const uint32_t other = b.present & ~kKnown)
+  // G10 L2 P1 sets G54's origin on the machine (where the part was found): the program's coordinates, which the
+  // simulation follows in the workpiece frame, stay what they are. Other coordinate system data is refused.
+  const bool g54_data = b.has_g(100) && std::lround(b.get('L')) == 2 && b.has('P') &&
+                        (std::lround(b.get('P')) == 1 || std::lround(b.get('P')) == 0);
+  if (b.has_g(100) && !g54_data)
+    throw Error(where.str(), "G10 other than L2 P1 (G54's origin) is not supported by the verifier");
+  if (const uint32_t other = b.present & ~kKnown & ~(g54_data ? 1u << ('L' - 'A') : 0u))
     for (int k = 0; k < 26; ++k)
       if (other >> k & 1u) throw Error(where.str(), refused_letter(static_cast<char>('A' + k)));
   for (int k = 0; k < b.g_count; ++k)
-    if (!simulated_g(b.g[k]))
+    if (!simulated_g(b.g[k]) && !(g54_data && b.g[k] == 100))
       throw Error(where.str(),
                   gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
   for (int k = 0; k < b.m_count; ++k)

@@ -119,7 +119,7 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
   // Below the table with a work offset: the program's z -20 is machine z -60.
   MachineLimits shifted = m;
   shifted.envelope.min.z() = -100;
-  shifted.work_offset = Vec3(0, 0, -40);
+  shifted.work_offset.origin = Vec3(0, 0, -40);
   const auto v = check_limits(program({"G1 Z-20 F100"}), shifted);
   ASSERT_FALSE(v.empty());
   EXPECT_EQ(v.front().limit, "table");

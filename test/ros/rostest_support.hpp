@@ -20,6 +20,13 @@ namespace rosmill::rostest {
 using namespace ::rosmill::core;
 namespace msg = ::rosmill;
 
+// A text parameter of the test node (~name); a failure when it is missing.
+inline std::string param(const std::string& name) {
+  std::string value;
+  EXPECT_TRUE(ros::param::get("~" + name, value)) << "no parameter ~" << name;
+  return value;
+}
+
 // Keeps the last message of a topic; wait() returns it or nullptr after `timeout` seconds.
 template <typename M>
 class Latest {

@@ -15,39 +15,17 @@
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rostest_support.hpp"
+#include "square_job.hpp"
 
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
 using rosmill::rostest::node_answers;
+using rosmill::rostest::square_job;
 using Client = actionlib::SimpleActionClient<RunProgramAction>;
 using State = actionlib::SimpleClientGoalState;
 
 namespace {
-
-// A 20 mm square cut 1 mm deep with the 10 mm flat end mill, about 7 s on the simulator (mm, mm/min).
-msg::ToolpathJob square_job(double depth = -1.0) {
-  core::Toolpath tp;
-  tp.strategy = "test-square";
-  tp.tool.id = 1;
-  tp.tool.name = "10 mm flat end mill";
-  tp.tool.cutter = Cutter::flat(10);
-  tp.tool.feed = 1200;
-  tp.tool.plunge_feed = 300;
-  tp.safe_z = 5;
-  tp.clearance_z = 20;
-  tp.start = Vec3(0, 0, 20);
-  core::ToolpathPass pass;
-  pass.name = "square";
-  pass.moves = {{Vec3(0, 0, 5), MoveType::Rapid, 0},      {Vec3(0, 0, depth), MoveType::Plunge, 300},
-                {Vec3(20, 0, depth), MoveType::Feed, 1200}, {Vec3(20, 20, depth), MoveType::Feed, 1200},
-                {Vec3(0, 20, depth), MoveType::Feed, 1200}, {Vec3(0, 0, depth), MoveType::Feed, 1200},
-                {Vec3(0, 0, 20), MoveType::Rapid, 0}};
-  tp.passes.push_back(pass);
-  std_msgs::Header header;
-  header.frame_id = "workpiece";
-  return edge::to_job_msg({tp}, named_setup("+Z"), header);
-}
 
 std_srvs::Trigger trigger(const std::string& name) {
   std_srvs::Trigger srv;

@@ -13,17 +13,12 @@ using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
 using rosmill::rostest::node_answers;
+using rosmill::rostest::param;
 using rosmill::rostest::play_bag;
 
 namespace {
 
 constexpr double kGougeTolerance = 0.02;  // mm
-
-std::string param(const std::string& name) {
-  std::string value;
-  EXPECT_TRUE(ros::param::get("~" + name, value)) << "no parameter ~" << name;
-  return value;
-}
 
 Plan plan_cloud(double stepdown_m = 0.0) {
   Plan srv;

@@ -19,6 +19,7 @@ struct Dialect {
   // above ASCII, always unsafe) and first words that turn a comment into an instruction.
   std::string comment_unsafe;
   std::vector<std::string> active_comments;
+  bool coordinate_rotation = false;  // G10 L2 takes R: a work offset may turn the XY axes about Z
 };
 
 const std::vector<Dialect>& dialects();

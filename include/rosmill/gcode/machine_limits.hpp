@@ -4,16 +4,18 @@
 #include <string>
 #include <vector>
 
+#include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/types.hpp"
 
 namespace rosmill::core::gcode {
 
 // Lengths in mm, feeds in mm/min. Envelope and table are in machine coordinates; the program's coordinates are
-// the work offset's (G54), whose origin sits at `work_offset` in machine coordinates.
+// the work offset's (G54), whose origin sits at `work_offset` in machine coordinates unless the program sets G54
+// itself (G10 L2 P1 before its moves, see work_offset.hpp).
 struct MachineLimits {
   std::string name;
   Box3 envelope;                  // soft limits of the controlled point (the tool tip)
-  Vec3 work_offset = Vec3::Zero();
+  WorkOffset work_offset;
   double table_z = 0.0;           // no tool tip goes below the table top
   double max_feed = 0.0;
   double max_spindle_rpm = 0.0;

@@ -4,10 +4,12 @@
 // written only when it changes (modal motion, feed and axis words); numbers never read "-0". Every line keeps
 // where it came from (toolpath, pass, moves) so a controller's line number leads back to the toolpath.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rosmill/gcode/dialect.hpp"
+#include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/toolpath/job.hpp"
 
 namespace rosmill::core::gcode {
@@ -24,6 +26,9 @@ struct PostOptions {
   double arc_tolerance = 0.005;    // mm: the arc stays this close to the polyline it replaces
   Coolant coolant = Coolant::Flood;
   std::string title;               // written as a comment in the header
+  // Set by the program before its first move (G10 L2 P1, see work_offset.hpp): where the part was found on the
+  // table. Without it the controller's G54 is used as it stands.
+  std::optional<WorkOffset> work_offset;
 };
 
 // Where a program line came from: toolpath index, pass index and the moves [first_move, last_move] it carries

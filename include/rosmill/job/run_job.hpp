@@ -26,6 +26,7 @@ struct JobOptions {
   std::string out_dir;                   // empty: no programs written
   bool per_operation = false;            // one program per operation instead of one per setup
   std::string dialect = "linuxcnc";
+  std::optional<gcode::WorkOffset> work_offset;  // set by every written program (G10 L2 P1); none: G54 as it stands
   gcode::ProgramChecks checks;           // what every written program is checked against
   // Called with the operation's index and the fraction of it done (0 before it starts, 1 when its moves are
   // removed from the stock; in between while it is planned). Returning false cancels the job: the operations

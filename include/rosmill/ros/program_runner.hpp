@@ -9,7 +9,10 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
+
+#include <tf2_ros/buffer.h>
 
 #include "rosmill/RunProgramAction.h"
 #include "rosmill/ToolpathJob.h"
@@ -26,6 +29,10 @@ struct RunnerSettings {
   gcode::PostOptions post;
   gcode::ProgramChecks checks;
   control::ControllerOptions controller_options;
+  // The work offset from tf: when `workpiece_frame` is set, every program sets G54 (G10 L2 P1) to where that frame
+  // sits in `machine_frame` (the frame of the machine's coordinates) at the run's start.
+  std::string machine_frame = "table", workpiece_frame;
+  double max_tilt_deg = 0.05, transform_timeout = 2.0;
 };
 
 // The settings from the node's private parameters; an Error names a bad one. Opens the controller URI once (a
@@ -34,7 +41,8 @@ RunnerSettings runner_settings(const ::ros::NodeHandle& pnh);
 
 class ProgramRunner {
  public:
-  ProgramRunner(RunnerSettings settings, ProgramStatusBoard& board);
+  // `tf` (may be null without a workpiece_frame) outlives the runner.
+  ProgramRunner(RunnerSettings settings, ProgramStatusBoard& board, const tf2_ros::Buffer* tf = nullptr);
 
   // Prepares and starts a run of `job` on `uri` (empty: the default controller) from `from_line`; returns the
   // reason when it cannot. Blocks while the controller connects.
@@ -49,10 +57,13 @@ class ProgramRunner {
 
  private:
   std::string command(const char* what, void (control::ProgramRun::*fn)());
-  std::string write_program(const msg::ToolpathJob& msg, const Job& job, gcode::Program& program);
+  std::string write_program(const msg::ToolpathJob& msg, const Job& job, gcode::Program& program,
+                            std::optional<gcode::WorkOffset>& offset);
+  std::optional<gcode::WorkOffset> work_offset_now() const;
 
   RunnerSettings settings_;
   ProgramStatusBoard& board_;
+  const tf2_ros::Buffer* tf_;
   int program_counter_ = 0;
   std::chrono::steady_clock::time_point started_;
   std::mutex run_mutex_;  // one start or command at a time

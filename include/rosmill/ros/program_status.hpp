@@ -1,6 +1,7 @@
 // The controller's status (core, mm, machine coordinates) as a msg::ProgramStatus (m, program coordinates) and as an
 // rviz view: the tool where the controller says it is and a line of text with the state and the line.
 #pragma once
+#include <optional>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <Eigen/Geometry>
@@ -33,9 +34,10 @@ struct ProgramPlacement {
   Eigen::Isometry3d machine_to_workpiece = Eigen::Isometry3d::Identity();
   geometry_msgs::Point anchor;
 };
-// `msg` gives the setup the job was planned in, `job` (the same job, converted) its extent.
+// `msg` gives the setup the job was planned in, `job` (the same job, converted) its extent, `g54` where the
+// program's origin is on the machine (none: the machine's origin).
 ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
-                                   const gcode::MachineLimits* machine);
+                                   const std::optional<gcode::WorkOffset>& g54);
 
 // Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") above `anchor` (m) and, when the
 // position is known, a SPHERE at the tool tip.

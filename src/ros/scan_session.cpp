@@ -1,0 +1,108 @@
+#include "rosmill/ros/scan_session.hpp"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <chrono>
+
+#include "rosmill/error.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/ros/convert.hpp"
+
+namespace rosmill::edge {
+
+void ScanSession::on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_ = msg;
+    ++received_;
+  }
+  arrived_.notify_all();
+}
+
+std::string ScanSession::start() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const size_t dropped = views_.size();
+  views_.clear();
+  fused_.reset();
+  return "session started" + (dropped ? " (" + std::to_string(dropped) + " views dropped)" : std::string());
+}
+
+size_t ScanSession::views() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return views_.size();
+}
+
+// The view's points in its sensor frame (mm) and the sensor's pose in the fixed frame at the view's stamp. No
+// fallback to the latest pose: the sensor may have moved since (a robot), and a wrong pose fuses a wrong cloud.
+scan::ScanView ScanSession::view_of(const sensor_msgs::PointCloud2& msg, const std::string& name) const {
+  if (msg.header.frame_id.empty()) throw Error(name, "has no frame_id: the sensor's pose cannot be known");
+  scan::ScanView view;
+  view.name = name;
+  view.cloud = from_cloud_msg(msg, Eigen::Isometry3d::Identity(), name);
+  if (view.cloud.points.empty()) throw Error(name, "has no finite points");
+  std::string why;
+  if (!tf_.canTransform(fixed_frame_, msg.header.frame_id, msg.header.stamp, ::ros::Duration(transform_timeout_),
+                        &why))
+    throw Error(name, "no transform from '" + msg.header.frame_id + "' to '" + fixed_frame_ + "' at its stamp " +
+                          std::to_string(msg.header.stamp.toSec()) + " within " +
+                          std::to_string(transform_timeout_) + " s (" + why + ")");
+  const Eigen::Isometry3d pose =
+      tf2::transformToEigen(tf_.lookupTransform(fixed_frame_, msg.header.frame_id, msg.header.stamp));
+  view.pose = pose.matrix();
+  view.pose.topRightCorner<3, 1>() *= kMmPerMetre;
+  return view;
+}
+
+std::string ScanSession::add_view(double timeout_s) {
+  sensor_msgs::PointCloud2::ConstPtr msg;
+  size_t index;
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    const uint64_t before = received_;
+    if (!arrived_.wait_for(lock, std::chrono::duration<double>(timeout_s), [&] { return received_ > before; }))
+      throw Error("view " + std::to_string(views_.size() + 1),
+                  "no cloud came on the scan topic within " + std::to_string(timeout_s) + " s");
+    msg = latest_;
+    index = views_.size() + 1;
+  }
+  scan::ScanView view = view_of(*msg, "view " + std::to_string(index));
+  const size_t points = view.cloud.points.size();
+  std::lock_guard<std::mutex> lock(mutex_);
+  views_.push_back(std::move(view));
+  fused_.reset();
+  return "view " + std::to_string(views_.size()) + ": " + std::to_string(points) + " points from '" +
+         msg->header.frame_id + "'";
+}
+
+PointCloud ScanSession::finish(const scan::FusionOptions& options, scan::FusionReport& report) {
+  std::vector<scan::ScanView> views;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (views_.empty()) throw Error("finish", "no views: call add_view after start, once per sensor pose");
+    views = views_;
+  }
+  PointCloud fused = scan::fuse_views(views, options, &report);
+  std::lock_guard<std::mutex> lock(mutex_);
+  fused_ = fused;
+  return fused;
+}
+
+PointCloud ScanSession::cloud_named(const std::string& name) const {
+  sensor_msgs::PointCloud2::ConstPtr latest;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (name.empty() || name == "fused") {
+      if (!fused_) throw Error("scan 'fused'", "no fused cloud yet: start, add_view, finish first");
+      return *fused_;
+    }
+    latest = latest_;
+  }
+  if (name != "latest") throw Error("scan", "unknown scan '" + name + "': fused or latest");
+  if (!latest) throw Error("scan 'latest'", "no cloud has come on the scan topic yet");
+  scan::ScanView view = view_of(*latest, "the latest cloud");
+  transform_points(view.pose, view.cloud.points);
+  view.cloud.recompute_bbox();
+  return std::move(view.cloud);
+}
+
+}  // namespace rosmill::edge
