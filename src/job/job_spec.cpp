@@ -121,7 +121,9 @@ StockSpec read_stock(const YAML::Node& node, const std::string& file, const std:
   return s;
 }
 
-OperationSpec read_operation(const YAML::Node& node, const std::string& file, size_t index) {
+// `box_stock`: the stock is the part's box, where a first operation finds no rest material to keep to (a stock
+// scanned after machining, or a casting, may well start with one).
+OperationSpec read_operation(const YAML::Node& node, const std::string& file, size_t index, bool box_stock) {
   const Fields f(node, file, "operations[" + std::to_string(index) + "]",
                  {"name", "strategy", "tool", "stepover", "stepdown", "allowance", "tolerance", "setup", "rest",
                   "rest_threshold"});
@@ -139,8 +141,9 @@ OperationSpec read_operation(const YAML::Node& node, const std::string& file, si
   op.rest_threshold = f.number("rest_threshold", 0.1, 0, 100);
   if (f.has("rest_threshold") && !op.rest)
     throw Error(f.where("rest_threshold"), "only a rest operation (rest: true) has one");
-  if (op.rest && index == 0)
-    throw Error(f.where("rest"), "the first operation has no earlier one to leave rest material");
+  if (op.rest && index == 0 && box_stock)
+    throw Error(f.where("rest"), "the first operation on a box stock has no earlier one to leave rest material (a "
+                                 "stock scanned after machining, stock: {cloud: FILE}, may start with a rest operation)");
   return op;
 }
 
@@ -166,7 +169,7 @@ JobSpec parse_job(const std::string& text, const std::string& name, const std::s
   const YAML::Node ops = f.node("operations");
   if (!ops) throw Error(f.where("operations"), "missing (required): the operations in machining order");
   if (!ops.IsSequence() || ops.size() == 0) throw Error(f.where("operations"), "expected a list of operations");
-  for (size_t k = 0; k < ops.size(); ++k) job.operations.push_back(read_operation(ops[k], name, k));
+  for (size_t k = 0; k < ops.size(); ++k) job.operations.push_back(read_operation(ops[k], name, k, job.stock.kind == StockSpec::Kind::Box));
   return job;
 }
 

@@ -66,6 +66,7 @@ std::string program_path(const std::string& dir, size_t index, const std::string
 struct PartView {
   stock::HeightField stock;
   std::vector<float> design;
+  Mesh part;  // in the setup's frame
   // A cell of the part: the design stands there above the floor, and the stock has material.
   bool on_part(size_t c) const {
     return design[c] > stock.bottom + 1e-6 && stock.top[c] != stock::kNoMaterial;
@@ -73,8 +74,8 @@ struct PartView {
 };
 
 PartView part_view(const stock::InProcessStock& stock, const Mesh& part, const SetupFrame& setup) {
-  PartView v{stock.view(setup), {}};
-  v.design = stock::design_heights(mesh_in_setup(part, setup), v.stock.grid, v.stock.bottom);
+  PartView v{stock.view(setup), {}, mesh_in_setup(part, setup)};
+  v.design = stock::design_heights(v.part, v.stock.grid, v.stock.bottom);
   return v;
 }
 
@@ -99,11 +100,13 @@ size_t material_for(const PartView& v, const OperationSpec& op, MaterialTop& m) 
   m.top = v.stock.top;
   m.rest.clear();
   if (!op.rest) return 0;
-  // The cells where the design stands and the stock left more than the allowance and the threshold over it.
+  // The cells where the design stands and the stock left more than the allowance and the threshold over the
+  // design's highest within the cell (its centre height would make every steep flank rest material).
+  const std::vector<float> high = stock::design_highest_in_cells(v.part, g, v.stock.bottom);
   m.rest.assign(m.top.size(), 0);
   size_t n = 0;
   for (size_t c = 0; c < m.top.size(); ++c)
-    n += m.rest[c] = v.on_part(c) && m.top[c] - v.design[c] > op.allowance + op.rest_threshold;
+    n += m.rest[c] = v.on_part(c) && m.top[c] - high[c] > op.allowance + op.rest_threshold;
   return n;
 }
 

@@ -20,6 +20,23 @@ std::vector<float> design_heights(const Mesh& mesh, const GridSpec& g, double fl
   return z;
 }
 
+std::vector<float> design_highest_in_cells(const Mesh& mesh, const GridSpec& g, double floor) {
+  std::vector<float> high = design_heights(mesh, g, floor);
+  GridSpec corners = g;
+  corners.x0 -= 0.5 * g.cell;
+  corners.y0 -= 0.5 * g.cell;
+  corners.nx += 1;
+  corners.ny += 1;
+  const std::vector<float> at_corner = design_heights(mesh, corners, floor);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      float& h = high[g.index(i, j)];
+      for (int v = j; v <= j + 1; ++v)
+        for (int u = i; u <= i + 1; ++u) h = std::max(h, at_corner[corners.index(u, v)]);
+    }
+  return high;
+}
+
 std::vector<float> design_heights(const PointCloud& cloud, const GridSpec& g, int fill_cells) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   std::vector<float> z(g.cells(), nan);

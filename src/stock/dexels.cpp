@@ -6,6 +6,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/stock/design_height.hpp"
+#include "rosmill/stock/scanned_top.hpp"
 #include "rosmill/stock/vertical_hits.hpp"
 
 namespace rosmill::core::stock {
@@ -96,7 +97,7 @@ Dexels mesh_dexels(const Mesh& mesh, const GridSpec& g, const std::string& where
 Dexels cloud_dexels(const PointCloud& cloud, double table_z, const GridSpec& g, int fill_cells) {
   if (cloud.points.empty()) throw Error("stock cloud", "the cloud has no points");
   if (!std::isfinite(table_z)) throw Error("stock cloud", "the table height is not a number");
-  const std::vector<float> top = design_heights(cloud, g, 0);
+  const std::vector<float> top = scanned_top(cloud, g);
   // A hole: the nearest cells with a top on both sides along a row or a column, within fill_cells.
   auto filled = [&](int i, int j) {
     double sum = 0;

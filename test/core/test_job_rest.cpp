@@ -5,7 +5,8 @@
 //   fraction of a full finish's length and leaves, wherever the full finish gets the part within the threshold,
 //   no more than the threshold either; nothing is ever cut below the design;
 // - a stock scanned as a noisy cloud: roughing planned on it cuts less air than roughing planned on its bounding
-//   box.
+//   box;
+// - a re-scan with a bump: inspected, and a rest job on the scan cuts only there.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -16,8 +17,13 @@
 #include "pocket_part.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
+#include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/job/run_job.hpp"
+#include "rosmill/scan/inspection.hpp"
+#include "rosmill/stock/in_process_stock.hpp"
+#include "rosmill/scan/mesh_distance.hpp"
+#include "rosmill/testing/synthetic_scan.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
 #include "test_stock_programs.hpp"
 
@@ -155,7 +161,7 @@ TEST(RestMachining, FieldsAreChecked) {
   const std::string rough = "  - {strategy: rough, tool: flat:10}\n";
   EXPECT_EQ(error_of(rough + "  - {strategy: raster, tool: ball:3, rest: true, rest_threshold: 0.05}\n"), "");
   EXPECT_NE(error_of("  - {strategy: raster, tool: ball:3, rest: true}\n").find("job.yaml:3 operations[0].rest: the "
-                                                                                  "first operation"),
+                                                                                  "first operation on a box stock"),
             std::string::npos);
   EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3, rest: maybe}\n")
                 .find("rest: expected true or false"),
@@ -231,4 +237,84 @@ TEST(RestMachining, ExamplePocketIsTheTestPocket) {
     for (size_t v = 0; v < mesh.vertices.size(); ++v)
       ASSERT_LT((shipped.vertices[v] - mesh.vertices[v]).norm(), 1e-4) << name << " vertex " << v;
   }
+}
+
+// The machined dome scanned again from above with 1 mm of material left in a cosine cap of radius 6 mm: the
+// inspection reports that bump's height and place, its scan in the workpiece frame becomes the stock, and a rest
+// job on it (rest from the first operation) cuts only there: a few percent of a full finish's cutting length, the
+// bump's volume removed, nothing below the design.
+TEST(RestMachining, ARescanWithABumpIsInspectedAndMachinedOnlyThere) {
+  const std::string dir = scratch("rescan");
+  const Mesh dome = make_primitive("dome");
+  // A scanner returns no points at grazing angles: the dome's flank steeper than 75 degrees is not seen (its
+  // cells hold no scanned stock; a height field could not describe them within a cell anyway).
+  std::vector<Vec3> points;
+  for (const Vec3& p : synthetic::synthetic_scan(dome, {Vec3(0, 0, 1000)}, 400000, 0.005, 17).points)
+    if (p.z() > std::cos(75 * M_PI / 180) * p.norm()) points.push_back(p);
+  const scan::MeshDistance distance(dome);
+  const Vec3 centre_xy(12, 8, 0);
+  Vec3 at(0, 0, -1e9);
+  for (const Vec3& p : points)
+    if (std::hypot(p.x() - centre_xy.x(), p.y() - centre_xy.y()) < 0.3 && p.z() > at.z()) at = p;
+  constexpr double kHeight = 1.0, kRadius = 6.0;
+  for (Vec3& p : points) {
+    const double r = (p - at).norm();
+    if (r < kRadius) p += dome.normals[distance.query(p).face] * kHeight * 0.5 * (1 + std::cos(M_PI * r / kRadius));
+  }
+  scan::InspectionOptions io;
+  io.tolerance = 0.05;
+  const scan::InspectionReport inspection = scan::inspect_registered(dome, points, io);
+  EXPECT_NEAR(inspection.largest_excess.distance, kHeight, 0.03);
+  const Vec3 bump_top = at + dome.normals[distance.query(at).face] * kHeight;
+  EXPECT_LT((inspection.largest_excess.place - bump_top).norm(), 0.5);
+  PointCloud stock;
+  stock.points = inspection.points;
+  write_cloud(dir + "/rescan.pcd", stock, Units::Millimetre);
+
+  const std::string head = "part: primitive:dome\nresolution: 0.5\nstock: {cloud: rescan.pcd, units: mm, table_z: 0}\n"
+                           "operations:\n  - {name: last, strategy: raster, tool: ball:6, stepover: 0.5";
+  // The material over the design per cell before the rest job (the stock as the job reads it) and after.
+  CloudReadOptions in_mm;
+  in_mm.units = Units::Millimetre;
+  const std::vector<float> before = stock::InProcessStock::from_cloud(read_cloud(dir + "/rescan.pcd", in_mm), 0, 0.5)
+                                        .material_above(dome);
+  std::vector<float> after;
+  JobOptions options;
+  options.operation_done = [&](const job::OperationView& v) { after = v.stock.material_above(dome); };
+  const JobReport rest = run_job(parse_job(head + ", rest: true, rest_threshold: 0.2}\n", "rest.yaml", dir), options);
+  const JobReport full = run_job(parse_job(head + "}\n", "full.yaml", dir), {});
+  const OperationReport& r = rest.operations.at(0);
+  const OperationReport& f = full.operations.at(0);
+  std::printf("rescan rest: %zu rest cells, cutting %.0f mm of the full finish's %.0f mm, removed %.1f mm3 (bump "
+              "%.1f mm3), left %.3f..%.3f mm\n", r.rest_cells, r.cutting_mm, f.cutting_mm, r.removed_mm3,
+              M_PI * kRadius * kRadius * kHeight * (0.5 - 2 / (M_PI * M_PI)), rest.min_left_mm, rest.max_left_mm);
+  // The cap covers pi 6^2 = 113 mm^2 from above, 452 cells of 0.5 mm; above 0.2 mm of it stands a disc of ~4.7 mm.
+  EXPECT_GT(r.rest_cells, 100u);
+  EXPECT_LT(r.rest_cells, 600u);
+  EXPECT_LT(r.cutting_mm, 0.1 * f.cutting_mm);
+  const double bump_volume = M_PI * kRadius * kRadius * kHeight * (0.5 - 2 / (M_PI * M_PI));
+  EXPECT_GT(r.removed_mm3, 0.5 * bump_volume);
+  EXPECT_LT(r.removed_mm3, 1.3 * bump_volume);
+  // Where the rest job cut, never below the design; around the bump, no more than the threshold is left.
+  ASSERT_EQ(before.size(), after.size());
+  const stock::GridSpec g = stock::InProcessStock::from_cloud(read_cloud(dir + "/rescan.pcd", in_mm), 0, 0.5).grid();
+  size_t cut = 0, near_bump = 0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const size_t c = g.index(i, j);
+      if (std::isnan(before[c]) || std::isnan(after[c])) continue;
+      if (after[c] < before[c] - 1e-4) {
+        ++cut;
+        EXPECT_GE(after[c], -0.01) << "cell " << i << ", " << j << " cut below the design";
+        EXPECT_LT(std::hypot(g.cx(i) - at.x(), g.cy(j) - at.y()), kRadius + 3.0 + 0.5)
+            << "cell " << i << ", " << j << " cut away from the bump";
+      }
+      if (std::hypot(g.cx(i) - at.x(), g.cy(j) - at.y()) < kRadius) {
+        ++near_bump;
+        EXPECT_LE(after[c], 0.2 + 0.02) << "cell " << i << ", " << j << " keeps rest material";
+      }
+    }
+  EXPECT_GT(cut, 100u);
+  EXPECT_GT(near_bump, 300u);
+  std::filesystem::remove_all(dir);
 }
