@@ -5,7 +5,8 @@
 // and publishes the pose as the static transform ~fixed_frame -> ~workpiece_frame (REP 105: `table` ->
 // `workpiece`), which every plan, marker and program of the mesh pipeline is in, and the gcode_bridge turns into
 // the program's work offset. `~inspect` (rosmill/InspectScan) compares a scan of the machined part with the
-// design. Both publish the scan coloured by its distance to the design on `scan_deviation_markers`.
+// design. Both publish the scan coloured by its distance to the design on `scan_deviation_markers`. `~save`
+// (rosmill/SaveScan) writes a scan in a frame, e.g. the raw stock's in the workpiece frame for a job's stock.
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
 #include <std_srvs/Trigger.h>
@@ -15,6 +16,7 @@
 #include <memory>
 #include <mutex>
 
+#include "rosmill/SaveScan.h"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/io/cloud_io.hpp"
@@ -55,7 +57,8 @@ class ScanRegistrar {
                  pnh.advertiseService("finish", &ScanRegistrar::on_finish, this),
                  pnh.advertiseService("reset", &ScanRegistrar::on_reset, this),
                  pnh.advertiseService("register", &ScanRegistrar::on_register, this),
-                 pnh.advertiseService("inspect", &ScanRegistrar::on_inspect, this)};
+                 pnh.advertiseService("inspect", &ScanRegistrar::on_inspect, this),
+                 pnh.advertiseService("save", &ScanRegistrar::on_save, this)};
   }
 
  private:
@@ -150,10 +153,8 @@ class ScanRegistrar {
       const PointCloud cloud = session_.cloud_named(req.scan);
       scan::InspectionReport r;
       if (req.use_workpiece_frame) {
-        const Eigen::Isometry3d to_workpiece = wait_for_transform(tf_, workpiece_frame_, session_.fixed_frame(),
-                                                                  ::ros::Time(0), 1.0, "inspect");
-        Eigen::Matrix4d t = to_workpiece.matrix();
-        t.topRightCorner<3, 1>() *= kMmPerMetre;
+        const Eigen::Matrix4d t = in_mm(
+            wait_for_transform(tf_, workpiece_frame_, session_.fixed_frame(), ::ros::Time(0), 1.0, "inspect"));
         r = scan::inspect_registered(*design(), transformed_points(t, cloud.points), inspection(tolerance));
       } else {
         r = scan::inspect(*design(), cloud, inspection(tolerance));
@@ -165,6 +166,26 @@ class ScanRegistrar {
              std::to_string(r.largest_excess.distance) + " mm, " + std::to_string(r.above_tolerance) +
              " above the tolerance";
     });
+  }
+
+  bool on_save(SaveScan::Request& req, SaveScan::Response& res) {
+    return answer("save", res, [&] {
+      if (req.path.empty()) throw Error("save", "no path given");
+      PointCloud cloud = session_.cloud_named(req.scan);
+      const std::string frame = req.frame.empty() ? workpiece_frame_ : req.frame;
+      transform_points(in_mm(wait_for_transform(tf_, frame, session_.fixed_frame(), ::ros::Time(0), 1.0, "save")),
+                       cloud.points);
+      write_cloud(req.path, cloud, Units::Metre);
+      res.points = static_cast<uint32_t>(cloud.points.size());
+      return std::to_string(cloud.points.size()) + " points in '" + frame + "' written to " + req.path;
+    });
+  }
+
+  // A transform in metres (tf) as a rigid matrix in millimetres.
+  static Eigen::Matrix4d in_mm(const Eigen::Isometry3d& t) {
+    Eigen::Matrix4d m = t.matrix();
+    m.topRightCorner<3, 1>() *= kMmPerMetre;
+    return m;
   }
 
   scan::InspectionOptions inspection(double tolerance) const {

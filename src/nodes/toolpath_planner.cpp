@@ -47,7 +47,7 @@ class ToolpathPlanner {
         out_(nh, frame_id()),
         plans_(nh, planner_, inputs_, out_),
         jobs_(nh, pnh, frame_id(), planner_.settings().tools, planner_.settings().presets,
-              [this] { return inputs_.select("mesh").mesh; }) {
+              [this] { return inputs_.select("mesh").mesh; }, &tf_buffer_) {
     mesh_sub_ = nh.subscribe("mesh", 1, &ToolpathPlanner::on_mesh, this);
     cloud_sub_ = nh.subscribe(string_param(pnh, "cloud_topic", "cloud"), 1, &ToolpathPlanner::on_cloud, this);
     plan_srv_ = nh.advertiseService("plan", &ToolpathPlanner::on_plan, this);

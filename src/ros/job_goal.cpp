@@ -76,6 +76,7 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
     options.per_operation = goal.per_operation;
     options.dialect = context.dialect;
     options.checks = context.checks;
+    if (!goal.output_dir.empty() && context.work_offset) options.work_offset = context.work_offset();
     options.part = received.get();
     if (!goal.output_dir.empty() && goal.output_dir.front() != '/')
       throw Error("output_dir", "must be an absolute folder, got '" + goal.output_dir + "'");
@@ -127,7 +128,8 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
 
 JobActionServer::JobActionServer(::ros::NodeHandle& nh, const ::ros::NodeHandle& pnh, const std::string& frame_id,
                                  const ToolTable& tools, const PresetTable& presets,
-                                 std::function<std::shared_ptr<const Mesh>()> received_mesh)
+                                 std::function<std::shared_ptr<const Mesh>()> received_mesh,
+                                 const tf2_ros::Buffer* tf)
     : frame_id_(frame_id), server_(nh, "plan_job", [this](const PlanJobGoalConstPtr& g) { on_goal(g); }, false) {
   context_.tools = &tools;
   context_.presets = &presets;
@@ -138,6 +140,8 @@ JobActionServer::JobActionServer(::ros::NodeHandle& nh, const ::ros::NodeHandle&
   require_machine_ = machine.empty() && !bool_param(pnh, "no_limits", false);
   context_.checks.rs274 = bool_param(pnh, "verify_rs274", false);
   context_.received_mesh = std::move(received_mesh);
+  const WorkOffsetSource offset = work_offset_source(pnh);
+  if (!offset.workpiece_frame.empty()) context_.work_offset = [offset, tf] { return offset.now(tf); };
   context_.setup_frame = [this](const SetupFrame& setup) { return setup_frames_.publish(frame_id_, setup); };
   context_.cancel_requested = [this] { return server_.isPreemptRequested(); };
   context_.feedback = [this](const PlanJobFeedback& fb) { server_.publishFeedback(fb); };

@@ -9,7 +9,6 @@
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/params.hpp"
 #include "rosmill/ros/program_status.hpp"
-#include "rosmill/ros/transform_wait.hpp"
 
 namespace rosmill::edge {
 namespace {
@@ -43,10 +42,7 @@ RunnerSettings runner_settings(const ::ros::NodeHandle& pnh) {
   else if (!bool_param(pnh, "no_limits", false))
     throw Error("parameter machine", "is required (the machine limits file, config/machine.yaml); set no_limits "
                                      "to true to run programs without checking the machine's limits");
-  s.machine_frame = string_param(pnh, "machine_frame", "table");
-  s.workpiece_frame = string_param(pnh, "work_offset_frame", "");
-  s.max_tilt_deg = double_param(pnh, "max_tilt_deg", 0.05, 0.0, 10.0);
-  s.transform_timeout = double_param(pnh, "transform_timeout", 2.0, 0.0, 60.0);
+  s.work_offset = work_offset_source(pnh);
   s.controller_options.reply_timeout_s = double_param(pnh, "reply_timeout", 10.0, 0.1, 600.0);
   s.controller_options.dialect = s.post.dialect;
   s.controller_options.program_dir = s.program_dir;
@@ -56,28 +52,14 @@ RunnerSettings runner_settings(const ::ros::NodeHandle& pnh) {
 }
 
 ProgramRunner::ProgramRunner(RunnerSettings settings, ProgramStatusBoard& board, const tf2_ros::Buffer* tf)
-    : settings_(std::move(settings)), board_(board), tf_(tf) {
-  if (!settings_.workpiece_frame.empty() && !tf_)
-    throw Error("parameter work_offset_frame", "set, but the bridge has no tf listener");
-}
-
-// Where the workpiece frame sits on the machine now (the registration's static transform), as a work offset.
-std::optional<gcode::WorkOffset> ProgramRunner::work_offset_now() const {
-  if (settings_.workpiece_frame.empty()) return std::nullopt;
-  const std::string where = "work offset from tf " + settings_.machine_frame + " -> " + settings_.workpiece_frame;
-  const Eigen::Isometry3d pose_m = wait_for_transform(*tf_, settings_.machine_frame, settings_.workpiece_frame,
-                                                      ::ros::Time(0), settings_.transform_timeout, where);
-  Eigen::Matrix4d pose = pose_m.matrix();
-  pose.topRightCorner<3, 1>() *= kMmPerMetre;
-  return gcode::work_offset_of_pose(pose, settings_.max_tilt_deg, where);
-}
+    : settings_(std::move(settings)), board_(board), tf_(tf) {}
 
 std::string ProgramRunner::write_program(const msg::ToolpathJob& msg, const Job& job, gcode::Program& program,
                                          std::optional<gcode::WorkOffset>& offset) {
   if (job.empty()) throw Error("job", "has no toolpath (none received on the toolpath topic yet?)");
   gcode::PostOptions options = settings_.post;
   options.title = "rosmill gcode_bridge: " + msg.toolpaths[0].strategy + ", setup " + msg.toolpaths[0].setup;
-  options.work_offset = offset = work_offset_now();
+  options.work_offset = offset = settings_.work_offset.now(tf_);
   gcode::ProgramChecks checks = settings_.checks;
   checks.limits.rapids_checked_by_stock = msg.rapids_checked_by_stock;
   program = gcode::prepare_program(job, options, checks).program;

@@ -6,7 +6,7 @@ namespace rosmill::core::stock {
 
 std::vector<float> material_left_at(const InProcessStock& stock, const Mesh& design, const SetupFrame& setup,
                                     const std::vector<Vec3>& points) {
-  const GridSpec g = stock.view(setup).grid;
+  const GridSpec g = stock.setup_grid(setup);
   const std::vector<float> above = stock.material_above(design, setup);
   std::vector<float> left(points.size(), NAN);
   for (size_t k = 0; k < points.size(); ++k) {

@@ -53,7 +53,7 @@ TEST(Job, FieldsAreCheckedWithTheirLine) {
   EXPECT_NE(error_of("part: primitive:cube\nstock: {box: {margin: 5}, mesh: a.stl}\n" + ops).find("exactly one of"),
             std::string::npos);
   EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: raster, tool: ball:3, rest: true}\n")
-                .find("job.yaml:3 operations[0].rest: the first operation has no earlier one"),
+                .find("job.yaml:3 operations[0].rest: the first operation on a box stock has no earlier one"),
             std::string::npos);
   EXPECT_NE(error_of("part: primitive:cube\noperations: [\n").find("not valid YAML"), std::string::npos);
   // A strategy and a setup the planner does not know: refused when the job runs, naming the operation.

@@ -14,6 +14,7 @@
 #include "rosmill/PlanJobAction.h"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/gcode/post.hpp"
 #include "rostest_support.hpp"
 
 using namespace rosmill;
@@ -146,6 +147,12 @@ TEST_F(PlanJob, TextJobOnTheReceivedMeshWritesCheckedPrograms) {
   ASSERT_EQ(r->operations.size(), 1u);
   EXPECT_TRUE(std::filesystem::is_regular_file(r->operations[0].program)) << r->operations[0].program;
   EXPECT_EQ(std::filesystem::path(r->operations[0].program).parent_path(), std::filesystem::path(folder));
+  // The part sits where the launch's table -> workpiece frame puts it (40, -30, -10 mm, turned 0.2 rad): the
+  // program sets G54 there before its first move.
+  std::string g54;
+  for (const std::string& l : gcode::read_program_lines(r->operations[0].program))
+    if (l.rfind("G10 L2 P1", 0) == 0) g54 = l;
+  EXPECT_EQ(g54, "G10 L2 P1 X40 Y-30 Z-10 R11.4592");
   std::filesystem::remove_all(folder);
 }
 

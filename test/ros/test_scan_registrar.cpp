@@ -20,6 +20,7 @@
 #include "rosmill/InspectScan.h"
 #include "rosmill/ProgramStatus.h"
 #include "rosmill/RegisterScan.h"
+#include "rosmill/SaveScan.h"
 #include "rosmill/ToolpathJob.h"
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
@@ -66,7 +67,7 @@ class Cell : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     design_ = new Mesh(read_stl(param("design")));
-    for (const char* s : {"start", "add_view", "finish", "reset", "register", "inspect"})
+    for (const char* s : {"start", "add_view", "finish", "reset", "register", "inspect", "save"})
       ASSERT_TRUE(ros::service::waitForService(std::string("/scan_registrar/") + s, ros::Duration(30.0))) << s;
   }
 
@@ -147,6 +148,19 @@ TEST_F(Cell, TheFusedScanRegistersAndTheWorkpieceFrameIsPublished) {
   const Eigen::Matrix4d error = rigid_inverse(kPart) * found;
   EXPECT_LT(translation_length(error), 0.05);
   EXPECT_LT(rotation_angle_deg(error), 0.05);
+  // The fused scan written in the workpiece frame (a job's stock): on the design where it stands.
+  SaveScan save;
+  save.request.path = "/tmp/rosmill_scan_registrar_fused.pcd";
+  save = call("save", save);
+  ASSERT_TRUE(save.response.success) << save.response.message;
+  const PointCloud saved = read_cloud(save.request.path);
+  ASSERT_EQ(saved.points.size(), save.response.points);
+  const std::vector<double> d = scan::MeshDistance(*design_).distances(saved.points);
+  double sum2 = 0;
+  for (double x : d) sum2 += x * x;
+  EXPECT_LT(std::sqrt(sum2 / double(d.size())), 2.5 * kNoise);
+  save.request.path = "";
+  EXPECT_FALSE(call("save", save).response.success);
 }
 
 TEST_F(Cell, BadViewsAndTheWrongPartAreRefusedAndNothingIsPublished) {

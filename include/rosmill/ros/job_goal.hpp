@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "rosmill/PlanJobAction.h"
@@ -17,6 +18,7 @@
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/ros/namespaces.hpp"
 #include "rosmill/ros/setup_frames.hpp"
+#include "rosmill/ros/work_offset_tf.hpp"
 
 namespace rosmill::edge {
 
@@ -30,6 +32,8 @@ struct JobGoalContext {
   std::function<void(const PlanJobFeedback&)> feedback;
   std::function<void(const job::OperationView&)> show;
   std::function<std::string(const SetupFrame&)> setup_frame;  // the frame a setup's toolpaths are stamped with
+  // Where G54 is for the written programs (G10 L2 P1 in each); none: the controller's G54 as it stands.
+  std::function<std::optional<gcode::WorkOffset>()> work_offset;
 };
 
 // `cancelled` tells whether the goal was cancelled on the way.
@@ -40,12 +44,14 @@ PlanJobResult to_job_result(const job::JobReport& report);
 
 // The plan_job action of a node: its server, the `job_markers` and `stock_markers` topics (latched, workpiece
 // frame), and the settings from the node's private parameters: `dialect`, `machine` (the limits programs are
-// checked against; required to write programs unless `no_limits`), `verify_rs274`.
+// checked against; required to write programs unless `no_limits`), `verify_rs274`, and those of the work offset
+// (work_offset_tf.hpp).
 class JobActionServer {
  public:
+  // `tf` (the node's, outliving the server) gives the work offset with the work_offset_frame parameter.
   JobActionServer(::ros::NodeHandle& nh, const ::ros::NodeHandle& pnh, const std::string& frame_id,
                   const ToolTable& tools, const PresetTable& presets,
-                  std::function<std::shared_ptr<const Mesh>()> received_mesh);
+                  std::function<std::shared_ptr<const Mesh>()> received_mesh, const tf2_ros::Buffer* tf = nullptr);
 
  private:
   void on_goal(const PlanJobGoalConstPtr& goal);

@@ -19,6 +19,7 @@
 #include "rosmill/control/program_run.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/ros/program_status_board.hpp"
+#include "rosmill/ros/work_offset_tf.hpp"
 
 namespace rosmill::edge {
 
@@ -29,10 +30,8 @@ struct RunnerSettings {
   gcode::PostOptions post;
   gcode::ProgramChecks checks;
   control::ControllerOptions controller_options;
-  // The work offset from tf: when `workpiece_frame` is set, every program sets G54 (G10 L2 P1) to where that frame
-  // sits in `machine_frame` (the frame of the machine's coordinates) at the run's start.
-  std::string machine_frame = "table", workpiece_frame;
-  double max_tilt_deg = 0.05, transform_timeout = 2.0;
+  // With a workpiece frame, every program sets G54 (G10 L2 P1) to where it sits on the machine at the run's start.
+  WorkOffsetSource work_offset;
 };
 
 // The settings from the node's private parameters; an Error names a bad one. Opens the controller URI once (a
@@ -41,7 +40,7 @@ RunnerSettings runner_settings(const ::ros::NodeHandle& pnh);
 
 class ProgramRunner {
  public:
-  // `tf` (may be null without a workpiece_frame) outlives the runner.
+  // `tf` (may be null without a work_offset_frame) outlives the runner.
   ProgramRunner(RunnerSettings settings, ProgramStatusBoard& board, const tf2_ros::Buffer* tf = nullptr);
 
   // Prepares and starts a run of `job` on `uri` (empty: the default controller) from `from_line`; returns the
@@ -59,7 +58,6 @@ class ProgramRunner {
   std::string command(const char* what, void (control::ProgramRun::*fn)());
   std::string write_program(const msg::ToolpathJob& msg, const Job& job, gcode::Program& program,
                             std::optional<gcode::WorkOffset>& offset);
-  std::optional<gcode::WorkOffset> work_offset_now() const;
 
   RunnerSettings settings_;
   ProgramStatusBoard& board_;

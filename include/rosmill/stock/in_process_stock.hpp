@@ -60,6 +60,8 @@ class InProcessStock {
   // The top of material seen from a setup, per cell of the setup's grid (a grid over the stock turned into the
   // setup's frame, at the stock's resolution): kNoMaterial where a cell has none; `bottom` is the lowest material.
   HeightField view(const SetupFrame& setup = {}) const;
+  // The grid of view(setup), without computing the view.
+  GridSpec setup_grid(const SetupFrame& setup) const;
   // Material left above the design, per cell of view(setup): the stock's top minus the design's (the mesh in the
   // workpiece frame, turned into the setup's); NaN where there is no material.
   std::vector<float> material_above(const Mesh& design, const SetupFrame& setup = {}) const;
@@ -82,7 +84,6 @@ class InProcessStock {
   Envelope& envelope_of(const SetupFrame& setup);
   const Envelope* envelope_if(const SetupFrame& setup) const;
   Box3 turned_bounds(const SetupFrame& setup) const;
-  GridSpec setup_grid(const SetupFrame& setup) const;
   double top_along(const SetupFrame& setup, double u, double v) const;
   double top_at(const SetupFrame& setup, const Envelope* env, const GridSpec& g, int i, int j) const;
   void clip(const Envelope& e);
