@@ -13,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <future>
 #include <thread>
@@ -130,6 +131,8 @@ TEST_F(Cell, ThreeViewsFromAMovingSensorFuseWithinTheNoise) {
   double sum2 = 0;
   for (double x : d) sum2 += x * x;
   const double rms = std::sqrt(sum2 / double(d.size()));
+  std::printf("fused: %zu points, RMS distance to the design %.4f mm (noise %.3f mm per axis)\n", d.size(), rms,
+              kNoise);
   EXPECT_GT(d.size(), 20000u);
   EXPECT_LT(rms, 2.5 * kNoise) << "the fused cloud is off the design";  // 3-D noise of 0.02 per axis: ~0.035
 }
@@ -146,6 +149,8 @@ TEST_F(Cell, TheFusedScanRegistersAndTheWorkpieceFrameIsPublished) {
   Eigen::Matrix4d found = tf2::transformToEigen(buffer.lookupTransform("table", "workpiece", ros::Time(0))).matrix();
   found.topRightCorner<3, 1>() *= kMmPerMetre;
   const Eigen::Matrix4d error = rigid_inverse(kPart) * found;
+  std::printf("registered: %s; pose error %.4f mm, %.4f deg\n", r.response.message.c_str(),
+              translation_length(error), rotation_angle_deg(error));
   EXPECT_LT(translation_length(error), 0.05);
   EXPECT_LT(rotation_angle_deg(error), 0.05);
   // The fused scan written in the workpiece frame (a job's stock): on the design where it stands.
@@ -259,6 +264,8 @@ TEST_F(Cell, ARescanWithABumpReportsItsHeightAndPlace) {
   done = true;
   sensor.join();
   ASSERT_TRUE(srv.response.success) << srv.response.message;
+  std::printf("inspected: largest excess %.4f mm, %.3f mm from the bump's top\n", srv.response.largest_excess * 1e3,
+              (from_point_msg(srv.response.largest_excess_at) - at).norm());
   EXPECT_NEAR(srv.response.largest_excess, 0.5e-3, 0.03e-3);
   EXPECT_LT((from_point_msg(srv.response.largest_excess_at) - at).norm(), 1.0);
   EXPECT_GT(srv.response.above_tolerance, 0u);
