@@ -48,14 +48,6 @@ constexpr char kOffsetLetter[3] = {'I', 'J', 'K'};
 
 }  // namespace
 
-PlaneAxes plane_axes(Plane plane) {
-  switch (plane) {
-    case Plane::ZX: return {2, 0, 1};
-    case Plane::YZ: return {1, 2, 0};
-    default: return {0, 1, 2};
-  }
-}
-
 Interpreter::Interpreter(std::string file) : file_(std::move(file)) { place_.file = file_; }
 
 const Block& Interpreter::lex(std::string_view line, size_t number) {

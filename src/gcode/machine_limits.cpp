@@ -9,7 +9,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/input_file.hpp"
-#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 
 namespace rosmill::core::gcode {

@@ -9,7 +9,7 @@
 
 #include "grid_walk.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 #include "rosmill/stock/design_height.hpp"
 
 namespace rosmill::core::stock {
@@ -222,7 +222,7 @@ RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupF
     const std::string where = "program move " + std::to_string(m.source);
     if (!m.from.allFinite() || !m.to.allFinite()) throw Error(where, "a position is not finite");
     if (m.tool >= program.tools.size()) throw Error(where, "names a tool the program does not have");
-    if (m.is_arc() && m.plane != gcode::Plane::XY) throw Error(where, "only arcs in the XY plane (G17) are simulated");
+    if (m.is_arc() && m.plane != Plane::XY) throw Error(where, "only arcs in the XY plane (G17) are simulated");
   }
   const double before = volume();
   // The kernel lowers the material's top as seen from the setup: a cell it lowers is a cut into material.
@@ -242,7 +242,7 @@ RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupF
   for (size_t k = 0; k < program.moves.size(); ++k) {
     const CanonMove& m = program.moves[k];
     if (m.rapid) continue;
-    const double length = gcode::move_length(m);
+    const double length = move_length(m);
     r.feed_mm += length;
     if (!sim.cutting_moves[k]) r.air_feed_mm += length;
   }

@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "rosmill/cutter/contact.hpp"
-#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 #include "rosmill/stock/program.hpp"
 
 namespace rosmill::core::stock::sweep {

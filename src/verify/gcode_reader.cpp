@@ -136,7 +136,7 @@ class Reader {
   }
 
   // A move is swept once all three axes are known, the first one from its own target.
-  void add(const gcode::CanonMove& move) {
+  void add(const CanonMove& move) {
     if (move.is_arc() && move.turns != 1) throw Error(reader_.where(), "arcs of several turns (P) are not supported");
     if (!move.to_known()) return;  // still somewhere unknown: nothing to sweep yet
     if (current_ < 0)
@@ -147,7 +147,7 @@ class Reader {
     if (program_.moves.size() >= kMaxProgramMoves)
       throw Error(reader_.where(), "the program has more than " + std::to_string(kMaxProgramMoves) +
                                        " moves, more than the verifier holds: verify it in parts");
-    gcode::CanonMove& m = program_.moves.emplace_back(move);
+    CanonMove& m = program_.moves.emplace_back(move);
     if (!m.from_known()) {  // the first swept move starts at its own target
       m.from = m.to;
       m.known_from = m.known_to;

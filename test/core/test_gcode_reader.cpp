@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/lexer.hpp"
 #include "rosmill/gcode/rs274_check.hpp"

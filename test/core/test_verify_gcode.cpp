@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
-#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 
 using namespace rosmill::core;

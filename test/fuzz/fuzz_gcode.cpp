@@ -24,7 +24,7 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
-void require_finite_move(const core::gcode::CanonMove& m) {
+void require_finite_move(const core::CanonMove& m) {
   for (int a = 0; a < 3; ++a) {
     if (m.known_to & (1 << a)) fuzz::require(std::isfinite(m.to[a]), "a move to a coordinate that is not finite");
     if (m.known_from & (1 << a)) fuzz::require(std::isfinite(m.from[a]), "a move from a coordinate that is not finite");
@@ -59,7 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::read_or_refuse([&] {
     static const core::verify::ToolSetup tools = core::verify::tool_setup({"1=flat:6", "2=ball:3", "1"});
     const core::stock::MachineProgram program = core::verify::parse_gcode(text, "fuzz.ngc", tools);
-    for (const core::gcode::CanonMove& m : program.moves) require_finite_move(m);
+    for (const core::CanonMove& m : program.moves) require_finite_move(m);
   });
   fuzz::read_or_refuse([&] {
     static const core::gcode::MachineLimits limits = machine();

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "rosmill/gcode/block.hpp"
-#include "rosmill/gcode/canon.hpp"
+#include "rosmill/toolpath/canon_move.hpp"
 
 namespace rosmill::core::gcode {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "rosmill/gcode/canon.hpp"
+#include "rosmill/toolpath/canon_move.hpp"
 #include "rosmill/gcode/post.hpp"
 
 namespace rosmill::core::gcode {

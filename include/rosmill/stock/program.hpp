@@ -6,18 +6,15 @@
 #include <vector>
 
 #include "rosmill/cutter/cutter.hpp"
-#include "rosmill/gcode/canon.hpp"
 #include "rosmill/geometry/types.hpp"
+#include "rosmill/toolpath/canon_move.hpp"
 #include "rosmill/toolpath/toolpath.hpp"
 
 namespace rosmill::core::stock {
 
-// The simulator's moves are the G-code reader's canonical moves (arcs in the XY plane, z may change: a helix);
-// `tool` indexes MachineProgram::tools, `source` is a G-code line or a toolpath move number (1-based, over the
-// whole job).
-using gcode::CanonMove;
-using gcode::MoveShape;
-
+// The simulator's moves are canonical moves (toolpath/canon_move.hpp: arcs in the XY plane, z may change: a
+// helix); `tool` indexes MachineProgram::tools, `source` is a G-code line or a toolpath move number (1-based, over
+// the whole job).
 struct MachineProgram {
   std::vector<Tool> tools;
   std::vector<CanonMove> moves;

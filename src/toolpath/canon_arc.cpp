@@ -1,8 +1,17 @@
-#include "rosmill/gcode/canon_arc.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 
 #include <cmath>
 
-namespace rosmill::core::gcode {
+namespace rosmill::core {
+
+PlaneAxes plane_axes(Plane plane) {
+  switch (plane) {
+    case Plane::ZX: return {2, 0, 1};
+    case Plane::YZ: return {1, 2, 0};
+    default: return {0, 1, 2};
+  }
+}
+
 
 double arc_sweep(const CanonMove& arc) {
   const Vec2 a = arc.from.head<2>() - arc.centre, b = arc.to.head<2>() - arc.centre;
@@ -44,4 +53,4 @@ void move_xy_bounds(const CanonMove& move, Vec2& min, Vec2& max) {
   }
 }
 
-}  // namespace rosmill::core::gcode
+}  // namespace rosmill::core

@@ -1,9 +1,9 @@
 // XY arcs of canonical moves (G2/G3 in G17, helical z): angles, points and bounds shared by the simulator, the
 // machine-limits check and their tests.
 #pragma once
-#include "rosmill/gcode/canon.hpp"
+#include "rosmill/toolpath/canon_move.hpp"
 
-namespace rosmill::core::gcode {
+namespace rosmill::core {
 
 // Signed sweep angle of an arc move in radians: positive counter-clockwise (G3), negative clockwise (G2); a move
 // that ends where it starts in XY is a full turn (±2π).
@@ -15,4 +15,4 @@ double move_length(const CanonMove& move);
 // XY bounds of the move's axis path (the arc's extreme points included).
 void move_xy_bounds(const CanonMove& move, Vec2& min, Vec2& max);
 
-}  // namespace rosmill::core::gcode
+}  // namespace rosmill::core

@@ -1,14 +1,14 @@
 // A canonical move: what a block asks the machine to do, in the terms of LinuxCNC's canonical machining
 // functions (STRAIGHT_TRAVERSE, STRAIGHT_FEED, ARC_FEED; Kramer, Proctor and Messina, "The NIST RS274NGC
-// Interpreter - Version 3", chapter 4). The reader emits one per motion block; the machine-limits check, the
-// resume preamble, the verifier and the rs274 comparison all read this stream, and rs274's own output is read
-// into it too. Lengths in mm, program coordinates (the work offset's), feeds in mm/min.
+// Interpreter - Version 3", chapter 4). The G-code reader emits one per motion block; the machine-limits check,
+// the resume preamble, the verifier, the stock's removal and the rs274 comparison all read this stream, and
+// rs274's own output is read into it too. A toolpath type: the stock below the G-code layer sweeps it. Lengths in mm, program coordinates (the work offset's), feeds in mm/min.
 #pragma once
 #include <cstdint>
 
 #include "rosmill/geometry/types.hpp"
 
-namespace rosmill::core::gcode {
+namespace rosmill::core {
 
 enum class MoveShape : uint8_t { Line, ArcCW, ArcCCW };
 // The arc plane (G17, G18, G19) and its two axes in ARC_FEED's order: XY, ZX, YZ; the third axis is the helix's.
@@ -40,4 +40,4 @@ struct CanonMove {
   bool to_known() const { return known_to == 7; }
 };
 
-}  // namespace rosmill::core::gcode
+}  // namespace rosmill::core
