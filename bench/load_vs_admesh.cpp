@@ -3,7 +3,9 @@
 // in the page cache (a first run of each is not counted). Files: a generated 2,012,000-triangle binary wavy solid
 // (100.6 MB, written once into the build folder), demo2 (ASCII, unpacked there) and counter.unitsmm.STL (binary,
 // 4.2 MB); and the start-up alone: `rosmill info` on the 12-triangle cube. Minor page faults are the child's own
-// (getrusage of the waited process): each is a fresh page the process touched.
+// (getrusage of the waited process): each is a fresh page the process touched. Then, in this process, where a
+// load's time goes on each file: reading and welding, the full Mesh and its report (what `info` did before), and
+// the report straight from the welded triangles (what it does now).
 // Usage: bench_load_vs_admesh [runs] [ROSMILL]   (another build of the tool, e.g. an older one, to compare)
 #include <fcntl.h>
 #include <spawn.h>
@@ -19,6 +21,7 @@
 #include <vector>
 
 #include "rosmill/geometry/mesh.hpp"
+#include "rosmill/geometry/mesh_report.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/testing/unpacked.hpp"
@@ -73,6 +76,30 @@ Run best_of(const std::vector<std::string>& argv, int runs) {
     if (r.seconds < best.seconds) best = r;
   }
   return best;
+}
+
+// Best wall seconds of `runs` calls of work().
+template <class Work>
+double best_seconds(int runs, const Work& work) {
+  double best = 1e300;
+  for (int k = 0; k < runs; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    work();
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  return best;
+}
+
+// The phases of one load in this process, best of `runs` each.
+void print_phases(const char* name, const std::string& path, int runs) {
+  IndexedTriangles t;
+  const double read = best_seconds(runs, [&] { t = read_stl_triangles(path); });
+  Mesh mesh;
+  const double build = best_seconds(runs, [&] { mesh = mesh_from_indexed(t); });
+  MeshReport r;
+  const double full = best_seconds(runs, [&] { r = report(mesh); });
+  const double quick = best_seconds(runs, [&] { r = report(t); });
+  std::printf("%-26s %12.4f %12.4f %12.4f %12.4f\n", name, read, build, full, quick);
 }
 
 size_t shared_libraries(const std::string& exe) {
@@ -131,5 +158,9 @@ int main(int argc, char** argv) {
                 f.goal == 0 ? "-" : x >= f.goal ? "met" : "MISS");
     std::fflush(stdout);
   }
+  std::printf("\nin-process phases, seconds, best of %d\n", runs);
+  std::printf("%-26s %12s %12s %12s %12s\n", "file", "read+weld", "full Mesh", "its report", "quick report");
+  for (const File& f : files)
+    if (!f.path.empty() && fs::exists(f.path)) print_phases(f.name, f.path, runs);
   return 0;
 }

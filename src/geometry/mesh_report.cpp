@@ -1,8 +1,97 @@
 #include "rosmill/geometry/mesh_report.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/partitioner.h>
+
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <atomic>
+
+#include "rosmill/error.hpp"
 
 namespace rosmill::core {
+namespace {
+
+// Divergence theorem: sum of signed tetrahedra against the bbox centre (centring keeps the sum accurate).
+double signed_volume(const std::vector<Vec3>& vertices, const std::vector<Mesh::Face>& faces, const Box3& bbox) {
+  const Vec3 c = bbox.empty() ? Vec3::Zero() : Vec3(0.5 * (bbox.min + bbox.max));
+  double six_v = 0.0;
+  for (const auto& t : faces) {
+    const Vec3 a = vertices[t[0]] - c, b = vertices[t[1]] - c, d = vertices[t[2]] - c;
+    six_v += a.dot(b.cross(d));
+  }
+  return six_v / 6.0;
+}
+
+// Box, area, degenerate faces and volume: one pass over the faces, summed in face order as report(Mesh) sums the
+// Mesh's areas, so that both give the same bits. A face's area is Mesh's (half its corners' cross product, zero
+// when two corners share a vertex).
+void add_surface(const IndexedTriangles& m, MeshReport& r) {
+  for (const Vec3& v : m.vertices) r.bbox.add(v);
+  for (const Mesh::Face& t : m.faces) {
+    const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    const Vec3& p = m.vertices[t[0]];
+    const double len = (m.vertices[t[1]] - p).cross(m.vertices[t[2]] - p).norm();
+    const double area = repeated || !(len > 0.0) ? 0.0 : 0.5 * len;
+    r.area += area;
+    if (area == 0.0) ++r.degenerate;
+  }
+  r.volume = signed_volume(m.vertices, m.faces, r.bbox);
+}
+
+struct EdgeCounts {
+  size_t open = 0, nonmanifold = 0, inconsistent = 0;
+};
+
+// Edges from the half-edges grouped on their lower vertex by a counting sort (the grouping Mesh's edges are built
+// with), each stored as its higher vertex << 1 | direction (1: run from lower to higher). Within a vertex's short
+// list, sorting brings an edge's half-edges together: one of them is an open edge, more than two a non-manifold
+// one, and two with the same direction bit an inconsistently oriented one. Needs vertices < 2^31.
+EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
+  std::vector<uint32_t> end(nv + 1, 0);  // after the scatter: end[v] is where v's list begins
+  for (const Mesh::Face& t : faces)
+    for (int c = 0; c < 3; ++c) ++end[std::min(t[c], t[(c + 1) % 3])];
+  for (size_t v = 1; v <= nv; ++v) end[v] += end[v - 1];
+  std::vector<uint32_t> half(3 * faces.size());
+  for (const Mesh::Face& t : faces)
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t from = t[c], to = t[(c + 1) % 3];
+      const uint32_t lo = std::min(from, to), hi = std::max(from, to);
+      half[--end[lo]] = hi << 1 | uint32_t(from < to);
+    }
+  // Vertex ranges on both cores (from 50,000 faces on), each chunk one task; the counts are integers, so their
+  // sum does not depend on the order the chunks end in.
+  const int chunks = faces.size() > 50000 ? 16 : 1;
+  std::atomic<size_t> open{0}, nonmanifold{0}, inconsistent{0};
+  tbb::parallel_for(0, chunks, [&](int k) {
+    EdgeCounts n;
+    for (size_t v = nv * size_t(k) / size_t(chunks); v < nv * size_t(k + 1) / size_t(chunks); ++v) {
+      uint32_t* first = half.data() + end[v];
+      uint32_t* last = half.data() + end[v + 1];
+      if (last - first <= 16) {
+        for (uint32_t* i = first + 1; i < last; ++i)  // insertion sort: most lists hold a handful
+          for (uint32_t* j = i; j > first && j[0] < j[-1]; --j) std::swap(j[0], j[-1]);
+      } else {
+        std::sort(first, last);
+      }
+      for (uint32_t* i = first; i < last;) {
+        uint32_t* j = i + 1;
+        while (j < last && (*j >> 1) == (*i >> 1)) ++j;
+        if (j - i == 1) ++n.open;
+        if (j - i > 2) ++n.nonmanifold;
+        if (j - i == 2 && i[0] == i[1]) ++n.inconsistent;
+        i = j;
+      }
+    }
+    open += n.open;
+    nonmanifold += n.nonmanifold;
+    inconsistent += n.inconsistent;
+  }, tbb::simple_partitioner());
+  return {open, nonmanifold, inconsistent};
+}
+
+}  // namespace
 
 MeshReport report(const Mesh& mesh) {
   MeshReport r;
@@ -19,14 +108,31 @@ MeshReport report(const Mesh& mesh) {
     if (e.manifold() && !e.consistent) ++r.inconsistent_edges;
   }
   r.closed = mesh.closed();
-  // Divergence theorem: sum of signed tetrahedra against the bbox centre (centring keeps the sum accurate).
-  const Vec3 c = r.bbox.empty() ? Vec3::Zero() : Vec3(0.5 * (r.bbox.min + r.bbox.max));
-  double six_v = 0.0;
-  for (const auto& t : mesh.faces) {
-    const Vec3 a = mesh.vertices[t[0]] - c, b = mesh.vertices[t[1]] - c, d = mesh.vertices[t[2]] - c;
-    six_v += a.dot(b.cross(d));
-  }
-  r.volume = six_v / 6.0;
+  r.volume = signed_volume(mesh.vertices, mesh.faces, r.bbox);
+  return r;
+}
+
+MeshReport report(const IndexedTriangles& triangles) {
+  const size_t nv = triangles.vertices.size();
+  // The half-edge values keep a direction bit beside the vertex: beyond 2^31 vertices, the full Mesh.
+  if (nv >= (size_t(1) << 31)) return report(mesh_from_indexed(triangles));
+  if (triangles.faces.size() >= (size_t(1) << 30)) throw Error("mesh", "more than 2^30 triangles");
+  uint32_t highest = 0;  // a vectorized scan; the first bad face is looked for only when there is one
+  for (const Mesh::Face& t : triangles.faces) highest = std::max({highest, t[0], t[1], t[2]});
+  if (!triangles.faces.empty() && highest >= nv)
+    for (const Mesh::Face& t : triangles.faces)
+      for (uint32_t v : t)
+        if (v >= nv) throw Error("mesh", "a face uses vertex " + std::to_string(v) + " of " + std::to_string(nv));
+  MeshReport r;
+  r.triangles = triangles.faces.size();
+  r.vertices = nv;
+  EdgeCounts edges;
+  // The surface pass (floating point) beside the edge pass (integers): one core each.
+  tbb::parallel_invoke([&] { add_surface(triangles, r); }, [&] { edges = count_edges(triangles.faces, nv); });
+  r.open_edges = edges.open;
+  r.nonmanifold_edges = edges.nonmanifold;
+  r.inconsistent_edges = edges.inconsistent;
+  r.closed = !triangles.faces.empty() && edges.open == 0 && edges.nonmanifold == 0;
   return r;
 }
 

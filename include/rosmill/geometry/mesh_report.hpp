@@ -21,4 +21,8 @@ struct MeshReport {
 
 MeshReport report(const Mesh& mesh);
 
+// The same report, bit for bit, straight from welded triangles: no normals, areas or adjacency are kept, only
+// one array of half-edges grouped by vertex (a fraction of the memory of a Mesh). Throws like mesh_from_indexed().
+MeshReport report(const IndexedTriangles& triangles);
+
 }  // namespace rosmill::core

@@ -2,8 +2,10 @@
 // program that links neither PCL nor VTK (about 70 shared libraries fewer to load and relocate, most of the
 // start-up); every other command, and `info` on a point cloud, replaces this process with rosmill-full from the
 // same folder, with the same arguments.
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -13,6 +15,7 @@
 
 #include "../info_command.hpp"
 #include "../run_cli.hpp"
+#include "huge_pages.hpp"
 #include "rosmill/heap_reuse.hpp"
 
 namespace {
@@ -34,11 +37,24 @@ std::string own_folder() {
   std::exit(1);
 }
 
+// The largest regular file among the arguments (the mesh; options and their values name none), 0 if none.
+size_t largest_file_argument(int argc, char** argv) {
+  size_t largest = 0;
+  for (int i = 2; i < argc; ++i) {
+    struct stat st {};
+    if (::stat(argv[i], &st) == 0 && S_ISREG(st.st_mode)) largest = std::max(largest, size_t(st.st_size));
+  }
+  return largest;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2 || std::strcmp(argv[1], "info") != 0) run_full(argv);
-  rosmill::core::keep_freed_memory();  // as rosmill-full does (see heap_reuse.hpp)
+  if (rosmill::core::keep_freed_memory())  // as rosmill-full does (see heap_reuse.hpp)
+    // A binary STL's load writes about its own size in fresh arrays (welder tables, faces, vertices, half-edges),
+    // an ASCII or gzip one less than its size times two; what is reserved but not written costs no memory.
+    rosmill::core::cli::reserve_huge_page_heap(2 * largest_file_argument(argc, argv));
   CLI::App app{rosmill::core::cli::kAppDescription};
   rosmill::core::cli::add_info_command(
       app, [argv](const std::string&, const std::string&) -> nlohmann::json { run_full(argv); });
