@@ -125,12 +125,16 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
                                                        " points; at least 50 are needed");
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult r;
+  PhaseClock clock(r.phases);
   const SurfaceSample target = sample_surface(design, o.design_points, o.seed);
   const double area = std::accumulate(design.areas.begin(), design.areas.end(), 0.0);
   const double size = design.bbox.size().norm();
   const Vec3 centre = principal_frame(target.points).centroid;
+  clock.lap("design sampling");
   const MeshDistance distance(design);
+  clock.lap("triangle index");
   const PlaneIcp icp(target.points, target.normals);
+  clock.lap("ICP index");
 
   // Global: every principal-axes candidate pulled in by coarse ICP.
   const double leaf = std::sqrt(area / double(o.coarse_points));
@@ -141,11 +145,14 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   const std::vector<Eigen::Matrix4d> candidates =
       principal_axes_candidates(design_frame, principal_frame(coarse), o.moment_tolerance);
   r.candidates = candidates.size();
+  clock.lap("scan thinning, principal axes");
   std::vector<Fit> fits;
   for (const Eigen::Matrix4d& c : candidates) {
     Eigen::Matrix4d t = icp.align(coarse, rigid_inverse(c), 0.2 * size, 25);
     t = icp.align(coarse, t, 3 * leaf, 25);
+    clock.lap("coarse ICP");
     fits.push_back(measure(distance, coarse, t, leaf));
+    clock.lap("candidate fitness");
   }
   std::sort(fits.begin(), fits.end(), better);
   r.global_seconds = seconds_since(start);
@@ -157,11 +164,15 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   // The pairing distance shrinks from the coarse fit's reach to the inlier distance; the first steps need few
   // points, only the last one all of the fine set.
   const std::vector<Vec3> middle = thin_evenly(fine, std::max<size_t>(o.fine_points / 4, 50));
+  clock.lap("scan thinning, principal axes");
   const auto refine = [&](const Eigen::Matrix4d& t0) {
     Eigen::Matrix4d t = icp.align(middle, t0, std::max(2 * leaf, 4 * o.inlier_distance), 30);
     t = icp.align(middle, t, 2 * o.inlier_distance, 30);
     t = icp.align(fine, t, o.inlier_distance, 15);
-    return measure(distance, fine, t, o.inlier_distance);
+    clock.lap("fine ICP");
+    const Fit fit = measure(distance, fine, t, o.inlier_distance);
+    clock.lap("fine fitness");
+    return fit;
   };
   const Fit best = refine(fits.front().scan_to_design);
   std::vector<Eigen::Matrix4d> distinct{fits.front().scan_to_design};
@@ -183,8 +194,10 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   const std::vector<Vec3> in_design = transformed_points(best.scan_to_design, fine);
   r.overlap = covered_share(thin_evenly(target.points, 5000), in_design,
                              o.inlier_distance + 2 * std::sqrt(area / double(fine.size())));
+  clock.lap("overlap");
   const double conditioning =
       estimate_uncertainty(distance, in_design, design, centre, 0.5 * size, o.inlier_distance, r);
+  clock.lap("uncertainty");
   r.fine_seconds = seconds_since(fine_start);
 
   std::ostringstream why;

@@ -18,6 +18,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
+#include "rosmill/scan/phase_clock.hpp"
 
 namespace rosmill::core::scan {
 
@@ -49,6 +50,7 @@ struct RegistrationResult {
   size_t candidates = 0;     // global candidates tried
   size_t scan_points_used = 0;
   double global_seconds = 0, fine_seconds = 0;
+  PhaseSeconds phases;       // the same time by phase (design sampling, indexes, ICP, exact distances, ...)
 };
 
 // Throws Error on bad input (no design surface, an empty scan, bad options) and when the fit is refused.
