@@ -1,7 +1,8 @@
-// Point-to-plane ICP (PCL's IterativeClosestPointWithNormals, linear least squares per step): moving points are
-// pulled onto a fixed surface given as points with normals. Chen & Medioni, "Object modelling by registration of
-// multiple range images" (1992): minimising the distance to the tangent plane converges in far fewer steps than
-// point-to-point ICP (Besl & McKay 1992) and slides along the surface to its exact fit.
+// Point-to-plane ICP, linear least squares per step: moving points are pulled onto a fixed surface given as points
+// with normals. Chen & Medioni, "Object modelling by registration of multiple range images" (1992): minimising the
+// distance to the tangent plane converges in far fewer steps than point-to-point ICP (Besl & McKay 1992) and
+// slides along the surface to its exact fit. In double precision, the pairs found and summed on every core
+// (the k-d tree of point_index.hpp, built once per fixed surface).
 #pragma once
 #include <memory>
 #include <vector>
