@@ -72,6 +72,55 @@ bool same_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, double length
   return rotation_angle_deg(d) < 2.0 && translation_length(d) < length;
 }
 
+// The global step's candidates pulled in by coarse ICP, first with a reach of a fifth of the part (to pull them in
+// from the principal-axes guess) then of 3 voxels (to settle), at most 25 steps each. They run as a race (Maron &
+// Moore, "Hoeffding races: accelerating model selection search", 1994): in rounds of 5 steps, the candidates of a
+// round side by side; after each round every candidate's inlier share is measured and those that trail the best so
+// far by more than a quarter of the scan drop out (a wrong principal-axes guess fits half the scan or less and
+// gains little from more steps, while the right one fits nearly all of it within a few). Candidates that fit
+// about equally, a symmetric part's, all run to the end. Returns every candidate's last fit.
+std::vector<Fit> race_candidates(const PlaneIcp& icp, const MeshDistance& distance, const std::vector<Vec3>& coarse,
+                                 const std::vector<Eigen::Matrix4d>& candidates, double size, double leaf) {
+  constexpr int kRound = 5, kStageSteps = 25;
+  constexpr double kTrail = 0.25;
+  const double reach[2] = {0.2 * size, 3 * leaf};
+  struct Runner {
+    Eigen::Matrix4d pose;
+    int stage = 0, steps = 0;
+    bool running = true;
+    Fit fit;
+  };
+  std::vector<Runner> runners;
+  for (const Eigen::Matrix4d& c : candidates) {
+    runners.emplace_back();
+    runners.back().pose = rigid_inverse(c);
+  }
+  for (;;) {
+    std::vector<size_t> running;
+    for (size_t i = 0; i < runners.size(); ++i)
+      if (runners[i].running) running.push_back(i);
+    if (running.empty()) break;
+    tbb::parallel_for(size_t(0), running.size(), [&](size_t k) {
+      Runner& c = runners[running[k]];
+      IcpOutcome outcome;
+      c.pose = icp.align(coarse, c.pose, reach[c.stage], std::min(kRound, kStageSteps - c.steps), &outcome);
+      c.steps += outcome.steps;
+      if (outcome.converged || outcome.pairs < 6 || c.steps >= kStageSteps) {
+        c.steps = 0;
+        c.running = ++c.stage < 2;
+      }
+      c.fit = measure(distance, coarse, c.pose, leaf);
+    });
+    double best = 0;
+    for (const Runner& c : runners) best = std::max(best, c.fit.share);
+    for (Runner& c : runners)
+      if (c.fit.share < best - kTrail) c.running = false;
+  }
+  std::vector<Fit> fits;
+  for (const Runner& c : runners) fits.push_back(c.fit);
+  return fits;
+}
+
 // The pose's covariance from the point-to-plane normal equations at the fit: rows (p x n, n) per inlier, with
 // the rotation columns scaled by the part's size so that the eigenvalues compare. Returns the smallest over the
 // largest eigenvalue (near 0: a direction the seen surface does not fix).
@@ -154,17 +203,9 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
       principal_axes_candidates(design_frame, principal_frame(coarse), o.moment_tolerance);
   r.candidates = candidates.size();
   clock.lap("scan thinning, principal axes");
-  // The candidates side by side (each ICP step also shares its points out over the cores).
-  std::vector<Eigen::Matrix4d> pulled(candidates.size());
-  tbb::parallel_for(size_t(0), candidates.size(), [&](size_t i) {
-    const Eigen::Matrix4d t = icp.align(coarse, rigid_inverse(candidates[i]), 0.2 * size, 25);
-    pulled[i] = icp.align(coarse, t, 3 * leaf, 25);
-  });
-  clock.lap("coarse ICP");
-  std::vector<Fit> fits;
-  for (const Eigen::Matrix4d& t : pulled) fits.push_back(measure(distance, coarse, t, leaf));
+  std::vector<Fit> fits = race_candidates(icp, distance, coarse, candidates, size, leaf);
   std::stable_sort(fits.begin(), fits.end(), better);
-  clock.lap("candidate fitness");
+  clock.lap("candidates (coarse ICP, fitness)");
   r.global_seconds = seconds_since(start);
 
   // Fine: the best and the distinct poses that fit about as well at the coarse level.

@@ -31,7 +31,7 @@ struct NormalEquations {
 // The step that solves the equations in the directions the pairs fix; a direction they leave free (a plane's
 // slide, a cylinder's turn) is not moved rather than thrown to infinity by a near-zero pivot.
 Vector6 solve(const NormalEquations& e) {
-  const Eigen::SelfAdjointEigenSolver<Matrix6> es(e.a);
+  const Eigen::SelfAdjointEigenSolver<Matrix6> es(e.a, Eigen::ComputeEigenvectors);  // reads the lower triangle
   const double largest = es.eigenvalues()[5];
   Vector6 projected = es.eigenvectors().transpose() * (-e.b);
   for (int i = 0; i < 6; ++i)
@@ -65,7 +65,7 @@ PlaneIcp::PlaneIcp(const std::vector<Vec3>& points, const std::vector<Vec3>& nor
 PlaneIcp::~PlaneIcp() = default;
 
 Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Matrix4d& start, double max_distance,
-                                int iterations) const {
+                                int iterations, IcpOutcome* outcome) const {
   if (moving.size() < 6) throw Error("point-to-plane ICP", "at least 6 moving points are needed");
   Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
   shift.topRightCorner<3, 1>() = -impl_->origin;
@@ -73,7 +73,8 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
   const PointIndex& index = *impl_->index;
   const std::vector<Vec3>& fixed = index.points();
   const std::vector<Vec3>& normals = impl_->normals;
-  for (int step = 0; step < iterations; ++step) {
+  IcpOutcome done;
+  for (; done.steps < iterations && !done.converged; ++done.steps) {
     const Eigen::Matrix3d r = pose.topLeftCorner<3, 3>();
     const Vec3 t = pose.topRightCorner<3, 1>();
     // A deterministic reduction: the same sums in the same order whatever the number of threads.
@@ -98,17 +99,17 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
           x.join(y);
           return x;
         });
+    done.pairs = e.pairs;
     if (e.pairs < 6) break;  // too few pairs to fix a pose: keep the last one
-    NormalEquations full = e;
-    full.a = e.a.selfadjointView<Eigen::Lower>();
-    const Vector6 x = solve(full);
+    const Vector6 x = solve(e);
     const double angle = x.head<3>().norm();
     Eigen::Matrix4d increment = Eigen::Matrix4d::Identity();
     if (angle > 0) increment.topLeftCorner<3, 3>() = Eigen::AngleAxisd(angle, x.head<3>() / angle).toRotationMatrix();
     increment.topRightCorner<3, 1>() = x.tail<3>();
     pose = increment * pose;
-    if (x.tail<3>().norm() < 1e-6 && angle < 1e-6) break;  // 1e-6 mm and 1e-6 rad: converged
+    done.converged = x.tail<3>().norm() < 1e-6 && angle < 1e-6;
   }
+  if (outcome) *outcome = done;
   Eigen::Matrix4d unshift = Eigen::Matrix4d::Identity();
   unshift.topRightCorner<3, 1>() = impl_->origin;
   return unshift * pose;

@@ -13,6 +13,13 @@
 
 namespace rosmill::core::scan {
 
+// How an alignment ended.
+struct IcpOutcome {
+  int steps = 0;           // steps taken
+  bool converged = false;  // the last step moved less than 1e-6 mm and 1e-6 rad
+  size_t pairs = 0;        // point pairs of the last step (fewer than 6: it stopped there)
+};
+
 class PlaneIcp {
  public:
   // The fixed surface (its k-d tree is built once, for every align()). Throws Error when empty or the sizes differ.
@@ -24,7 +31,7 @@ class PlaneIcp {
   // The transform (moving -> fixed) refined from `start`, pairing points at most `max_distance` mm apart, for at
   // most `iterations` steps (fewer once a step moves less than 1e-6 mm and 1e-6 rad).
   Eigen::Matrix4d align(const std::vector<Vec3>& moving, const Eigen::Matrix4d& start, double max_distance,
-                        int iterations) const;
+                        int iterations, IcpOutcome* outcome = nullptr) const;
 
  private:
   struct Impl;
