@@ -113,13 +113,14 @@ int main(int argc, char** argv) {
     moved.points = transformed_points(start, scan.points);
     write_cloud(dir + "/scan.pcd", moved, Units::Millimetre);
     const auto p0 = std::chrono::steady_clock::now();
-    const std::string out = run("cd " + dir + " && pcl_icp design.pcd scan.pcd -d 5 -n 100 2>&1");
+    // pcl_icp's options: -d the pairing distance, -i the iterations (-n is its switch to Levenberg-Marquardt).
+    const std::string out = run("cd " + dir + " && pcl_icp design.pcd scan.pcd -d 5 -i 100 2>&1");
     const double pcl_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
     const Eigen::Matrix4d step = last_matrix(out);
     // pcl_icp's transform maps the (pre-moved) scan onto the design: the design -> scan pose is its inverse.
     const Eigen::Matrix4d found = rigid_inverse(step * start);
     const Eigen::Matrix4d pcl_error = rigid_inverse(truth) * found;
-    std::printf("  pcl_icp (start: truth nudged 1 mm, 1 deg; -d 5 -n 100): %.3f s wall, error %.5f mm %.5f deg\n",
+    std::printf("  pcl_icp (start: truth nudged 1 mm, 1 deg; -d 5 -i 100): %.3f s wall, error %.5f mm %.5f deg\n",
                 pcl_wall, step.allFinite() ? synthetic::box_corner_error(design, pcl_error) : std::nan(""),
                 step.allFinite() ? rotation_angle_deg(pcl_error) : std::nan(""));
   }

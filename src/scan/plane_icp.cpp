@@ -1,11 +1,17 @@
 #include "rosmill/scan/plane_icp.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/point_index.hpp"
 
 namespace rosmill::core::scan {
@@ -37,6 +43,10 @@ Vector6 solve(const NormalEquations& e) {
   for (int i = 0; i < 6; ++i)
     projected[i] = es.eigenvalues()[i] > 1e-12 * largest ? projected[i] / es.eigenvalues()[i] : 0.0;
   return es.eigenvectors() * projected;
+}
+
+bool settled(const Eigen::Matrix4d& step) {
+  return translation_length(step) < 1e-6 && rotation_angle_deg(step) < 1e-6 * 180 / M_PI;
 }
 
 }  // namespace
@@ -74,6 +84,8 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
   const std::vector<Vec3>& fixed = index.points();
   const std::vector<Vec3>& normals = impl_->normals;
   IcpOutcome done;
+  std::array<Eigen::Matrix4d, 4> recent;  // the poses before the last steps (in a ring)
+  recent.fill(Eigen::Matrix4d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (; done.steps < iterations && !done.converged; ++done.steps) {
     const Eigen::Matrix3d r = pose.topLeftCorner<3, 3>();
     const Vec3 t = pose.topRightCorner<3, 1>();
@@ -106,8 +118,14 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
     Eigen::Matrix4d increment = Eigen::Matrix4d::Identity();
     if (angle > 0) increment.topLeftCorner<3, 3>() = Eigen::AngleAxisd(angle, x.head<3>() / angle).toRotationMatrix();
     increment.topRightCorner<3, 1>() = x.tail<3>();
+    recent[size_t(done.steps) % recent.size()] = pose;
     pose = increment * pose;
-    done.converged = x.tail<3>().norm() < 1e-6 && angle < 1e-6;
+    // Converged when the step is below 1e-6 mm and 1e-6 rad, or when it returns to a pose of the last few steps:
+    // the pairs then cycle between sets that fit equally well (each step a few 1e-4 mm), and more steps only
+    // go round the cycle.
+    done.converged = settled(increment) || std::any_of(recent.begin(), recent.end(), [&](const Eigen::Matrix4d& p) {
+                       return settled(pose * rigid_inverse(p));  // false for the ring's NaN fill
+                     });
   }
   if (outcome) *outcome = done;
   Eigen::Matrix4d unshift = Eigen::Matrix4d::Identity();
