@@ -163,7 +163,8 @@ std::vector<double> MeshDistance::distances(const std::vector<Vec3>& points, dou
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
     SurfaceDistance s;
     for (size_t i = range.begin(); i != range.end(); ++i)
-      out[i] = query_within(points[i], limit, s) ? std::abs(s.signed_distance) : std::numeric_limits<double>::infinity();
+      out[i] = query_within(points[i], limit, s) ? std::abs(s.signed_distance)
+                                                 : std::numeric_limits<double>::infinity();
   });
   return out;
 }

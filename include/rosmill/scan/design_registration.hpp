@@ -2,7 +2,8 @@
 // part is, with no initial guess.
 //
 //   1. Global: principal-axes candidates (principal_axes.hpp), each pulled in by coarse point-to-plane ICP on a
-//      voxel-thinned scan against an area-weighted sampling of the design; the best fit wins.
+//      voxel-thinned scan against an area-weighted sampling of the design, side by side in rounds where a clearly
+//      worse candidate drops out; the best fit wins.
 //   2. Fine: point-to-plane ICP (plane_icp.hpp) with shrinking pairing distance on up to `fine_points` scan points.
 //   3. Fitness from exact point-to-triangle distances (mesh_distance.hpp): RMS of the inliers, inlier share,
 //      overlap (share of the design the scan covers); the pose's uncertainty from the point-to-plane normal
