@@ -9,7 +9,8 @@
 //             PCD (the scan as source, 300k design surface samples as target) and given to `pcl_icp` after an
 //             initial alignment by the true pose nudged by 1 mm and 1 degree (pcl_icp has no global step); its
 //             final transform is read from its output and its errors printed beside ours.
-// Usage: bench_register [threads]
+// Usage: bench_register [threads] [pcl_poses]   (pcl_poses: how many of the 5 poses pcl_icp also runs, default 5;
+//        it takes 1-2 minutes per pose on 2 cores)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,6 +25,7 @@
 #include <unistd.h>
 
 #include "cpu_time.hpp"
+#include "rosmill/heap_reuse.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
@@ -69,12 +71,14 @@ std::string run(const std::string& command) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  rosmill::core::keep_freed_memory();  // repeated jobs reuse their memory (see heap_reuse.hpp)
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
+  const int pcl_poses = argc > 2 ? std::atoi(argv[2]) : 5;
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(std::max(1, threads)));
   const Mesh design = read_stl(std::string(ROSMILL_SHARED_DATA) + "/stl/demo2.stl.gz");
   std::printf("design demo2.stl.gz: %zu triangles, %d threads\n", design.face_count(), threads);
   const auto sensors = synthetic::sensors_above(design, 2, 1000);
-  const bool have_pcl_icp = !run("command -v pcl_icp").empty();
+  const bool have_pcl_icp = pcl_poses > 0 && !run("command -v pcl_icp").empty();
   const std::string dir = std::filesystem::temp_directory_path() / ("rosmill_bench_register_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   if (have_pcl_icp) {
@@ -100,7 +104,8 @@ int main(int argc, char** argv) {
                 "inliers %.4f, error %.5f mm %.5f deg\n",
                 pose, scan.points.size(), wall, r.global_seconds, r.fine_seconds, cpu_seconds_used() - c0, r.rms,
                 r.inlier_share, synthetic::box_corner_error(design, error), rotation_angle_deg(error));
-    if (!have_pcl_icp) continue;
+    std::printf("  %zu candidates; phases: %s\n", r.candidates, scan::format_phases(r.phases).c_str());
+    if (!have_pcl_icp || pose >= pcl_poses) continue;
     // pcl_icp moves the source (the scan) onto the target (the design): it starts from the scan brought back by
     // a nudged inverse of the truth.
     const Eigen::Matrix4d start = synthetic::nudge(1.0, 1.0, Vec3(1, 2, 3)) * rigid_inverse(truth);
@@ -108,13 +113,14 @@ int main(int argc, char** argv) {
     moved.points = transformed_points(start, scan.points);
     write_cloud(dir + "/scan.pcd", moved, Units::Millimetre);
     const auto p0 = std::chrono::steady_clock::now();
-    const std::string out = run("cd " + dir + " && pcl_icp design.pcd scan.pcd -d 5 -n 100 2>&1");
+    // pcl_icp's options: -d the pairing distance, -i the iterations (-n is its switch to Levenberg-Marquardt).
+    const std::string out = run("cd " + dir + " && pcl_icp design.pcd scan.pcd -d 5 -i 100 2>&1");
     const double pcl_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - p0).count();
     const Eigen::Matrix4d step = last_matrix(out);
     // pcl_icp's transform maps the (pre-moved) scan onto the design: the design -> scan pose is its inverse.
     const Eigen::Matrix4d found = rigid_inverse(step * start);
     const Eigen::Matrix4d pcl_error = rigid_inverse(truth) * found;
-    std::printf("  pcl_icp (start: truth nudged 1 mm, 1 deg; -d 5 -n 100): %.3f s wall, error %.5f mm %.5f deg\n",
+    std::printf("  pcl_icp (start: truth nudged 1 mm, 1 deg; -d 5 -i 100): %.3f s wall, error %.5f mm %.5f deg\n",
                 pcl_wall, step.allFinite() ? synthetic::box_corner_error(design, pcl_error) : std::nan(""),
                 step.allFinite() ? rotation_angle_deg(pcl_error) : std::nan(""));
   }
@@ -145,6 +151,7 @@ int main(int argc, char** argv) {
   std::printf("fuse: 5 views, %zu points in, %zu out, %.3f s wall (%.3f s CPU); corrections within %.4f deg of "
               "the 0.5 deg nudges\n", report.points_in, report.points_out, report.seconds, cpu_seconds_used() - c0,
               worst_fix);
+  std::printf("  phases: %s\n", scan::format_phases(report.phases).c_str());
   std::filesystem::remove_all(dir);
   return 0;
 }

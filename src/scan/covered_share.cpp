@@ -1,27 +1,25 @@
 #include "rosmill/scan/covered_share.hpp"
 
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_types.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "rosmill/scan/point_index.hpp"
 
 namespace rosmill::core::scan {
 
 double covered_share(const std::vector<Vec3>& queries, const std::vector<Vec3>& cloud, double radius) {
   if (queries.empty() || cloud.empty()) return 0;
-  const Vec3 origin = cloud.front();  // float coordinates near zero keep their precision
-  const auto to_pcl = [&](const Vec3& p) {
-    const Eigen::Vector3f q = (p - origin).cast<float>();
-    return pcl::PointXYZ(q.x(), q.y(), q.z());
-  };
-  pcl::PointCloud<pcl::PointXYZ>::Ptr points(new pcl::PointCloud<pcl::PointXYZ>);
-  points->reserve(cloud.size());
-  for (const Vec3& p : cloud) points->push_back(to_pcl(p));
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  tree.setInputCloud(points);
-  size_t covered = 0;
-  pcl::Indices index(1);
-  std::vector<float> sq(1);
-  for (const Vec3& p : queries)
-    if (tree.nearestKSearch(to_pcl(p), 1, index, sq) > 0 && sq[0] <= radius * radius) ++covered;
+  const PointIndex index(cloud);
+  const size_t covered = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, queries.size(), 1024), size_t(0),
+      [&](const tbb::blocked_range<size_t>& range, size_t count) {
+        size_t unused_index;
+        double unused_sq;
+        for (size_t i = range.begin(); i != range.end(); ++i)
+          if (index.nearest(queries[i], radius, unused_index, unused_sq)) ++count;
+        return count;
+      },
+      [](size_t a, size_t b) { return a + b; });
   return double(covered) / double(queries.size());
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
@@ -32,21 +33,36 @@ struct Fit {
   double share = 0, rms = 0;
 };
 
-Fit measure(const MeshDistance& design, const std::vector<Vec3>& scan, const Eigen::Matrix4d& scan_to_design,
-            double inlier_distance) {
+// The fit of the scan points brought into the design's frame, from their exact distances to its triangles; only
+// the inliers' distances are sought exactly (a point beyond `inlier_distance` costs a short descent of the tree).
+// `nearest` receives each point's nearest surface point, with face kNone for an outlier.
+Fit measure(const MeshDistance& design, const std::vector<Vec3>& in_design, const Eigen::Matrix4d& scan_to_design,
+            double inlier_distance, std::vector<SurfaceDistance>& nearest) {
   Fit fit;
   fit.scan_to_design = scan_to_design;
-  const std::vector<double> d = design.distances(transformed_points(scan_to_design, scan));
+  SurfaceDistance outlier;
+  outlier.face = kNone;
+  nearest.assign(in_design.size(), outlier);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, in_design.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i != range.end(); ++i)
+      if (!design.query_within(in_design[i], inlier_distance, nearest[i])) nearest[i].face = kNone;
+  });
   double sum_sq = 0;
   size_t inliers = 0;
-  for (double x : d)
-    if (x <= inlier_distance) {
-      sum_sq += x * x;
+  for (const SurfaceDistance& s : nearest)
+    if (s.face != kNone) {
+      sum_sq += s.signed_distance * s.signed_distance;
       ++inliers;
     }
-  fit.share = d.empty() ? 0 : double(inliers) / double(d.size());
+  fit.share = nearest.empty() ? 0 : double(inliers) / double(nearest.size());
   fit.rms = inliers ? std::sqrt(sum_sq / double(inliers)) : std::numeric_limits<double>::infinity();
   return fit;
+}
+
+Fit measure(const MeshDistance& design, const std::vector<Vec3>& scan, const Eigen::Matrix4d& scan_to_design,
+            double inlier_distance) {
+  std::vector<SurfaceDistance> unused;
+  return measure(design, transformed_points(scan_to_design, scan), scan_to_design, inlier_distance, unused);
 }
 
 bool better(const Fit& a, const Fit& b) { return a.share > b.share + 1e-9 || (a.share >= b.share - 1e-9 && a.rms < b.rms); }
@@ -56,24 +72,65 @@ bool same_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, double length
   return rotation_angle_deg(d) < 2.0 && translation_length(d) < length;
 }
 
-struct Design {
-  SurfaceSample sample;
-  double area = 0, size = 0;
-};
+// The global step's candidates pulled in by coarse ICP, first with a reach of a fifth of the part (to pull them in
+// from the principal-axes guess) then of 3 voxels (to settle), at most 25 steps each. They run as a race (Maron &
+// Moore, "Hoeffding races: accelerating model selection search", 1994): in rounds of 5 steps, the candidates of a
+// round side by side; after each round every candidate's inlier share is measured and those that trail the best so
+// far by more than a quarter of the scan drop out (a wrong principal-axes guess fits half the scan or less and
+// gains little from more steps, while the right one fits nearly all of it within a few). Candidates that fit
+// about equally, a symmetric part's, all run to the end. Returns every candidate's last fit.
+std::vector<Fit> race_candidates(const PlaneIcp& icp, const MeshDistance& distance, const std::vector<Vec3>& coarse,
+                                 const std::vector<Eigen::Matrix4d>& candidates, double size, double leaf) {
+  constexpr int kRound = 5, kStageSteps = 25;
+  constexpr double kTrail = 0.25;
+  const double reach[2] = {0.2 * size, 3 * leaf};
+  struct Runner {
+    Eigen::Matrix4d pose;
+    int stage = 0, steps = 0;
+    bool running = true;
+    Fit fit;
+  };
+  std::vector<Runner> runners;
+  for (const Eigen::Matrix4d& c : candidates) {
+    runners.emplace_back();
+    runners.back().pose = rigid_inverse(c);
+  }
+  for (;;) {
+    std::vector<size_t> running;
+    for (size_t i = 0; i < runners.size(); ++i)
+      if (runners[i].running) running.push_back(i);
+    if (running.empty()) break;
+    tbb::parallel_for(size_t(0), running.size(), [&](size_t k) {
+      Runner& c = runners[running[k]];
+      IcpOutcome outcome;
+      c.pose = icp.align(coarse, c.pose, reach[c.stage], std::min(kRound, kStageSteps - c.steps), &outcome);
+      c.steps += outcome.steps;
+      if (outcome.converged || outcome.pairs < 6 || c.steps >= kStageSteps) {
+        c.steps = 0;
+        c.running = ++c.stage < 2;
+      }
+      c.fit = measure(distance, coarse, c.pose, leaf);
+    });
+    double best = 0;
+    for (const Runner& c : runners) best = std::max(best, c.fit.share);
+    for (Runner& c : runners)
+      if (c.fit.share < best - kTrail) c.running = false;
+  }
+  std::vector<Fit> fits;
+  for (const Runner& c : runners) fits.push_back(c.fit);
+  return fits;
+}
 
 // The pose's covariance from the point-to-plane normal equations at the fit: rows (p x n, n) per inlier, with
 // the rotation columns scaled by the part's size so that the eigenvalues compare. Returns the smallest over the
 // largest eigenvalue (near 0: a direction the seen surface does not fix).
-double estimate_uncertainty(const MeshDistance& distance, const std::vector<Vec3>& in_design, const Mesh& mesh,
-                            const Vec3& centre, double length, double inlier_distance, RegistrationResult& r) {
-  std::vector<SurfaceDistance> nearest(in_design.size());
-  tbb::parallel_for(size_t(0), in_design.size(), [&](size_t i) { nearest[i] = distance.query(in_design[i]); });
+double estimate_uncertainty(const std::vector<Vec3>& in_design, const std::vector<SurfaceDistance>& nearest,
+                            const Mesh& mesh, const Vec3& centre, double length, RegistrationResult& r) {
   Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
   for (size_t i = 0; i < in_design.size(); ++i) {
-    const SurfaceDistance& s = nearest[i];
+    if (nearest[i].face == kNone) continue;  // an outlier
     const Vec3& p = in_design[i];
-    if (std::abs(s.signed_distance) > inlier_distance) continue;
-    const Vec3& n = mesh.normals[s.face];
+    const Vec3& n = mesh.normals[nearest[i].face];
     Eigen::Matrix<double, 6, 1> j;
     j << (p - centre).cross(n) / length, n;
     h += j * j.transpose();
@@ -125,29 +182,30 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
                                                        " points; at least 50 are needed");
   const auto start = std::chrono::steady_clock::now();
   RegistrationResult r;
+  PhaseClock clock(r.phases);
   const SurfaceSample target = sample_surface(design, o.design_points, o.seed);
   const double area = std::accumulate(design.areas.begin(), design.areas.end(), 0.0);
   const double size = design.bbox.size().norm();
-  const Vec3 centre = principal_frame(target.points).centroid;
+  const PrincipalFrame design_frame = principal_frame(target.points);
+  const Vec3 centre = design_frame.centroid;
+  clock.lap("design sampling");
   const MeshDistance distance(design);
+  clock.lap("triangle index");
   const PlaneIcp icp(target.points, target.normals);
+  clock.lap("ICP index");
 
   // Global: every principal-axes candidate pulled in by coarse ICP.
   const double leaf = std::sqrt(area / double(o.coarse_points));
   const std::vector<Vec3> coarse = thin_by_voxel(scan.points, leaf);
   if (coarse.size() < 10) throw Error(kWhere, "the scan is too small for the design: " + std::to_string(coarse.size()) +
                                                   " points at the design's sampling of " + fixed(leaf, 3) + " mm");
-  const PrincipalFrame design_frame = principal_frame(target.points);
   const std::vector<Eigen::Matrix4d> candidates =
       principal_axes_candidates(design_frame, principal_frame(coarse), o.moment_tolerance);
   r.candidates = candidates.size();
-  std::vector<Fit> fits;
-  for (const Eigen::Matrix4d& c : candidates) {
-    Eigen::Matrix4d t = icp.align(coarse, rigid_inverse(c), 0.2 * size, 25);
-    t = icp.align(coarse, t, 3 * leaf, 25);
-    fits.push_back(measure(distance, coarse, t, leaf));
-  }
-  std::sort(fits.begin(), fits.end(), better);
+  clock.lap("scan thinning, principal axes");
+  std::vector<Fit> fits = race_candidates(icp, distance, coarse, candidates, size, leaf);
+  std::stable_sort(fits.begin(), fits.end(), better);
+  clock.lap("candidates (coarse ICP, fitness)");
   r.global_seconds = seconds_since(start);
 
   // Fine: the best and the distinct poses that fit about as well at the coarse level.
@@ -157,13 +215,22 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   // The pairing distance shrinks from the coarse fit's reach to the inlier distance; the first steps need few
   // points, only the last one all of the fine set.
   const std::vector<Vec3> middle = thin_evenly(fine, std::max<size_t>(o.fine_points / 4, 50));
+  clock.lap("scan thinning, principal axes");
+  std::vector<Vec3> in_design;            // the fine points through the best pose
+  std::vector<SurfaceDistance> nearest;   // and their nearest design points
   const auto refine = [&](const Eigen::Matrix4d& t0) {
     Eigen::Matrix4d t = icp.align(middle, t0, std::max(2 * leaf, 4 * o.inlier_distance), 30);
     t = icp.align(middle, t, 2 * o.inlier_distance, 30);
     t = icp.align(fine, t, o.inlier_distance, 15);
-    return measure(distance, fine, t, o.inlier_distance);
+    clock.lap("fine ICP");
+    in_design = transformed_points(t, fine);
+    const Fit fit = measure(distance, in_design, t, o.inlier_distance, nearest);
+    clock.lap("fine fitness");
+    return fit;
   };
   const Fit best = refine(fits.front().scan_to_design);
+  const std::vector<Vec3> best_in_design = std::move(in_design);
+  const std::vector<SurfaceDistance> best_nearest = std::move(nearest);
   std::vector<Eigen::Matrix4d> distinct{fits.front().scan_to_design};
   for (size_t i = 1; i < fits.size() && r.alternatives.size() < 5; ++i) {
     const Fit& f = fits[i];
@@ -180,11 +247,11 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   r.transform = rigid_inverse(best.scan_to_design);
   r.rms = best.rms;
   r.inlier_share = best.share;
-  const std::vector<Vec3> in_design = transformed_points(best.scan_to_design, fine);
-  r.overlap = covered_share(thin_evenly(target.points, 5000), in_design,
+  r.overlap = covered_share(thin_evenly(target.points, 5000), best_in_design,
                              o.inlier_distance + 2 * std::sqrt(area / double(fine.size())));
-  const double conditioning =
-      estimate_uncertainty(distance, in_design, design, centre, 0.5 * size, o.inlier_distance, r);
+  clock.lap("overlap");
+  const double conditioning = estimate_uncertainty(best_in_design, best_nearest, design, centre, 0.5 * size, r);
+  clock.lap("uncertainty");
   r.fine_seconds = seconds_since(fine_start);
 
   std::ostringstream why;

@@ -1,20 +1,62 @@
 #include "rosmill/scan/plane_icp.hpp"
 
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-#include <pcl/registration/icp.h>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/scan/point_index.hpp"
 
 namespace rosmill::core::scan {
+namespace {
 
-using Cloud = pcl::PointCloud<pcl::PointNormal>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+using Vector6 = Eigen::Matrix<double, 6, 1>;
 
-// PCL computes in float: both clouds go in relative to the fixed surface's centroid, so millimetre parts far
-// from their origin keep micrometre precision.
+// The point-to-plane normal equations of one step, linearised about the current pose (Low, "Linear least-squares
+// optimization for point-to-plane ICP surface registration", 2004): a small turn w and shift t move q by
+// w x q + t, so the residual n . (q - f) changes by (q x n) . w + n . t.
+struct NormalEquations {
+  Matrix6 a = Matrix6::Zero();
+  Vector6 b = Vector6::Zero();
+  size_t pairs = 0;
+  void join(const NormalEquations& o) {
+    a += o.a;
+    b += o.b;
+    pairs += o.pairs;
+  }
+};
+
+// The step that solves the equations in the directions the pairs fix; a direction they leave free (a plane's
+// slide, a cylinder's turn) is not moved rather than thrown to infinity by a near-zero pivot.
+Vector6 solve(const NormalEquations& e) {
+  const Eigen::SelfAdjointEigenSolver<Matrix6> es(e.a, Eigen::ComputeEigenvectors);  // reads the lower triangle
+  const double largest = es.eigenvalues()[5];
+  Vector6 projected = es.eigenvectors().transpose() * (-e.b);
+  for (int i = 0; i < 6; ++i)
+    projected[i] = es.eigenvalues()[i] > 1e-12 * largest ? projected[i] / es.eigenvalues()[i] : 0.0;
+  return es.eigenvectors() * projected;
+}
+
+bool settled(const Eigen::Matrix4d& step) {
+  return translation_length(step) < 1e-6 && rotation_angle_deg(step) < 1e-6 * 180 / M_PI;
+}
+
+}  // namespace
+
+// Both point sets are handled relative to the fixed surface's centroid, where the linearised rotation is best
+// conditioned.
 struct PlaneIcp::Impl {
   Vec3 origin = Vec3::Zero();
-  mutable pcl::IterativeClosestPointWithNormals<pcl::PointNormal, pcl::PointNormal> icp;
+  std::vector<Vec3> normals;
+  std::unique_ptr<PointIndex> index;
 };
 
 PlaneIcp::PlaneIcp(const std::vector<Vec3>& points, const std::vector<Vec3>& normals) : impl_(std::make_unique<Impl>()) {
@@ -23,48 +65,72 @@ PlaneIcp::PlaneIcp(const std::vector<Vec3>& points, const std::vector<Vec3>& nor
   Vec3 sum = Vec3::Zero();
   for (const Vec3& p : points) sum += p;
   impl_->origin = sum / double(points.size());
-  Cloud::Ptr target(new Cloud);
-  target->reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    pcl::PointNormal q;
-    q.getVector3fMap() = (points[i] - impl_->origin).cast<float>();
-    q.getNormalVector3fMap() = normals[i].cast<float>();
-    target->push_back(q);
-  }
-  impl_->icp.setInputTarget(target);
+  std::vector<Vec3> centred;
+  centred.reserve(points.size());
+  for (const Vec3& p : points) centred.push_back(p - impl_->origin);
+  impl_->index = std::make_unique<PointIndex>(std::move(centred));
+  impl_->normals = normals;
 }
 
 PlaneIcp::~PlaneIcp() = default;
 
 Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Matrix4d& start, double max_distance,
-                                int iterations) const {
+                                int iterations, IcpOutcome* outcome) const {
   if (moving.size() < 6) throw Error("point-to-plane ICP", "at least 6 moving points are needed");
   Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
   shift.topRightCorner<3, 1>() = -impl_->origin;
-  const Eigen::Matrix4d begin = shift * start;
-  const Eigen::Matrix3d r = begin.topLeftCorner<3, 3>();
-  const Vec3 t = begin.topRightCorner<3, 1>();
-  Cloud::Ptr source(new Cloud);
-  source->reserve(moving.size());
-  for (const Vec3& p : moving) {
-    pcl::PointNormal q;
-    q.getVector3fMap() = (r * p + t).cast<float>();
-    q.getNormalVector3fMap() = Eigen::Vector3f::UnitZ();  // unused: the fixed surface's normals are the planes
-    source->push_back(q);
+  Eigen::Matrix4d pose = shift * start;
+  const PointIndex& index = *impl_->index;
+  const std::vector<Vec3>& fixed = index.points();
+  const std::vector<Vec3>& normals = impl_->normals;
+  IcpOutcome done;
+  std::array<Eigen::Matrix4d, 4> recent;  // the poses before the last steps (in a ring)
+  recent.fill(Eigen::Matrix4d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  for (; done.steps < iterations && !done.converged; ++done.steps) {
+    const Eigen::Matrix3d r = pose.topLeftCorner<3, 3>();
+    const Vec3 t = pose.topRightCorner<3, 1>();
+    // A deterministic reduction: the same sums in the same order whatever the number of threads.
+    const NormalEquations e = tbb::parallel_deterministic_reduce(
+        tbb::blocked_range<size_t>(0, moving.size(), 512), NormalEquations(),
+        [&](const tbb::blocked_range<size_t>& range, NormalEquations sum) {
+          for (size_t i = range.begin(); i != range.end(); ++i) {
+            const Vec3 q = r * moving[i] + t;
+            size_t j;
+            double sq;
+            if (!index.nearest(q, max_distance, j, sq)) continue;
+            const Vec3& n = normals[j];
+            Vector6 row;
+            row << q.cross(n), n;
+            sum.a.selfadjointView<Eigen::Lower>().rankUpdate(row);
+            sum.b += row * n.dot(q - fixed[j]);
+            ++sum.pairs;
+          }
+          return sum;
+        },
+        [](NormalEquations x, const NormalEquations& y) {
+          x.join(y);
+          return x;
+        });
+    done.pairs = e.pairs;
+    if (e.pairs < 6) break;  // too few pairs to fix a pose: keep the last one
+    const Vector6 x = solve(e);
+    const double angle = x.head<3>().norm();
+    Eigen::Matrix4d increment = Eigen::Matrix4d::Identity();
+    if (angle > 0) increment.topLeftCorner<3, 3>() = Eigen::AngleAxisd(angle, x.head<3>() / angle).toRotationMatrix();
+    increment.topRightCorner<3, 1>() = x.tail<3>();
+    recent[size_t(done.steps) % recent.size()] = pose;
+    pose = increment * pose;
+    // Converged when the step is below 1e-6 mm and 1e-6 rad, or when it returns to a pose of the last few steps:
+    // the pairs then cycle between sets that fit equally well (each step a few 1e-4 mm), and more steps only
+    // go round the cycle.
+    done.converged = settled(increment) || std::any_of(recent.begin(), recent.end(), [&](const Eigen::Matrix4d& p) {
+                       return settled(pose * rigid_inverse(p));  // false for the ring's NaN fill
+                     });
   }
-  auto& icp = impl_->icp;
-  icp.setInputSource(source);
-  icp.setMaxCorrespondenceDistance(max_distance);
-  icp.setMaximumIterations(iterations);
-  icp.setTransformationEpsilon(1e-12);            // squared translation step: 1e-6 mm
-  icp.setTransformationRotationEpsilon(1 - 5e-13);  // cosine of the rotation step: 1e-6 rad
-  icp.setEuclideanFitnessEpsilon(-1);              // never stop on the fitness alone
-  Cloud aligned;
-  icp.align(aligned);
-  const Eigen::Matrix4d step = icp.getFinalTransformation().cast<double>();
+  if (outcome) *outcome = done;
   Eigen::Matrix4d unshift = Eigen::Matrix4d::Identity();
   unshift.topRightCorner<3, 1>() = impl_->origin;
-  return unshift * step * begin;
+  return unshift * pose;
 }
 
 }  // namespace rosmill::core::scan

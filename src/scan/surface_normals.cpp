@@ -1,37 +1,39 @@
 #include "rosmill/scan/surface_normals.hpp"
 
-#include <pcl/features/normal_3d.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-#include <pcl/search/kdtree.h>
+#include <Eigen/Eigenvalues>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/scan/point_index.hpp"
 
 namespace rosmill::core::scan {
 
 std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbours) {
   if (neighbours < 3 || points.size() < size_t(neighbours))
     throw Error("normal estimation", "needs at least " + std::to_string(std::max(neighbours, 3)) + " points");
-  // Float coordinates relative to the first point keep the precision of a millimetre cloud far from its origin.
-  const Vec3 origin = points.front();
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->reserve(points.size());
-  for (const Vec3& p : points) {
-    const Eigen::Vector3f q = (p - origin).cast<float>();
-    cloud->push_back(pcl::PointXYZ(q.x(), q.y(), q.z()));
-  }
-  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> estimation;
-  estimation.setInputCloud(cloud);
-  estimation.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
-  estimation.setKSearch(neighbours);
-  pcl::PointCloud<pcl::Normal> normals;
-  estimation.compute(normals);
-  std::vector<Vec3> out;
-  out.reserve(points.size());
-  for (const auto& n : normals) {
-    const Vec3 v(n.normal_x, n.normal_y, n.normal_z);
-    out.push_back(v.allFinite() && v.norm() > 0.5 ? Vec3(v.normalized()) : Vec3::UnitZ());
-  }
+  const PointIndex index(points);
+  std::vector<Vec3> out(points.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+    std::vector<size_t> near(static_cast<size_t>(neighbours));
+    std::vector<double> sq(static_cast<size_t>(neighbours));
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const size_t found = index.nearest_k(points[i], near.size(), near.data(), sq.data());
+      // The covariance about the neighbours' centroid, taken relative to the point itself so that a millimetre
+      // cloud far from its origin keeps its precision.
+      Vec3 mean = Vec3::Zero();
+      for (size_t k = 0; k < found; ++k) mean += points[near[k]] - points[i];
+      mean /= double(found);
+      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+      for (size_t k = 0; k < found; ++k) {
+        const Vec3 d = points[near[k]] - points[i] - mean;
+        cov += d * d.transpose();
+      }
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+      const Vec3 normal = es.eigenvectors().col(0);  // the direction of least spread
+      out[i] = found >= 3 && es.eigenvalues()[2] > 0 && normal.allFinite() ? Vec3(normal.normalized()) : Vec3::UnitZ();
+    }
+  });
   return out;
 }
 

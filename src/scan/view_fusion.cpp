@@ -33,10 +33,15 @@ std::vector<Vec3> reference_points(const std::vector<std::vector<Vec3>>& thinned
 
 // Aligns view i onto the reference and returns its new pose.
 Eigen::Matrix4d refine_view(const std::vector<Vec3>& view, const Eigen::Matrix4d& pose,
-                            const std::vector<Vec3>& reference, double max_correction) {
-  const PlaneIcp icp(reference, estimate_normals(reference));
+                            const std::vector<Vec3>& reference, double max_correction, PhaseClock& clock) {
+  const std::vector<Vec3> normals = estimate_normals(reference);
+  clock.lap("reference normals");
+  const PlaneIcp icp(reference, normals);
+  clock.lap("ICP index");
   Eigen::Matrix4d t = icp.align(view, pose, max_correction, 30);
-  return icp.align(view, t, max_correction / 5, 30);
+  t = icp.align(view, t, max_correction / 5, 30);
+  clock.lap("ICP");
+  return t;
 }
 
 }  // namespace
@@ -54,6 +59,7 @@ PointCloud fuse_views(const std::vector<ScanView>& views, const FusionOptions& o
   o.check();
   if (views.empty()) throw Error("fusion", "no view to fuse");
   FusionReport r;
+  PhaseClock clock(r.phases);
   std::vector<Eigen::Matrix4d> poses;
   std::vector<std::vector<Vec3>> thinned;
   for (size_t i = 0; i < views.size(); ++i) {
@@ -72,24 +78,29 @@ PointCloud fuse_views(const std::vector<ScanView>& views, const FusionOptions& o
       for (size_t i = 1; i < views.size(); ++i) {
         const size_t end = round == 0 ? i : views.size();
         const std::vector<Vec3> reference = reference_points(thinned, poses, i, end, o.icp_points);
+        clock.lap("checks, thinning, references");
         const double before = covered_share(transformed_points(poses[i], thinned[i]), reference, o.max_correction);
+        clock.lap("overlap");
         if (before < o.min_overlap)
           throw Error(view_name(views[i], i), "meets no other view within " + std::to_string(o.max_correction) +
                                                   " mm (" + std::to_string(100 * before) +
                                                   "% of its points): its pose is wrong or the views do not overlap");
-        poses[i] = refine_view(thinned[i], poses[i], reference, o.max_correction);
+        poses[i] = refine_view(thinned[i], poses[i], reference, o.max_correction, clock);
       }
   }
+  clock.lap("checks, thinning, references");
   std::vector<Vec3> fused;
   fused.reserve(r.points_in);
   for (size_t i = 0; i < views.size(); ++i) {
     r.corrections.push_back(poses[i] * rigid_inverse(views[i].pose));
     const std::vector<Vec3> moved = transformed_points(poses[i], views[i].cloud.points);
     fused.insert(fused.end(), moved.begin(), moved.end());
+    clock.lap("merge");
     if (views.size() > 1)
       r.overlaps.push_back(covered_share(transformed_points(poses[i], thinned[i]),
                                          reference_points(thinned, poses, i, views.size(), o.icp_points),
                                          o.max_correction / 5));
+    clock.lap("overlap");
   }
   CloudPrepOptions prep;  // the project's voxel and outlier filters, no reorientation
   prep.origin_at_corner = false;
@@ -97,6 +108,7 @@ PointCloud fuse_views(const std::vector<ScanView>& views, const FusionOptions& o
   prep.outlier_neighbours = o.outlier_neighbours;
   prep.outlier_stddev = o.outlier_stddev;
   PointCloud out = prepare_cloud(fused, prep);
+  clock.lap("voxel grid, outliers");
   r.points_out = out.points.size();
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (report) *report = std::move(r);

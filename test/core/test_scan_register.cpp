@@ -1,9 +1,11 @@
 // Design-to-scan registration with no initial guess: synthetic scans of bundled parts (sensor-like noise, partial
 // views) under random rigid poses are recovered to 0.05 mm and 0.05 degrees; a symmetric part is reported
-// ambiguous; a scan of another part is refused.
+// ambiguous; a scan of another part is refused. Its parts: exact distances within a limit equal a search of every
+// triangle; point-to-plane ICP undoes a known nudge and says it converged.
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -12,6 +14,9 @@
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/scan/design_registration.hpp"
+#include "rosmill/scan/mesh_distance.hpp"
+#include "rosmill/scan/plane_icp.hpp"
+#include "rosmill/scan/surface_sample.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
 using namespace rosmill::core;
@@ -107,4 +112,53 @@ TEST(ScanRegister, BadInputIsRefusedWithTheReason) {
   EXPECT_NE(error_of([&] { scan::register_design(design, scan, bad); }).find("min_inlier_share"), std::string::npos);
   const Mesh flat = build_mesh({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)});
   EXPECT_NE(error_of([&] { scan::register_design(flat, scan); }).find("design"), std::string::npos);
+}
+
+TEST(ScanRegister, DistancesWithinALimitEqualEveryTriangleSearched) {
+  const Mesh design = model("mount_rush.stl");
+  const scan::MeshDistance distance(design);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 t(u(rng), u(rng), u(rng));
+    points.push_back(design.bbox.min + (design.bbox.max - design.bbox.min).cwiseProduct(t) + Vec3(0, 0, 2 * u(rng)));
+  }
+  const double limit = 1.0;
+  const std::vector<double> bounded = distance.distances(points, limit);
+  size_t within = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    double exact = std::numeric_limits<double>::infinity();
+    for (size_t f = 0; f < design.face_count(); ++f) {
+      if (!(design.areas[f] > 0)) continue;
+      const Vec3 q = scan::closest_on_triangle(points[i], design.corner(f, 0), design.corner(f, 1), design.corner(f, 2));
+      exact = std::min(exact, (points[i] - q).norm());
+    }
+    EXPECT_NEAR(std::abs(distance.query(points[i]).signed_distance), exact, 1e-9) << "point " << i;
+    if (exact <= limit) {
+      ++within;
+      EXPECT_NEAR(bounded[i], exact, 1e-9) << "point " << i;
+    } else {
+      EXPECT_EQ(bounded[i], std::numeric_limits<double>::infinity()) << "point " << i << " at " << exact;
+    }
+  }
+  EXPECT_GT(within, 10u);  // both sides of the limit were tried
+  EXPECT_LT(within, points.size() - 10);
+}
+
+TEST(ScanRegister, PlaneIcpUndoesANudgeAndConverges) {
+  const Mesh design = model("mount_rush.stl");
+  const scan::SurfaceSample fixed = scan::sample_surface(design, 40000, 1);
+  const scan::PlaneIcp icp(fixed.points, fixed.normals);
+  const Eigen::Matrix4d nudge = synthetic::nudge(0.5, 0.5, Vec3(1, 2, 3));
+  const std::vector<Vec3> moving = transformed_points(nudge, scan::sample_surface(design, 5000, 2).points);
+  scan::IcpOutcome outcome;
+  const Eigen::Matrix4d found = icp.align(moving, Eigen::Matrix4d::Identity(), 3.0, 50, &outcome);
+  const Eigen::Matrix4d error = found * nudge;  // identity when the nudge is undone
+  std::printf("ICP: %d steps, %zu pairs, error %.6f mm %.6f deg\n", outcome.steps, outcome.pairs,
+              synthetic::box_corner_error(design, error), rotation_angle_deg(error));
+  EXPECT_TRUE(outcome.converged);
+  EXPECT_LT(outcome.steps, 50);
+  EXPECT_LT(synthetic::box_corner_error(design, error), 0.01);
+  EXPECT_LT(rotation_angle_deg(error), 0.01);
 }

@@ -1,5 +1,5 @@
 // How much of one point set another covers: the share of `queries` with a point of `cloud` within `radius` mm
-// (PCL k-d tree). Registration's overlap (of the design by the scan) and fusion's check that a view meets the
+// (a k-d tree). Registration's overlap (of the design by the scan) and fusion's check that a view meets the
 // others both read it.
 #pragma once
 #include <vector>

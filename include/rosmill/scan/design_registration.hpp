@@ -2,7 +2,8 @@
 // part is, with no initial guess.
 //
 //   1. Global: principal-axes candidates (principal_axes.hpp), each pulled in by coarse point-to-plane ICP on a
-//      voxel-thinned scan against an area-weighted sampling of the design; the best fit wins.
+//      voxel-thinned scan against an area-weighted sampling of the design, side by side in rounds where a clearly
+//      worse candidate drops out; the best fit wins.
 //   2. Fine: point-to-plane ICP (plane_icp.hpp) with shrinking pairing distance on up to `fine_points` scan points.
 //   3. Fitness from exact point-to-triangle distances (mesh_distance.hpp): RMS of the inliers, inlier share,
 //      overlap (share of the design the scan covers); the pose's uncertainty from the point-to-plane normal
@@ -18,6 +19,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
+#include "rosmill/scan/phase_clock.hpp"
 
 namespace rosmill::core::scan {
 
@@ -49,6 +51,7 @@ struct RegistrationResult {
   size_t candidates = 0;     // global candidates tried
   size_t scan_points_used = 0;
   double global_seconds = 0, fine_seconds = 0;
+  PhaseSeconds phases;       // the same time by phase (design sampling, indexes, ICP, exact distances, ...)
 };
 
 // Throws Error on bad input (no design surface, an empty scan, bad options) and when the fit is refused.

@@ -2,11 +2,13 @@
 // material above the design; negative: below it).
 //
 // Index: a k-d tree (nanoflann) over points covering every face, each within `cover` of any point of its face
-// (one centroid for a small face, a barycentric grid on a large one). The nearest index point, at d0, bounds the
-// distance to the surface by d0 + cover, so the faces of the index points within d0 + cover hold the nearest
-// surface point; their exact point-triangle distances decide.
+// (one centroid for a small face, the centroids of its pieces for a large one). A face at distance d has an index
+// point within d + cover, so the faces of the index points within (best exact distance so far) + cover hold the
+// nearest surface point; their exact point-triangle distances decide, and the search narrows as it finds nearer
+// faces.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -29,12 +31,17 @@ class MeshDistance {
   MeshDistance& operator=(const MeshDistance&) = delete;
 
   SurfaceDistance query(const Vec3& p) const;
-  // The unsigned distances of many points (threads of TBB).
-  std::vector<double> distances(const std::vector<Vec3>& points) const;
+  // The nearest surface point when it lies within `limit` mm (true, into `out`); false, and quickly, when none does.
+  bool query_within(const Vec3& p, double limit, SurfaceDistance& out) const;
+  // The unsigned distances of many points (threads of TBB); those farther than `limit` come back as infinity
+  // without their exact distance being sought.
+  std::vector<double> distances(const std::vector<Vec3>& points,
+                                double limit = std::numeric_limits<double>::infinity()) const;
   double cover() const { return cover_; }
 
  private:
   struct Index;
+  struct NearestFace;
   const Mesh& mesh_;
   double cover_ = 0;
   std::unique_ptr<Index> index_;

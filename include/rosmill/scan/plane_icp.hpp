@@ -1,7 +1,8 @@
-// Point-to-plane ICP (PCL's IterativeClosestPointWithNormals, linear least squares per step): moving points are
-// pulled onto a fixed surface given as points with normals. Chen & Medioni, "Object modelling by registration of
-// multiple range images" (1992): minimising the distance to the tangent plane converges in far fewer steps than
-// point-to-point ICP (Besl & McKay 1992) and slides along the surface to its exact fit.
+// Point-to-plane ICP, linear least squares per step: moving points are pulled onto a fixed surface given as points
+// with normals. Chen & Medioni, "Object modelling by registration of multiple range images" (1992): minimising the
+// distance to the tangent plane converges in far fewer steps than point-to-point ICP (Besl & McKay 1992) and
+// slides along the surface to its exact fit. In double precision, the pairs found and summed on every core
+// (the k-d tree of point_index.hpp, built once per fixed surface).
 #pragma once
 #include <memory>
 #include <vector>
@@ -11,6 +12,13 @@
 #include "rosmill/geometry/types.hpp"
 
 namespace rosmill::core::scan {
+
+// How an alignment ended.
+struct IcpOutcome {
+  int steps = 0;           // steps taken
+  bool converged = false;  // the last step moved less than 1e-6 mm and 1e-6 rad
+  size_t pairs = 0;        // point pairs of the last step (fewer than 6: it stopped there)
+};
 
 class PlaneIcp {
  public:
@@ -23,7 +31,7 @@ class PlaneIcp {
   // The transform (moving -> fixed) refined from `start`, pairing points at most `max_distance` mm apart, for at
   // most `iterations` steps (fewer once a step moves less than 1e-6 mm and 1e-6 rad).
   Eigen::Matrix4d align(const std::vector<Vec3>& moving, const Eigen::Matrix4d& start, double max_distance,
-                        int iterations) const;
+                        int iterations, IcpOutcome* outcome = nullptr) const;
 
  private:
   struct Impl;

@@ -1,5 +1,6 @@
-// Normals of a scanned surface, for point-to-plane ICP between views: PCL's NormalEstimation (the least-squares
-// plane of each point's nearest neighbours). Their sign is arbitrary, which the point-to-plane distance ignores.
+// Normals of a scanned surface, for point-to-plane ICP between views: the least-squares plane of each point's
+// nearest neighbours (the eigenvector of their covariance with the least spread; Hoppe et al., "Surface
+// reconstruction from unorganized points", 1992). Their sign is arbitrary, which the point-to-plane distance ignores.
 #pragma once
 #include <vector>
 

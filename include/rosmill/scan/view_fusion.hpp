@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "rosmill/geometry/point_cloud.hpp"
+#include "rosmill/scan/phase_clock.hpp"
 
 namespace rosmill::core::scan {
 
@@ -40,6 +41,7 @@ struct FusionReport {
   std::vector<Eigen::Matrix4d> corrections;  // per view: applied on top of its pose (identity for the first)
   std::vector<double> overlaps;              // per view: share of its points near the others, after refinement
   double seconds = 0;
+  PhaseSeconds phases;                       // the same time by phase (thinning, overlap, normals, ICP, ...)
 };
 
 // Throws Error naming the view on bad input (no views, an empty view, a pose with NaN or not rigid, a view that
