@@ -148,7 +148,7 @@ void Interpreter::non_modal_codes() {
       return;
     case 100: {
       // Coordinate system data (L2, L20) moves the program's origin along the axes given.
-      const long l = std::lround(block_.get('L'));
+      const long l = block_.has('L') ? std::lround(block_.get('L')) : -1;
       if (l == 2 || l == 20)
         for (int a = 0; a < 3; ++a) state_.known[a] = state_.known[a] && !block_.has(kAxisLetter[a]);
       // LinuxCNC's R turns the XY axes: both move.

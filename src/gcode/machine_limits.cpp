@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -110,7 +112,7 @@ struct Step {
 // machine file's G54 has none. Empty for any other block.
 std::optional<WorkOffset> followed_work_offset(const Interpreter& reader) {
   const Block& b = reader.block();
-  if (!b.has_g(100) || std::lround(b.get('L')) != 2 || !b.has('P')) return std::nullopt;
+  if (!b.has_g(100) || !b.has('L') || std::lround(b.get('L')) != 2 || !b.has('P')) return std::nullopt;
   const long p = std::lround(b.get('P'));
   if (!(p == 1 || (p == 0 && reader.state().work_offset == 54))) return std::nullopt;
   if (!(b.has('X') && b.has('Y') && b.has('Z'))) return std::nullopt;
@@ -173,10 +175,11 @@ void machine_extent(const CanonMove& m, const WorkOffset& w, double lo[3], doubl
   move_extent(m, lo, hi, any);
   if (w.rotation_deg != 0.0 && (any[0] || any[1])) {
     const bool xy = any[0] && any[1];
+    const Eigen::Rotation2Dd turn(w.rotation_deg * M_PI / 180.0);
     double mlo[2] = {INFINITY, INFINITY}, mhi[2] = {-INFINITY, -INFINITY};
     if (xy)
       for (int c = 0; c < 4; ++c) {
-        const Vec3 corner = w.to_machine(Vec3(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], 0.0)) - w.origin;
+        const Vec2 corner = turn * Vec2(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1]);
         for (int a = 0; a < 2; ++a) {
           mlo[a] = std::min(mlo[a], corner[a]);
           mhi[a] = std::max(mhi[a], corner[a]);

@@ -83,6 +83,7 @@ std::string work_offset_block(const WorkOffset& w, const Dialect& d, int decimal
 
 WorkOffset parse_work_offset(const std::string& text, const std::string& where) {
   std::vector<double> v;
+  if (!text.empty() && text.back() == ',') throw Error(where, "ends with a comma: expected x,y,z[,rotation_deg]");
   std::istringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {

@@ -102,7 +102,7 @@ size_t material_for(const PartView& v, const OperationSpec& op, MaterialTop& m) 
   if (!op.rest) return 0;
   // The cells where the design stands and the stock left more than the allowance and the threshold over the
   // design's highest within the cell (its centre height would make every steep flank rest material).
-  const std::vector<float> high = stock::design_highest_in_cells(v.part, g, v.stock.bottom);
+  const std::vector<float> high = stock::design_highest_in_cells(v.part, g, v.stock.bottom, v.design);
   m.rest.assign(m.top.size(), 0);
   size_t n = 0;
   for (size_t c = 0; c < m.top.size(); ++c)

@@ -153,7 +153,7 @@ class ScanRegistrar {
       const PointCloud cloud = session_.cloud_named(req.scan);
       scan::InspectionReport r;
       if (req.use_workpiece_frame) {
-        const Eigen::Matrix4d t = in_mm(
+        const Eigen::Matrix4d t = to_mm_pose(
             wait_for_transform(tf_, workpiece_frame_, session_.fixed_frame(), ::ros::Time(0), 1.0, "inspect"));
         r = scan::inspect_registered(*design(), transformed_points(t, cloud.points), inspection(tolerance));
       } else {
@@ -173,19 +173,12 @@ class ScanRegistrar {
       if (req.path.empty()) throw Error("save", "no path given");
       PointCloud cloud = session_.cloud_named(req.scan);
       const std::string frame = req.frame.empty() ? workpiece_frame_ : req.frame;
-      transform_points(in_mm(wait_for_transform(tf_, frame, session_.fixed_frame(), ::ros::Time(0), 1.0, "save")),
+      transform_points(to_mm_pose(wait_for_transform(tf_, frame, session_.fixed_frame(), ::ros::Time(0), 1.0, "save")),
                        cloud.points);
       write_cloud(req.path, cloud, Units::Metre);
       res.points = static_cast<uint32_t>(cloud.points.size());
       return std::to_string(cloud.points.size()) + " points in '" + frame + "' written to " + req.path;
     });
-  }
-
-  // A transform in metres (tf) as a rigid matrix in millimetres.
-  static Eigen::Matrix4d in_mm(const Eigen::Isometry3d& t) {
-    Eigen::Matrix4d m = t.matrix();
-    m.topRightCorner<3, 1>() *= kMmPerMetre;
-    return m;
   }
 
   scan::InspectionOptions inspection(double tolerance) const {

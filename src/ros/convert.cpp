@@ -14,6 +14,12 @@ namespace rosmill::edge {
 double to_metres(double mm) { return mm * kMetrePerMm; }
 double to_mm(double metres) { return metres * kMmPerMetre; }
 
+Eigen::Matrix4d to_mm_pose(const Eigen::Isometry3d& metres) {
+  Eigen::Matrix4d t = metres.matrix();
+  t.topRightCorner<3, 1>() *= kMmPerMetre;
+  return t;
+}
+
 geometry_msgs::Point to_point_msg(const Vec3& mm) {
   geometry_msgs::Point p;
   p.x = to_metres(mm.x());

@@ -46,10 +46,8 @@ scan::ScanView ScanSession::view_of(const sensor_msgs::PointCloud2& msg, const s
     throw Error(name, "no transform from '" + msg.header.frame_id + "' to '" + fixed_frame_ + "' at its stamp " +
                           std::to_string(msg.header.stamp.toSec()) + " within " +
                           std::to_string(transform_timeout_) + " s (" + why + ")");
-  const Eigen::Isometry3d pose =
-      tf2::transformToEigen(tf_.lookupTransform(fixed_frame_, msg.header.frame_id, msg.header.stamp));
-  view.pose = pose.matrix();
-  view.pose.topRightCorner<3, 1>() *= kMmPerMetre;
+  view.pose = to_mm_pose(
+      tf2::transformToEigen(tf_.lookupTransform(fixed_frame_, msg.header.frame_id, msg.header.stamp)));
   return view;
 }
 

@@ -11,10 +11,8 @@ std::optional<gcode::WorkOffset> WorkOffsetSource::now(const tf2_ros::Buffer* tf
   if (workpiece_frame.empty()) return std::nullopt;
   const std::string where = "work offset from tf " + machine_frame + " -> " + workpiece_frame;
   if (!tf) throw Error(where, "the node has no tf listener");
-  const Eigen::Isometry3d pose_m =
-      wait_for_transform(*tf, machine_frame, workpiece_frame, ::ros::Time(0), transform_timeout, where);
-  Eigen::Matrix4d pose = pose_m.matrix();
-  pose.topRightCorner<3, 1>() *= kMmPerMetre;
+  const Eigen::Matrix4d pose = to_mm_pose(
+      wait_for_transform(*tf, machine_frame, workpiece_frame, ::ros::Time(0), transform_timeout, where));
   return gcode::work_offset_of_pose(pose, max_tilt_deg, where);
 }
 

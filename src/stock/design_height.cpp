@@ -20,8 +20,8 @@ std::vector<float> design_heights(const Mesh& mesh, const GridSpec& g, double fl
   return z;
 }
 
-std::vector<float> design_highest_in_cells(const Mesh& mesh, const GridSpec& g, double floor) {
-  std::vector<float> high = design_heights(mesh, g, floor);
+std::vector<float> design_highest_in_cells(const Mesh& mesh, const GridSpec& g, double floor,
+                                            std::vector<float> high) {
   GridSpec corners = g;
   corners.x0 -= 0.5 * g.cell;
   corners.y0 -= 0.5 * g.cell;

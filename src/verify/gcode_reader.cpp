@@ -62,7 +62,7 @@ void refuse_unsimulated(const Block& b, const gcode::Place& where) {
   }();
   // G10 L2 P1 sets G54's origin on the machine (where the part was found): the program's coordinates, which the
   // simulation follows in the workpiece frame, stay what they are. Other coordinate system data is refused.
-  const bool g54_data = b.has_g(100) && std::lround(b.get('L')) == 2 && b.has('P') &&
+  const bool g54_data = b.has_g(100) && b.has('L') && std::lround(b.get('L')) == 2 && b.has('P') &&
                         (std::lround(b.get('P')) == 1 || std::lround(b.get('P')) == 0);
   if (b.has_g(100) && !g54_data)
     throw Error(where.str(), "G10 other than L2 P1 (G54's origin) is not supported by the verifier");

@@ -68,7 +68,7 @@ TEST(WorkOffset, ParsedFromNumbers) {
   EXPECT_EQ(w.origin, Vec3(100, -20.5, -30));
   EXPECT_EQ(w.rotation_deg, 12.5);
   EXPECT_EQ(parse_work_offset("1,2,3", "x").rotation_deg, 0);
-  for (const char* bad : {"", "1,2", "1,2,3,4,5", "1,x,3", "1,2,nan", "1,2,3e999", "1,,3"})
+  for (const char* bad : {"", "1,2", "1,2,3,", "1,2,3,4,5", "1,x,3", "1,2,nan", "1,2,3e999", "1,,3"})
     EXPECT_EQ(error_of([&] { parse_work_offset(bad, "--work-offset"); }).rfind("--work-offset: ", 0), 0u)
         << bad;
 }
@@ -118,7 +118,7 @@ TEST(WorkOffset, TheLimitCheckFollowsItInMachineCoordinates) {
   ASSERT_FALSE(v.empty());
   EXPECT_EQ(v.front().limit, "table");
   // What the check cannot follow stays refused: other coordinate systems, L20, axes left out.
-  for (const char* g10 : {"G10 L2 P2 X0 Y0 Z0", "G10 L20 P1 X0 Y0 Z0", "G10 L2 P1 X0 Y0"}) {
+  for (const char* g10 : {"G10 L2 P2 X0 Y0 Z0", "G10 L20 P1 X0 Y0 Z0", "G10 L2 P1 X0 Y0", "G10 P1 X0 Y0 Z0"}) {
     v = with(g10);
     ASSERT_FALSE(v.empty()) << g10;
     EXPECT_EQ(v.front().limit, "unchecked move") << g10;

@@ -41,6 +41,8 @@ geometry_msgs::Vector3 to_direction_msg(const Vec3& unitless);
 Vec3 from_direction_msg(const geometry_msgs::Vector3& v);
 double to_metres(double mm);
 double to_mm(double metres);
+// A rigid transform from tf (metres) as the core's 4x4 pose in millimetres.
+Eigen::Matrix4d to_mm_pose(const Eigen::Isometry3d& metres);
 
 // Mesh (mm) <-> shape_msgs/Mesh (m). The message keeps the welded vertices and the face order, so a facet index
 // means the same facet on both sides (msg::Segmentation.facet_labels relies on it).
