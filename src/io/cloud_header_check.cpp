@@ -2,6 +2,7 @@
 // named .pcd crashes pcl::PCDReader), so the layout is checked here against the file's real size first.
 #include "cloud_header_check.hpp"
 
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -10,19 +11,39 @@
 namespace rosmill::core::io {
 namespace {
 
-// Splits the header into lines up to and including the one that starts with `last_key`; returns the offset of
-// the first byte after it, or throws when the header never ends.
+// The first whitespace-delimited word of a line ("" for a blank one).
+std::string first_word(const std::string& line) {
+  const size_t start = line.find_first_not_of(" \t\r");
+  if (start == std::string::npos) return "";
+  return line.substr(start, line.find_first_of(" \t\r", start) - start);
+}
+
+// The line that starts at `pos`, without its '\n'; `pos` moves past it.
+std::string next_line(const char* data, size_t size, size_t& pos) {
+  size_t end = pos;
+  while (end < size && data[end] != '\n') ++end;
+  std::string line(data + pos, end - pos);
+  pos = end < size ? end + 1 : end;
+  return line;
+}
+
+// Splits the header into lines up to and including the one whose first word is `last_key`; returns the offset of
+// the first byte after it, or throws when the header never ends. A header line holds printable text, tabs and a
+// closing carriage return only: PCL splits words at spaces, tabs and carriage returns but reads numbers across
+// any white space, so a vertical tab or form feed would make the two readings of one line differ.
 size_t header_lines(const char* data, size_t size, const std::string& last_key, const std::string& path,
                     std::vector<std::string>& lines) {
   size_t pos = 0;
   while (pos < size) {
-    size_t end = pos;
-    while (end < size && data[end] != '\n') ++end;
-    std::string line(data + pos, end - pos);
+    std::string line = next_line(data, size, pos);
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    pos = end < size ? end + 1 : end;
+    for (const char c : line)
+      if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+        throw Error(path, "malformed header: line " + std::to_string(lines.size() + 1) +
+                              " holds a control character (byte " + std::to_string(int(static_cast<unsigned char>(c))) +
+                              ")");
     lines.push_back(line);
-    if (line.rfind(last_key, 0) == 0) return pos;
+    if (first_word(line) == last_key) return pos;
     if (lines.size() > 10000) break;
   }
   throw Error(path, "malformed header: no '" + last_key + "' line");
@@ -35,32 +56,64 @@ std::vector<std::string> words(const std::string& line) {
   return out;
 }
 
-uint64_t to_count(const std::string& text, const std::string& path, const std::string& what) {
+uint64_t to_count(const std::string& text, const std::string& path, const std::string& what,
+                  uint64_t largest = 999999999999) {
   if (text.empty() || text.size() > 12 || text.find_first_not_of("0123456789") != std::string::npos)
     throw Error(path, "malformed header: " + what + " '" + text + "' is not a count");
-  return std::stoull(text);
+  const uint64_t count = std::stoull(text);
+  if (count > largest)
+    throw Error(path, "malformed header: " + what + " " + text + " exceeds " + std::to_string(largest));
+  return count;
+}
+
+// PCL's PCD reader goes on reading header lines after DATA while they are blank, comments or start with a header
+// keyword (PCL matches keywords by prefix). Such a line after DATA would change the layout PCL reads behind this
+// check's back (a COUNT there is parsed with no check at all), so it is refused.
+void check_nothing_after_data(const char* data, size_t size, size_t body, const std::string& path) {
+  static const char* const kKeywords[] = {"FIELDS", "COLUMNS", "SIZE",      "TYPE",   "COUNT",
+                                          "WIDTH",  "HEIGHT",  "VIEWPOINT", "POINTS", "DATA"};
+  for (size_t pos = body; pos < size;) {
+    const std::string line = next_line(data, size, pos);
+    if (line.empty()) continue;
+    std::string word = line;
+    const size_t start = word.find_first_not_of(" \t\r\v\f");
+    word = start == std::string::npos ? "" : word.substr(start);
+    if (word.empty()) return;
+    if (word[0] == '#' || word.rfind("VERSION", 0) == 0) continue;
+    for (const char* key : kKeywords)
+      if (word.rfind(key, 0) == 0)
+        throw Error(path, std::string("malformed PCD: a '") + key + "' header line after DATA");
+    return;
+  }
 }
 
 }  // namespace
 
 void check_pcd_layout(const char* data, size_t size, const std::string& path) {
+  // PCL holds the point count in an int and a field's COUNT in an int, and multiplies them unchecked.
+  constexpr uint64_t kMaxPoints = 0x7fffffff, kMaxCount = 1 << 16;
   std::vector<std::string> lines;
   const size_t body = header_lines(data, size, "DATA", path, lines);
   std::vector<std::string> fields, sizes, types, counts;
   uint64_t width = 0, height = 1, points = 0;
   bool has_width = false, has_points = false;
   std::string data_kind;
+  std::set<std::string> seen;
   for (const std::string& line : lines) {
     const std::vector<std::string> w = words(line);
     if (w.empty() || w[0][0] == '#') continue;
+    // PCL reads a repeated line over what the first one set (a second SIZE moves the offsets, not the types).
+    if (!seen.insert(w[0] == "COLUMNS" ? "FIELDS" : w[0]).second)
+      throw Error(path, "malformed PCD header: a second '" + w[0] + "' line");
     const std::vector<std::string> rest(w.begin() + 1, w.end());
     if (w[0] == "FIELDS" || w[0] == "COLUMNS") fields = rest;
     else if (w[0] == "SIZE") sizes = rest;
     else if (w[0] == "TYPE") types = rest;
     else if (w[0] == "COUNT") counts = rest;
-    else if (w[0] == "WIDTH" && rest.size() == 1) width = to_count(rest[0], path, "WIDTH"), has_width = true;
-    else if (w[0] == "HEIGHT" && rest.size() == 1) height = to_count(rest[0], path, "HEIGHT");
-    else if (w[0] == "POINTS" && rest.size() == 1) points = to_count(rest[0], path, "POINTS"), has_points = true;
+    else if (w[0] == "WIDTH" && rest.size() == 1) width = to_count(rest[0], path, "WIDTH", kMaxPoints), has_width = true;
+    else if (w[0] == "HEIGHT" && rest.size() == 1) height = to_count(rest[0], path, "HEIGHT", kMaxPoints);
+    else if (w[0] == "POINTS" && rest.size() == 1)
+      points = to_count(rest[0], path, "POINTS", kMaxPoints), has_points = true;
     else if (w[0] == "DATA" && rest.size() == 1) data_kind = rest[0];
     else if (w[0] != "VERSION" && w[0] != "VIEWPOINT")
       throw Error(path, "malformed PCD header: unexpected line '" + line.substr(0, 40) + "'");
@@ -73,17 +126,28 @@ void check_pcd_layout(const char* data, size_t size, const std::string& path) {
   if (!has_points) points = width * height;
   if (points != width * height)
     throw Error(path, "malformed PCD header: POINTS " + std::to_string(points) + " is not WIDTH x HEIGHT");
-  uint64_t step = 0;
+  if (width * height > kMaxPoints)
+    throw Error(path, "malformed PCD header: WIDTH x HEIGHT exceeds " + std::to_string(kMaxPoints) + " points");
+  uint64_t step = 0, values = 0;
   for (size_t i = 0; i < fields.size(); ++i) {
-    const uint64_t s = to_count(sizes[i], path, "SIZE"), c = to_count(counts[i], path, "COUNT");
+    const uint64_t s = to_count(sizes[i], path, "SIZE"), c = to_count(counts[i], path, "COUNT", kMaxCount);
     if (!(s == 1 || s == 2 || s == 4 || s == 8) || types[i].size() != 1 || std::string("IUF").find(types[i]) ==
                                                                                  std::string::npos)
       throw Error(path, "malformed PCD header: field '" + fields[i] + "' has SIZE " + sizes[i] + " TYPE " +
                             types[i]);
     step += s * c;
+    values += c;
   }
+  if (step > kMaxCount) throw Error(path, "malformed PCD header: " + std::to_string(step) + " bytes a point");
+  check_nothing_after_data(data, size, body, path);
   const uint64_t remaining = size - body;
-  if (data_kind == "ascii") return;
+  if (data_kind == "ascii") {
+    // Every value takes a digit and a separator at least (the last one's may be the end of the file).
+    if (values == 0 || (remaining + 1) / (2 * values) < points)
+      throw Error(path, "truncated PCD: " + std::to_string(points) + " points of " + std::to_string(values) +
+                            " values need more than the " + std::to_string(remaining) + " bytes after the header");
+    return;
+  }
   if (data_kind == "binary") {
     if (step == 0 || remaining / step < points)
       throw Error(path, "truncated PCD: " + std::to_string(points) + " points of " + std::to_string(step) +

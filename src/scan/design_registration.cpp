@@ -78,9 +78,11 @@ bool same_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, double length
 // round side by side; after each round every candidate's inlier share is measured and those that trail the best so
 // far by more than a quarter of the scan drop out (a wrong principal-axes guess fits half the scan or less and
 // gains little from more steps, while the right one fits nearly all of it within a few). Candidates that fit
-// about equally, a symmetric part's, all run to the end. Returns every candidate's last fit.
+// about equally, a symmetric part's, all run to the end. `incumbent`: the share of a fit found before, which the
+// candidates trail from the first round on. Returns every candidate's last fit.
 std::vector<Fit> race_candidates(const PlaneIcp& icp, const MeshDistance& distance, const std::vector<Vec3>& coarse,
-                                 const std::vector<Eigen::Matrix4d>& candidates, double size, double leaf) {
+                                 const std::vector<Eigen::Matrix4d>& candidates, double size, double leaf,
+                                 double incumbent = 0) {
   constexpr int kRound = 5, kStageSteps = 25;
   constexpr double kTrail = 0.25;
   const double reach[2] = {0.2 * size, 3 * leaf};
@@ -111,7 +113,7 @@ std::vector<Fit> race_candidates(const PlaneIcp& icp, const MeshDistance& distan
       }
       c.fit = measure(distance, coarse, c.pose, leaf);
     });
-    double best = 0;
+    double best = incumbent;
     for (const Runner& c : runners) best = std::max(best, c.fit.share);
     for (Runner& c : runners)
       if (c.fit.share < best - kTrail) c.running = false;
@@ -205,10 +207,24 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   clock.lap("scan thinning, principal axes");
   std::vector<Fit> fits = race_candidates(icp, distance, coarse, candidates, size, leaf);
   std::stable_sort(fits.begin(), fits.end(), better);
+  // A partial scan's principal axes need not match the design's, so the candidates can miss a pose that fits as
+  // well as the best (one view of a part whose seen side is symmetric, turned half a turn about that side's own
+  // centre). Such a second minimum sits at a symmetry of the seen surface's principal frame from the best pose:
+  // those poses are raced too, so that an equal fit there is found and reported as an ambiguity.
+  const Eigen::Matrix4d first = rigid_inverse(fits.front().scan_to_design);
+  // About the design's free axis every 10 degrees (a turn-over axis then lies within 2.5 degrees of a symmetry's);
+  // about the seen surface's every 30 (it is the scan's, and raced on every registration).
+  std::vector<Eigen::Matrix4d> probes = principal_symmetry_probes(first, design_frame, o.moment_tolerance, 10);
+  for (const Eigen::Matrix4d& p : principal_symmetry_probes(
+           first, principal_frame(transformed_points(fits.front().scan_to_design, coarse)), o.moment_tolerance, 30))
+    probes.push_back(p);
+  std::vector<Fit> probed = race_candidates(icp, distance, coarse, probes, size, leaf, fits.front().share);
+  std::stable_sort(probed.begin(), probed.end(), better);
+  r.candidates += probed.size();
   clock.lap("candidates (coarse ICP, fitness)");
   r.global_seconds = seconds_since(start);
 
-  // Fine: the best and the distinct poses that fit about as well at the coarse level.
+  // Fine.
   const auto fine_start = std::chrono::steady_clock::now();
   const std::vector<Vec3> fine = thin_evenly(scan.points, o.fine_points);
   r.scan_points_used = fine.size();
@@ -228,22 +244,43 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
     clock.lap("fine fitness");
     return fit;
   };
-  const Fit best = refine(fits.front().scan_to_design);
-  const std::vector<Vec3> best_in_design = std::move(in_design);
-  const std::vector<SurfaceDistance> best_nearest = std::move(nearest);
-  std::vector<Eigen::Matrix4d> distinct{fits.front().scan_to_design};
-  for (size_t i = 1; i < fits.size() && r.alternatives.size() < 5; ++i) {
-    const Fit& f = fits[i];
-    if (f.share < fits.front().share - o.ambiguity_share) break;  // sorted: no later one is closer
-    if (f.rms > o.ambiguity_rms * fits.front().rms + 0.1 * leaf) continue;
-    if (std::any_of(distinct.begin(), distinct.end(), [&](const auto& d) { return same_pose(d, f.scan_to_design, leaf); }))
-      continue;
-    distinct.push_back(f.scan_to_design);
-    const Fit alt = refine(f.scan_to_design);
-    if (alt.share >= best.share - o.ambiguity_share && alt.rms <= o.ambiguity_rms * best.rms + 1e-3 &&
-        !same_pose(alt.scan_to_design, best.scan_to_design, o.inlier_distance))
-      r.alternatives.push_back(rigid_inverse(alt.scan_to_design));
+  // The distinct poses that fit about as well as the first at the coarse level are each refined, and the best fine
+  // fit wins: at a voxel's reach the coarse ranking cannot tell a near miss from the truth. Those that fit about as
+  // well as the winner at the fine level are its alternatives.
+  constexpr size_t kMostRefined = 4, kMostProbes = 2;
+  constexpr double kCoarseMargin = 0.05;
+  struct Refined {
+    Fit fit;
+    std::vector<Vec3> in_design;
+    std::vector<SurfaceDistance> nearest;
+  };
+  std::vector<Refined> refined;
+  std::vector<Eigen::Matrix4d> distinct;
+  // The leaders of each race (the probes' own, so that they cannot crowd out the first race's).
+  for (const auto& [race, most] : {std::pair{&fits, kMostRefined}, {&probed, kMostProbes}}) {
+    size_t taken = 0;
+    for (const Fit& f : *race) {
+      if (taken == most || f.share < race->front().share - kCoarseMargin) break;  // sorted
+      if (std::any_of(distinct.begin(), distinct.end(), [&](const auto& d) { return same_pose(d, f.scan_to_design, leaf); }))
+        continue;
+      distinct.push_back(f.scan_to_design);
+      const Fit fit = refine(f.scan_to_design);
+      refined.push_back({fit, std::move(in_design), std::move(nearest)});
+      ++taken;
+    }
   }
+  const auto winner = std::min_element(refined.begin(), refined.end(),
+                                       [](const Refined& a, const Refined& b) { return better(a.fit, b.fit); });
+  const Fit best = winner->fit;
+  const std::vector<Vec3>& best_in_design = winner->in_design;
+  const std::vector<SurfaceDistance>& best_nearest = winner->nearest;
+  for (const Refined& alt : refined)
+    if (&alt != &*winner && r.alternatives.size() < 5 && alt.fit.share >= best.share - o.ambiguity_share &&
+        alt.fit.rms <= o.ambiguity_rms * best.rms + 1e-3 &&
+        std::none_of(r.alternatives.begin(), r.alternatives.end(),
+                     [&](const auto& t) { return same_pose(rigid_inverse(t), alt.fit.scan_to_design, o.inlier_distance); }) &&
+        !same_pose(alt.fit.scan_to_design, best.scan_to_design, o.inlier_distance))
+      r.alternatives.push_back(rigid_inverse(alt.fit.scan_to_design));
   r.transform = rigid_inverse(best.scan_to_design);
   r.rms = best.rms;
   r.inlier_share = best.share;

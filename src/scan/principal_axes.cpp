@@ -83,4 +83,13 @@ std::vector<Eigen::Matrix4d> principal_axes_candidates(const PrincipalFrame& des
   return out;
 }
 
+std::vector<Eigen::Matrix4d> principal_symmetry_probes(const Eigen::Matrix4d& pose, const PrincipalFrame& design,
+                                                       double tolerance, double step_deg) {
+  std::vector<Eigen::Matrix4d> out;
+  // The candidates that map the design's frame onto itself are the rigid motions that keep its principal frame.
+  for (const Eigen::Matrix4d& keep : principal_axes_candidates(design, design, tolerance, step_deg))
+    if (!keep.topLeftCorner<3, 3>().isIdentity(1e-9)) out.push_back(pose * keep);
+  return out;
+}
+
 }  // namespace rosmill::core::scan

@@ -110,6 +110,33 @@ TEST(FuzzFindings, CloudPointInfiniteInMillimetresIsDropped) {
   ::unlink(path.c_str());
 }
 
+// fuzz_cloud: PCL's PCD reader goes on reading header lines after DATA; a COUNT there with a word that is not a
+// number left a field's count uninitialised, and PCL allocated a point step of that garbage (ASan: an allocation of
+// 100 TB). Such lines are refused, as are the other ways the header could be read differently by PCL and the check.
+TEST(FuzzFindings, PcdHeaderThatPclReadsDifferentlyIsRefused) {
+  const std::string head = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {head + "DATA ascii\nCOUNT 1 x 1\n1 2 3\n", "a 'COUNT' header line after DATA"},
+      {head + "DATA ascii\n# a comment\n  SIZE 8 8 8\n1 2 3\n", "a 'SIZE' header line after DATA"},
+      {"FIELDS x\vy z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n", "control character"},
+      {head + "SIZE 8 8 8\nDATA ascii\n1 2 3\n", "a second 'SIZE' line"},
+      {"FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 2000000000\nPOINTS 2000000000\nDATA ascii\n1 2 3\n",
+       "truncated PCD"},
+      {"FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 4294967296\nDATA binary\n", "exceeds"},
+      {"FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 99999999\nWIDTH 1\nDATA binary\n", "exceeds"},
+  };
+  for (const auto& [input, expected] : cases) {
+    const std::string path = temp_file("header.pcd", input);
+    const std::string message = error_of([&] { read_cloud(path); });
+    EXPECT_NE(message.find(expected), std::string::npos) << "input:\n" << input << "\nmessage: " << message;
+    ::unlink(path.c_str());
+  }
+  // The same header with its points and nothing after DATA is read.
+  const std::string path = temp_file("good.pcd", head + "DATA ascii\n1 2 3\n");
+  EXPECT_EQ(read_cloud(path).points.size(), 1u);
+  ::unlink(path.c_str());
+}
+
 // Toolpath files: a field of the wrong JSON type escaped as nlohmann's type_error (found reading the reader, then
 // run through fuzz_toolpath_json); an id beyond int was converted with undefined behaviour; a move type of 2^32 + 1
 // was read as 1.

@@ -32,4 +32,10 @@ int near_equal_moments(const Vec3& moments, double tolerance);
 std::vector<Eigen::Matrix4d> principal_axes_candidates(const PrincipalFrame& design, const PrincipalFrame& scan,
                                                        double tolerance, double step_deg = 30);
 
+// `pose` (design -> scan) composed with each motion of the design that keeps its principal frame, other than the
+// identity (about a free axis every `step_deg`): where a second minimum lies when the design is (nearly) symmetric
+// on the side a scan shows.
+std::vector<Eigen::Matrix4d> principal_symmetry_probes(const Eigen::Matrix4d& pose, const PrincipalFrame& design,
+                                                       double tolerance, double step_deg);
+
 }  // namespace rosmill::core::scan
