@@ -200,6 +200,10 @@ void check_ply_layout(const char* data, size_t size, const std::string& path) {
       element_size = 0;
     } else if (w[0] == "property") {
       if (w.size() >= 2 && w[1] == "list") {
+        // PCL sizes a vertex list from the first vertex and asserts (aborts the process) when a later one is longer.
+        if (in_vertex)
+          throw Error(path, "PLY vertex property '" + (w.size() == 5 ? w[4] : std::string("?")) +
+                                "' is a list, which PCL's reader cannot take: write the points without it");
         fixed = fixed && vertex_done;
         continue;
       }

@@ -137,6 +137,18 @@ TEST(FuzzFindings, PcdHeaderThatPclReadsDifferentlyIsRefused) {
   ::unlink(path.c_str());
 }
 
+// fuzz_cloud: a list property in the PLY vertex element (here a face's vertex_indices after an element line the
+// fuzzer turned into a comment) made PCL's reader assert and abort the process. It is refused before PCL reads it.
+TEST(FuzzFindings, PlyVertexListPropertyIsRefused) {
+  const std::string input =
+      "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+      "property list uchar int vertex_indices\nend_header\n0 0 0 1 5\n1 1 1 3 1 2 3\n";
+  const std::string path = temp_file("list.ply", input);
+  const std::string message = error_of([&] { read_cloud(path); });
+  EXPECT_NE(message.find("PLY vertex property 'vertex_indices' is a list"), std::string::npos) << message;
+  ::unlink(path.c_str());
+}
+
 // Toolpath files: a field of the wrong JSON type escaped as nlohmann's type_error (found reading the reader, then
 // run through fuzz_toolpath_json); an id beyond int was converted with undefined behaviour; a move type of 2^32 + 1
 // was read as 1.
