@@ -91,7 +91,7 @@ void check_nothing_after_data(const char* data, size_t size, size_t body, const 
 
 void check_pcd_layout(const char* data, size_t size, const std::string& path) {
   // PCL holds the point count in an int and a field's COUNT in an int, and multiplies them unchecked.
-  constexpr uint64_t kMaxPoints = 0x7fffffff, kMaxCount = 1 << 16;
+  constexpr uint64_t kMaxPoints = 0x7fffffff, kMaxCount = 1 << 16, kMaxStep = 1 << 16;
   std::vector<std::string> lines;
   const size_t body = header_lines(data, size, "DATA", path, lines);
   std::vector<std::string> fields, sizes, types, counts;
@@ -138,7 +138,7 @@ void check_pcd_layout(const char* data, size_t size, const std::string& path) {
     step += s * c;
     values += c;
   }
-  if (step > kMaxCount) throw Error(path, "malformed PCD header: " + std::to_string(step) + " bytes a point");
+  if (step > kMaxStep) throw Error(path, "malformed PCD header: " + std::to_string(step) + " bytes a point");
   check_nothing_after_data(data, size, body, path);
   const uint64_t remaining = size - body;
   if (data_kind == "ascii") {

@@ -209,8 +209,8 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   std::stable_sort(fits.begin(), fits.end(), better);
   // A partial scan's principal axes need not match the design's, so the candidates can miss a pose that fits as
   // well as the best (one view of a part whose seen side is symmetric, turned half a turn about that side's own
-  // centre). Such a second minimum sits at a symmetry of the seen surface's principal frame from the best pose:
-  // those poses are raced too, so that an equal fit there is found and reported as an ambiguity.
+  // centre). Such a second minimum sits at a symmetry of the design's or the seen surface's principal frame from the
+  // best pose: those poses are raced too, so that an equal fit there is found and reported as an ambiguity.
   const Eigen::Matrix4d first = rigid_inverse(fits.front().scan_to_design);
   // About the design's free axis every 10 degrees (a turn-over axis then lies within 2.5 degrees of a symmetry's);
   // about the seen surface's every 30 (it is the scan's, and raced on every registration).
@@ -224,7 +224,7 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   clock.lap("candidates (coarse ICP, fitness)");
   r.global_seconds = seconds_since(start);
 
-  // Fine.
+  // Fine: the leaders of the coarse races refined on the fine points.
   const auto fine_start = std::chrono::steady_clock::now();
   const std::vector<Vec3> fine = thin_evenly(scan.points, o.fine_points);
   r.scan_points_used = fine.size();
