@@ -7,12 +7,14 @@
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/covered_share.hpp"
+#include "rosmill/scan/design_symmetry.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
 #include "rosmill/scan/plane_icp.hpp"
 #include "rosmill/scan/principal_axes.hpp"
@@ -159,6 +161,23 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
+// "a 180.0 deg turn about (0.000, 1.000, 0.000)": a rigid motion in words.
+std::string describe_motion(const Eigen::Matrix4d& m) {
+  const Eigen::AngleAxisd turn(Eigen::Matrix3d(m.topLeftCorner<3, 3>()));
+  const Vec3& a = turn.axis();
+  return "a " + fixed(turn.angle() * 180 / M_PI, 1) + " deg turn about (" + fixed(a.x(), 3) + ", " + fixed(a.y(), 3) +
+         ", " + fixed(a.z(), 3) + ")";
+}
+
+SymmetryOptions symmetry_options(const RegistrationOptions& o) {
+  SymmetryOptions s;
+  s.moment_tolerance = o.moment_tolerance;
+  s.inlier_distance = o.inlier_distance;
+  s.min_share = 1 - o.ambiguity_share;
+  s.tolerance = 0.1 * o.inlier_distance;
+  return s;
+}
+
 }  // namespace
 
 void RegistrationOptions::check() const {
@@ -195,6 +214,9 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   clock.lap("triangle index");
   const PlaneIcp icp(target.points, target.normals);
   clock.lap("ICP index");
+  const std::vector<Eigen::Matrix4d> symmetries =
+      design_symmetries(design, target, design_frame, icp, distance, symmetry_options(o));
+  clock.lap("design symmetries");
 
   // Global: every principal-axes candidate pulled in by coarse ICP.
   const double leaf = std::sqrt(area / double(o.coarse_points));
@@ -282,6 +304,14 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
         !same_pose(alt.fit.scan_to_design, best.scan_to_design, o.inlier_distance))
       r.alternatives.push_back(rigid_inverse(alt.fit.scan_to_design));
   r.transform = rigid_inverse(best.scan_to_design);
+  // A symmetry of the design gives a pose that fits exactly as well, whatever the scan shows.
+  for (const Eigen::Matrix4d& s : symmetries) {
+    const Eigen::Matrix4d alt = r.transform * s;
+    if (r.alternatives.size() < 5 &&
+        std::none_of(r.alternatives.begin(), r.alternatives.end(),
+                     [&](const auto& t) { return same_pose(t, alt, o.inlier_distance); }))
+      r.alternatives.push_back(alt);
+  }
   r.rms = best.rms;
   r.inlier_share = best.share;
   r.overlap = covered_share(thin_evenly(target.points, 5000), best_in_design,
@@ -292,6 +322,10 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   r.fine_seconds = seconds_since(fine_start);
 
   std::ostringstream why;
+  if (!symmetries.empty())
+    why << "the design maps onto itself under " << symmetries.size() << " motion" << (symmetries.size() > 1 ? "s" : "")
+        << " (e.g. " << describe_motion(symmetries.front()) << " in its own frame): a pose and its symmetric ones put the same surface in "
+        << "the same place; ";
   if (!r.alternatives.empty()) {
     why << r.alternatives.size() + 1 << " distinct poses fit about equally (inlier share within "
         << o.ambiguity_share << ", RMS within a factor " << o.ambiguity_rms << ")";

@@ -1,0 +1,146 @@
+#include "rosmill/scan/design_symmetry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <Eigen/Geometry>
+#include <tbb/parallel_for.h>
+
+#include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/scan/thinning.hpp"
+
+namespace rosmill::core::scan {
+namespace {
+
+// The cells of a grid over the design's box that lie near its surface: each sample point's cell and its 26
+// neighbours, so a point within a cell of the surface always finds its cell marked.
+class NearSurfaceCells {
+ public:
+  NearSurfaceCells(const std::vector<Vec3>& points, const Box3& box, double cell) : cell_(cell) {
+    origin_ = box.min - Vec3::Constant(2 * cell);
+    for (int a = 0; a < 3; ++a) size_[a] = int(std::ceil((box.max[a] - box.min[a]) / cell)) + 5;
+    marked_.assign(size_t(size_[0]) * size_[1] * size_[2], 0);
+    for (const Vec3& p : points) {
+      const Eigen::Vector3i c = cell_of(p);
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) marked_[index(c + Eigen::Vector3i(dx, dy, dz))] = 1;
+    }
+  }
+
+  bool near(const Vec3& p) const {
+    const Eigen::Vector3i c = cell_of(p);
+    for (int a = 0; a < 3; ++a)
+      if (c[a] < 0 || c[a] >= size_[a]) return false;
+    return marked_[index(c)] != 0;
+  }
+
+ private:
+  Eigen::Vector3i cell_of(const Vec3& p) const {
+    const Vec3 u = (p - origin_) / cell_;
+    return Eigen::Vector3i(int(std::floor(u.x())), int(std::floor(u.y())), int(std::floor(u.z())));
+  }
+  size_t index(const Eigen::Vector3i& c) const { return (size_t(c.z()) * size_[1] + c.y()) * size_[0] + c.x(); }
+
+  double cell_;
+  Vec3 origin_;
+  int size_[3];
+  std::vector<uint8_t> marked_;
+};
+
+double share_near(const NearSurfaceCells& cells, const std::vector<Vec3>& points, const Eigen::Matrix4d& motion) {
+  const Eigen::Matrix3d r = motion.topLeftCorner<3, 3>();
+  const Vec3 t = motion.topRightCorner<3, 1>();
+  size_t near = 0;
+  for (const Vec3& p : points) near += cells.near(r * p + t);
+  return double(near) / double(points.size());
+}
+
+// The exact check of a motion refined onto the design: the share of points within the inlier distance and their RMS.
+bool maps_onto_itself(const MeshDistance& distance, const std::vector<Vec3>& points, const Eigen::Matrix4d& motion,
+                      const SymmetryOptions& o) {
+  size_t inliers = 0;
+  double sum_sq = 0;
+  for (const Vec3& p : points) {
+    SurfaceDistance d;
+    if (!distance.query_within((motion * p.homogeneous()).head<3>(), o.inlier_distance, d)) continue;
+    ++inliers;
+    sum_sq += d.signed_distance * d.signed_distance;
+  }
+  return inliers >= o.min_share * double(points.size()) && std::sqrt(sum_sq / double(inliers)) <= o.tolerance;
+}
+
+// With all three moments equal (a cube, a regular polyhedron) the principal axes are arbitrary, so the turns are
+// sought about the normal of the design's largest flat area instead, and its turn-overs: a frame whose moments say
+// that this axis is the free one.
+PrincipalFrame frame_of_largest_flat(const Mesh& design, const Vec3& centroid) {
+  Vec3 normal = Vec3::UnitZ();
+  double largest = 0;
+  // The area of the faces sharing a face's normal (within about a degree), over the first faces.
+  for (size_t f = 0; f < std::min<size_t>(design.faces.size(), 2000); ++f) {
+    double area = 0;
+    for (size_t g = 0; g < design.faces.size(); ++g)
+      if (design.normals[g].dot(design.normals[f]) > 0.9998) area += design.areas[g];
+    if (area > largest) largest = area, normal = design.normals[f];
+  }
+  PrincipalFrame frame;
+  frame.centroid = centroid;
+  const Vec3 other = std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  frame.axes.col(0) = normal.cross(other).normalized();
+  frame.axes.col(1) = normal.cross(frame.axes.col(0));
+  frame.axes.col(2) = normal;
+  frame.moments = Vec3(1, 1, 0);
+  return frame;
+}
+
+}  // namespace
+
+std::vector<Eigen::Matrix4d> design_symmetries(const Mesh& design, const SurfaceSample& sample,
+                                               const PrincipalFrame& frame, const PlaneIcp& icp,
+                                               const MeshDistance& distance, const SymmetryOptions& o, size_t limit) {
+  constexpr size_t kPoints = 2000;     // design points a motion is scored on
+  constexpr double kScored = 0.97;     // share near the surface that makes a motion worth refining
+  constexpr size_t kMostRefined = 12;  // ICP refinements at most (an axisymmetric part scores everywhere)
+  const std::vector<Vec3> points = thin_evenly(sample.points, kPoints);
+  double radius = 0;  // the farthest point from the centroid: how far a turn moves a point
+  for (const Vec3& p : points) radius = std::max(radius, (p - frame.centroid).norm());
+  // Cells no finer than the sampling (every cell near the surface holds a sample) nor than 1/200 of the part.
+  const double area = std::accumulate(design.areas.begin(), design.areas.end(), 0.0);
+  const double cell = std::max(design.bbox.size().norm() / 200, std::sqrt(area / double(sample.points.size())));
+  const NearSurfaceCells cells(sample.points, design.bbox, cell);
+  // At this step the nearest motion to a symmetry moves no point by more than half a cell.
+  const double step_deg = std::clamp(cell / radius * 180 / M_PI, 0.1, 10.0);
+  const PrincipalFrame kept = near_equal_moments(frame.moments, o.moment_tolerance) == 3
+                                  ? frame_of_largest_flat(design, frame.centroid)
+                                  : frame;
+  const std::vector<Eigen::Matrix4d> motions =
+      principal_symmetry_probes(Eigen::Matrix4d::Identity(), kept, o.moment_tolerance, step_deg);
+
+  // Motions that move the design's points by more than a few cells only: a smaller one is the identity's neighbour.
+  const double least_deg = 4 * step_deg;
+  std::vector<double> share(motions.size(), 0);
+  tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
+    if (rotation_angle_deg(motions[i]) >= least_deg) share[i] = share_near(cells, points, motions[i]);
+  });
+  std::vector<size_t> order(motions.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return share[a] > share[b]; });
+
+  std::vector<Eigen::Matrix4d> found, tried;
+  const auto close_to = [&](const std::vector<Eigen::Matrix4d>& poses, const Eigen::Matrix4d& m) {
+    return std::any_of(poses.begin(), poses.end(),
+                       [&](const Eigen::Matrix4d& p) { return rotation_angle_deg(rigid_inverse(p) * m) < least_deg; });
+  };
+  for (size_t i : order) {
+    if (share[i] < kScored || found.size() == limit || tried.size() == kMostRefined) break;
+    if (close_to(tried, motions[i])) continue;
+    tried.push_back(motions[i]);
+    const Eigen::Matrix4d refined = icp.align(points, motions[i], 2 * cell, 30);
+    if (rotation_angle_deg(refined) < least_deg || close_to(found, refined)) continue;
+    if (maps_onto_itself(distance, points, refined, o)) found.push_back(refined);
+  }
+  return found;
+}
+
+}  // namespace rosmill::core::scan
