@@ -56,10 +56,12 @@ void run(const JobArgs& a) {
                 100 * op.air_cut_share, op.time_s, op.min_left_mm, op.max_left_mm, op.program.c_str());
     if (op.collision_line)
       std::printf("    rapid into material at toolpath move %u\n", op.collision_line);
+    if (op.gouge_mm > 0)
+      std::printf("    cuts %.3f mm below the design at toolpath move %u (the verifier)\n", op.gouge_mm, op.gouge_move);
   }
   std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s, material left on the part "
-              "%.3f to %.3f mm\n",
-              r.removed_mm3, r.left_mm3, 100 * r.air_cut_share, r.time_s, r.min_left_mm, r.max_left_mm);
+              "%.3f to %.3f mm, deepest gouge (the verifier) %.3f mm\n",
+              r.removed_mm3, r.left_mm3, 100 * r.air_cut_share, r.time_s, r.min_left_mm, r.max_left_mm, r.gouge_mm);
 }
 
 CommandRegistration reg([](CLI::App& app) {

@@ -15,6 +15,7 @@
 #include "rosmill/stock/design_height.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
+#include "rosmill/verify/verify.hpp"
 
 namespace rosmill::core::job {
 namespace {
@@ -90,6 +91,17 @@ std::pair<double, double> material_left(const PartView& v) {
     hi = std::max(hi, left);
   }
   return {lo, hi};
+}
+
+// The deepest cut below the design by the operation's program and the toolpath move that made it (0: none), from
+// the verifier, which simulates the program on its own grid over the part in the setup's frame, apart from the
+// stock model: a second opinion on the gouge that the stock's material left gives.
+std::pair<double, uint32_t> verified_gouge(const PartView& v, const stock::MachineProgram& program, double cell) {
+  if (program.moves.empty()) return {0.0, 0};
+  verify::VerifyOptions o;
+  o.resolution = cell;
+  const verify::DeviationReport d = verify::verify_program(v.part, program, verify::StockSpec{}, o).report;
+  return {d.gouged ? d.max_gouge_mm : 0.0, d.gouged ? d.gouge_source : 0};
 }
 
 // What planning is told of the stock: its top from the operation's setup and, for a rest operation, the cells of
@@ -222,7 +234,9 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     r.air_cut_share = removal.air_cut_share();
     r.collision_line = removal.first_rapid_source;
     r.remove_seconds = removal.seconds;
-    std::tie(r.min_left_mm, r.max_left_mm) = material_left(part_view(stock, part, request.input.setup));
+    const PartView after = part_view(stock, part, request.input.setup);
+    std::tie(r.min_left_mm, r.max_left_mm) = material_left(after);
+    std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(after, program, job.resolution);
     r.rest_cells = rest_cells;
     for (const Toolpath& tp : toolpaths) {
       const ToolpathStats s = toolpath_stats(tp, job.rapid_feed, options.max_acceleration);
@@ -236,6 +250,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     report.removed_mm3 += r.removed_mm3;
     report.time_s += r.time_s;
     report.min_left_mm = std::min(report.min_left_mm, r.min_left_mm);
+    report.gouge_mm = std::max(report.gouge_mm, r.gouge_mm);
     report.operations.push_back(r);
     if (options.operation_done)
       options.operation_done({k, report.operations.back(), planned.back(), request.input.setup, stock, part});
@@ -263,6 +278,7 @@ nlohmann::json to_json(const JobReport& report) {
                         {"time_s", r.time_s},       {"plan_seconds", r.plan_seconds},
                         {"rapid_collision_line", r.collision_line},
                         {"min_left_mm", r.min_left_mm},     {"max_left_mm", r.max_left_mm},
+                        {"gouge_mm", r.gouge_mm},           {"gouge_move", r.gouge_move},
                         {"rest", r.rest},                   {"rest_cells", r.rest_cells}};
     if (!r.program.empty()) o["program"] = r.program;
     ops.push_back(o);
@@ -275,6 +291,7 @@ nlohmann::json to_json(const JobReport& report) {
           {"time_s", report.time_s},
           {"min_left_mm", report.min_left_mm},
           {"max_left_mm", report.max_left_mm},
+          {"gouge_mm", report.gouge_mm},
           {"stock_bytes", report.stock_bytes},
           {"cancelled", report.cancelled}};
 }

@@ -171,8 +171,12 @@ TEST(Job, ExampleJobsRunFromAnyFolder) {
     // No operation cuts below the design by more than 0.001 mm (the stock model's view of the part).
     EXPECT_GE(j["min_left_mm"].get<double>(), -0.001) << name;
     EXPECT_GE(j["max_left_mm"].get<double>(), j["min_left_mm"].get<double>()) << name;
-    for (const auto& op : j["operations"])
+    // The verifier, simulating each program on its own grid, finds no gouge either: the two models agree.
+    EXPECT_EQ(j["gouge_mm"].get<double>(), 0.0) << name;
+    for (const auto& op : j["operations"]) {
       EXPECT_TRUE(std::filesystem::exists(op["program"].get<std::string>())) << name << ": " << op.dump();
+      EXPECT_EQ(op["gouge_mm"].get<double>() > 0, op["min_left_mm"].get<double>() < -0.01) << name << ": " << op.dump();
+    }
     if (std::string(name) == "box_cube") continue;
     const JobOptions options = with_tools();
     JobSpec spec = read_job(file);

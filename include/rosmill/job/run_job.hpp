@@ -57,6 +57,10 @@ struct OperationReport {
   uint32_t collision_line = 0;  // the toolpath move number of the first rapid into material (0: none)
   // Material left on the part after the operation, seen from its setup (mm; negative: cut below the design).
   double min_left_mm = 0, max_left_mm = 0;
+  // The deepest cut below the design by the verifier (mm, 0: none; beyond its 0.01 mm tolerance) and the toolpath
+  // move that made it.
+  double gouge_mm = 0;
+  uint32_t gouge_move = 0;
   std::string program;          // the written program (with an output folder)
 };
 
@@ -68,6 +72,7 @@ struct JobReport {
   // After the job: the least material left on the part over every operation's view (negative: a gouge, the
   // depth below the design), and the most left as the last operation sees it (mm).
   double min_left_mm = INFINITY, max_left_mm = 0;
+  double gouge_mm = 0;        // the deepest of the operations' (the verifier's)
   size_t stock_bytes = 0;
   bool cancelled = false;     // the progress hook said stop: `operations` holds the finished ones
 };
