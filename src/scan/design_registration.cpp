@@ -16,6 +16,7 @@
 #include "rosmill/scan/covered_share.hpp"
 #include "rosmill/scan/design_symmetry.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
+#include "rosmill/scan/near_surface_cells.hpp"
 #include "rosmill/scan/plane_icp.hpp"
 #include "rosmill/scan/principal_axes.hpp"
 #include "rosmill/scan/surface_sample.hpp"
@@ -74,25 +75,34 @@ bool same_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, double length
   return rotation_angle_deg(d) < 2.0 && translation_length(d) < length;
 }
 
+// Poses that agree to a tenth of the inlier distance and a tenth of a degree: the same minimum.
+bool same_settled_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, const RegistrationOptions& o) {
+  const Eigen::Matrix4d d = rigid_inverse(a) * b;
+  return rotation_angle_deg(d) < 0.1 && translation_length(d) < 0.1 * o.inlier_distance;
+}
+
 // The global step's candidates pulled in by coarse ICP, first with a reach of a fifth of the part (to pull them in
 // from the principal-axes guess) then of 3 voxels (to settle), at most 25 steps each. They run as a race (Maron &
 // Moore, "Hoeffding races: accelerating model selection search", 1994): in rounds of 5 steps, the candidates of a
-// round side by side; after each round every candidate's inlier share is measured and those that trail the best so
-// far by more than a quarter of the scan drop out (a wrong principal-axes guess fits half the scan or less and
-// gains little from more steps, while the right one fits nearly all of it within a few). Candidates that fit
-// about equally, a symmetric part's, all run to the end. `incumbent`: the share of a fit found before, which the
-// candidates trail from the first round on. Returns every candidate's last fit.
-std::vector<Fit> race_candidates(const PlaneIcp& icp, const MeshDistance& distance, const std::vector<Vec3>& coarse,
-                                 const std::vector<Eigen::Matrix4d>& candidates, double size, double leaf,
-                                 double incumbent = 0) {
+// round side by side; after each round every candidate's share of points near the design is scored (on the cells
+// near its surface, a lookup a point) and those that trail the best so far by more than a quarter of the scan drop
+// out (a wrong principal-axes guess fits half the scan or less and gains little from more steps, while the right
+// one fits nearly all of it within a few). Candidates that fit about equally, a symmetric part's, all run to the
+// end. `incumbent`: the share of a fit found before, which the candidates trail from the first round on. Returns
+// every candidate's last fit, measured exactly.
+std::vector<Fit> race_candidates(const PlaneIcp& icp, const NearSurfaceCells& cells, const MeshDistance& distance,
+                                 const std::vector<Vec3>& coarse, const std::vector<Eigen::Matrix4d>& candidates,
+                                 double size, double leaf, double incumbent = 0) {
   constexpr int kRound = 5, kStageSteps = 25;
   constexpr double kTrail = 0.25;
   const double reach[2] = {0.2 * size, 3 * leaf};
+  // The long-reach pull-in moves a candidate by up to a fifth of the part: a quarter of the points steer it as well.
+  const std::vector<Vec3> pull_in = thin_evenly(coarse, std::max<size_t>(coarse.size() / 4, 50));
   struct Runner {
     Eigen::Matrix4d pose;
     int stage = 0, steps = 0;
     bool running = true;
-    Fit fit;
+    double share = 0;  // near the design, scored on its cells
   };
   std::vector<Runner> runners;
   for (const Eigen::Matrix4d& c : candidates) {
@@ -107,21 +117,23 @@ std::vector<Fit> race_candidates(const PlaneIcp& icp, const MeshDistance& distan
     tbb::parallel_for(size_t(0), running.size(), [&](size_t k) {
       Runner& c = runners[running[k]];
       IcpOutcome outcome;
-      c.pose = icp.align(coarse, c.pose, reach[c.stage], std::min(kRound, kStageSteps - c.steps), &outcome);
+      const int steps = std::min(kRound, kStageSteps - c.steps);
+      c.pose = icp.align(c.stage == 0 ? pull_in : coarse, c.pose, reach[c.stage], steps, &outcome);
       c.steps += outcome.steps;
       if (outcome.converged || outcome.pairs < 6 || c.steps >= kStageSteps) {
         c.steps = 0;
         c.running = ++c.stage < 2;
       }
-      c.fit = measure(distance, coarse, c.pose, leaf);
+      c.share = cells.share_near(coarse, c.pose);
     });
     double best = incumbent;
-    for (const Runner& c : runners) best = std::max(best, c.fit.share);
+    for (const Runner& c : runners) best = std::max(best, c.share);
     for (Runner& c : runners)
-      if (c.fit.share < best - kTrail) c.running = false;
+      if (c.share < best - kTrail) c.running = false;
   }
-  std::vector<Fit> fits;
-  for (const Runner& c : runners) fits.push_back(c.fit);
+  std::vector<Fit> fits(runners.size());
+  tbb::parallel_for(size_t(0), runners.size(),
+                    [&](size_t i) { fits[i] = measure(distance, coarse, runners[i].pose, leaf); });
   return fits;
 }
 
@@ -227,7 +239,11 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
       principal_axes_candidates(design_frame, principal_frame(coarse), o.moment_tolerance);
   r.candidates = candidates.size();
   clock.lap("scan thinning, principal axes");
-  std::vector<Fit> fits = race_candidates(icp, distance, coarse, candidates, size, leaf);
+  // Cells of half the voxel: "near" is within half a voxel surely, and never beyond 1.75 voxels.
+  const NearSurfaceCells cells(target.points, design.bbox,
+                               std::max(leaf / 2, std::sqrt(area / double(target.points.size()))));
+  clock.lap("near-surface cells");
+  std::vector<Fit> fits = race_candidates(icp, cells, distance, coarse, candidates, size, leaf);
   std::stable_sort(fits.begin(), fits.end(), better);
   // A partial scan's principal axes need not match the design's, so the candidates can miss a pose that fits as
   // well as the best (one view of a part whose seen side is symmetric, turned half a turn about that side's own
@@ -240,7 +256,7 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   for (const Eigen::Matrix4d& p : principal_symmetry_probes(
            first, principal_frame(transformed_points(fits.front().scan_to_design, coarse)), o.moment_tolerance, 30))
     probes.push_back(p);
-  std::vector<Fit> probed = race_candidates(icp, distance, coarse, probes, size, leaf, fits.front().share);
+  std::vector<Fit> probed = race_candidates(icp, cells, distance, coarse, probes, size, leaf, fits.front().share);
   std::stable_sort(probed.begin(), probed.end(), better);
   r.candidates += probed.size();
   clock.lap("candidates (coarse ICP, fitness)");
@@ -256,10 +272,12 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   clock.lap("scan thinning, principal axes");
   std::vector<Vec3> in_design;            // the fine points through the best pose
   std::vector<SurfaceDistance> nearest;   // and their nearest design points
-  const auto refine = [&](const Eigen::Matrix4d& t0) {
-    Eigen::Matrix4d t = icp.align(middle, t0, std::max(2 * leaf, 4 * o.inlier_distance), 30);
-    t = icp.align(middle, t, 2 * o.inlier_distance, 30);
-    t = icp.align(fine, t, o.inlier_distance, 15);
+  const auto settle = [&](const Eigen::Matrix4d& t0) {
+    const Eigen::Matrix4d t = icp.align(middle, t0, std::max(2 * leaf, 4 * o.inlier_distance), 30);
+    return icp.align(middle, t, 2 * o.inlier_distance, 30);
+  };
+  const auto refine = [&](const Eigen::Matrix4d& settled) {
+    const Eigen::Matrix4d t = icp.align(fine, settled, o.inlier_distance, 15);
     clock.lap("fine ICP");
     in_design = transformed_points(t, fine);
     const Fit fit = measure(distance, in_design, t, o.inlier_distance, nearest);
@@ -277,7 +295,7 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
     std::vector<SurfaceDistance> nearest;
   };
   std::vector<Refined> refined;
-  std::vector<Eigen::Matrix4d> distinct;
+  std::vector<Eigen::Matrix4d> distinct, settled;
   // The leaders of each race (the probes' own, so that they cannot crowd out the first race's).
   for (const auto& [race, most] : {std::pair{&fits, kMostRefined}, {&probed, kMostProbes}}) {
     size_t taken = 0;
@@ -286,9 +304,14 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
       if (std::any_of(distinct.begin(), distinct.end(), [&](const auto& d) { return same_pose(d, f.scan_to_design, leaf); }))
         continue;
       distinct.push_back(f.scan_to_design);
-      const Fit fit = refine(f.scan_to_design);
-      refined.push_back({fit, std::move(in_design), std::move(nearest)});
       ++taken;
+      // Two leaders that settle on one pose at the middle reach would refine to the same fit.
+      const Eigen::Matrix4d at = settle(f.scan_to_design);
+      if (std::any_of(settled.begin(), settled.end(), [&](const auto& p) { return same_settled_pose(p, at, o); }))
+        continue;
+      settled.push_back(at);
+      const Fit fit = refine(at);
+      refined.push_back({fit, std::move(in_design), std::move(nearest)});
     }
   }
   const auto winner = std::min_element(refined.begin(), refined.end(),

@@ -8,54 +8,11 @@
 #include <tbb/parallel_for.h>
 
 #include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/scan/near_surface_cells.hpp"
 #include "rosmill/scan/thinning.hpp"
 
 namespace rosmill::core::scan {
 namespace {
-
-// The cells of a grid over the design's box that lie near its surface: each sample point's cell and its 26
-// neighbours, so a point within a cell of the surface always finds its cell marked.
-class NearSurfaceCells {
- public:
-  NearSurfaceCells(const std::vector<Vec3>& points, const Box3& box, double cell) : cell_(cell) {
-    origin_ = box.min - Vec3::Constant(2 * cell);
-    for (int a = 0; a < 3; ++a) size_[a] = int(std::ceil((box.max[a] - box.min[a]) / cell)) + 5;
-    marked_.assign(size_t(size_[0]) * size_[1] * size_[2], 0);
-    for (const Vec3& p : points) {
-      const Eigen::Vector3i c = cell_of(p);
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) marked_[index(c + Eigen::Vector3i(dx, dy, dz))] = 1;
-    }
-  }
-
-  bool near(const Vec3& p) const {
-    const Eigen::Vector3i c = cell_of(p);
-    for (int a = 0; a < 3; ++a)
-      if (c[a] < 0 || c[a] >= size_[a]) return false;
-    return marked_[index(c)] != 0;
-  }
-
- private:
-  Eigen::Vector3i cell_of(const Vec3& p) const {
-    const Vec3 u = (p - origin_) / cell_;
-    return Eigen::Vector3i(int(std::floor(u.x())), int(std::floor(u.y())), int(std::floor(u.z())));
-  }
-  size_t index(const Eigen::Vector3i& c) const { return (size_t(c.z()) * size_[1] + c.y()) * size_[0] + c.x(); }
-
-  double cell_;
-  Vec3 origin_;
-  int size_[3];
-  std::vector<uint8_t> marked_;
-};
-
-double share_near(const NearSurfaceCells& cells, const std::vector<Vec3>& points, const Eigen::Matrix4d& motion) {
-  const Eigen::Matrix3d r = motion.topLeftCorner<3, 3>();
-  const Vec3 t = motion.topRightCorner<3, 1>();
-  size_t near = 0;
-  for (const Vec3& p : points) near += cells.near(r * p + t);
-  return double(near) / double(points.size());
-}
 
 // The exact check of a motion refined onto the design: the share of points within the inlier distance and their RMS.
 bool maps_onto_itself(const MeshDistance& distance, const std::vector<Vec3>& points, const Eigen::Matrix4d& motion,
@@ -121,7 +78,7 @@ std::vector<Eigen::Matrix4d> design_symmetries(const Mesh& design, const Surface
   const double least_deg = 4 * step_deg;
   std::vector<double> share(motions.size(), 0);
   tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
-    if (rotation_angle_deg(motions[i]) >= least_deg) share[i] = share_near(cells, points, motions[i]);
+    if (rotation_angle_deg(motions[i]) >= least_deg) share[i] = cells.share_near(points, motions[i]);
   });
   std::vector<size_t> order(motions.size());
   std::iota(order.begin(), order.end(), 0);

@@ -19,6 +19,7 @@
 #include "rosmill/scan/design_registration.hpp"
 #include "rosmill/scan/design_symmetry.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
+#include "rosmill/scan/near_surface_cells.hpp"
 #include "rosmill/scan/plane_icp.hpp"
 #include "rosmill/scan/surface_sample.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
@@ -267,4 +268,30 @@ TEST(ScanRegister, PlaneIcpUndoesANudgeAndConverges) {
   EXPECT_LT(outcome.steps, 50);
   EXPECT_LT(synthetic::box_corner_error(design, error), 0.01);
   EXPECT_LT(rotation_angle_deg(error), 0.01);
+}
+
+// The near-surface cells say "near" for every point within a cell of the surface, never for one farther than 3.5
+// cells, and count the share of a moved point set.
+TEST(NearSurfaceCells, NearWithinACellFarBeyondThree) {
+  std::vector<Vec3> plane;  // z = 0, 0.2 mm apart
+  for (int i = 0; i <= 100; ++i)
+    for (int j = 0; j <= 100; ++j) plane.emplace_back(0.2 * i, 0.2 * j, 0);
+  Box3 box;
+  for (const Vec3& p : plane) box.add(p);
+  const scan::NearSurfaceCells cells(plane, box, 0.5);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(1, 19);
+  for (int k = 0; k < 1000; ++k) {
+    const double x = u(rng), y = u(rng);
+    EXPECT_TRUE(cells.near(Vec3(x, y, 0.49))) << x << ' ' << y;
+    EXPECT_TRUE(cells.near(Vec3(x, y, -0.49))) << x << ' ' << y;
+    EXPECT_FALSE(cells.near(Vec3(x, y, 1.76))) << x << ' ' << y;
+  }
+  EXPECT_FALSE(cells.near(Vec3(1e300, 0, 0)));
+  EXPECT_FALSE(cells.near(Vec3(NAN, 0, 0)));
+  Eigen::Matrix4d lift = Eigen::Matrix4d::Identity();
+  lift(2, 3) = 5;
+  EXPECT_DOUBLE_EQ(cells.share_near(plane, Eigen::Matrix4d::Identity()), 1.0);
+  EXPECT_DOUBLE_EQ(cells.share_near(plane, lift), 0.0);
+  EXPECT_THROW(scan::NearSurfaceCells(plane, box, 0), Error);
 }
