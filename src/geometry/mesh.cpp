@@ -62,11 +62,9 @@ void weld_tolerance(const std::vector<Vec3>& corners, double tol, IndexedTriangl
 }
 
 void face_geometry(Mesh& mesh, size_t f) {
-  const auto& t = mesh.faces[f];
-  const bool repeated = t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
-  const Vec3 c = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+  const Vec3 c = face_cross(mesh.vertices, mesh.faces[f]);
   const double len = c.norm();
-  if (repeated || !(len > 0.0)) {
+  if (!(len > 0.0)) {
     mesh.normals[f].setZero();
     mesh.areas[f] = 0.0;
   } else {
@@ -259,6 +257,11 @@ void check_has_area(const Mesh& mesh, const std::string& where) {
     if (a > 0) return;
   throw Error(where, "every one of the mesh's " + std::to_string(mesh.faces.size()) +
                          " triangles is degenerate (zero area): there is no surface");
+}
+
+Vec3 face_cross(const std::vector<Vec3>& vertices, const Mesh::Face& t) {
+  if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return Vec3::Zero();
+  return (vertices[t[1]] - vertices[t[0]]).cross(vertices[t[2]] - vertices[t[0]]);
 }
 
 }  // namespace rosmill::core

@@ -13,6 +13,7 @@
 
 #include "rosmill/LoadMesh.h"
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/mesh_report.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/ros/convert.hpp"
@@ -50,52 +51,53 @@ class StlLoader {
   }
 
  private:
-  // Loads and publishes; returns the mesh for the reply. Throws Error on a bad file or unit.
-  Mesh load(const std::string& path, const std::string& units, const std::string& frame) {
+  // Loads and publishes; returns the part's report for the reply. Throws Error on a bad file or unit. The part
+  // stays welded triangles (what the message and the marker carry): the normals, areas and edge tables of a Mesh
+  // are built by the nodes that plan on it, not here, where they would double the first load of a large part.
+  MeshReport load(const std::string& path, const std::string& units, const std::string& frame) {
     const ::ros::WallTime t0 = ::ros::WallTime::now();
-    Mesh mesh;
+    IndexedTriangles part;
     const std::string prefix = "primitive:";
     StlReadOptions options;
     options.units = parse_units(units, "units");  // checked for primitives too: a wrong request is refused whole
     options.weld.tolerance = weld_tolerance_;
-    if (path.rfind(prefix, 0) == 0)
-      mesh = make_primitive(path.substr(prefix.size()));  // the primitives are in millimetres
-    else
-      mesh = read_stl(path, options);
-    if (mesh.faces.empty()) throw Error(path, "holds no triangles");
+    if (path.rfind(prefix, 0) == 0) {
+      Mesh primitive = make_primitive(path.substr(prefix.size()));  // the primitives are in millimetres
+      part = {std::move(primitive.vertices), std::move(primitive.faces)};
+    } else {
+      part = read_stl_triangles(path, options);
+    }
+    if (part.faces.empty()) throw Error(path, "holds no triangles");
     if (frame != frame_id_)
-      mesh = transformed(mesh, wait_for_transform(tf_buffer_, frame_id_, frame, ::ros::Time(0), tf_timeout_,
-                                                  "frame_id '" + frame + "'"));
+      move(part, wait_for_transform(tf_buffer_, frame_id_, frame, ::ros::Time(0), tf_timeout_,
+                                    "frame_id '" + frame + "'"));
     std_msgs::Header header;
     header.frame_id = frame_id_;
     header.stamp = ::ros::Time::now();
-    mesh_pub_.publish(to_mesh_msg(mesh));
-    marker_pub_.publish(mesh_marker(mesh, header, "part", rgba(0.7f, 0.7f, 0.75f, 1.0f)));
-    ROS_INFO("stl_loader: %s: %zu triangles, %zu vertices, in %.3f s", path.c_str(), mesh.faces.size(),
-             mesh.vertices.size(), (::ros::WallTime::now() - t0).toSec());
-    diagnostics_.accepted("part", path + ": " + std::to_string(mesh.faces.size()) + " triangles");
-    return mesh;
+    mesh_pub_.publish(to_mesh_msg(part));
+    marker_pub_.publish(mesh_marker(part, header, "part", rgba(0.7f, 0.7f, 0.75f, 1.0f)));
+    const MeshReport r = report(part);
+    ROS_INFO("stl_loader: %s: %zu triangles, %zu vertices, in %.3f s", path.c_str(), r.triangles, r.vertices,
+             (::ros::WallTime::now() - t0).toSec());
+    diagnostics_.accepted("part", path + ": " + std::to_string(r.triangles) + " triangles");
+    return r;
   }
 
-  // The mesh with every vertex moved by `t` (metres on tf, millimetres in the mesh).
-  static Mesh transformed(const Mesh& mesh, const Eigen::Isometry3d& t) {
-    std::vector<Vec3> corners;
-    corners.reserve(3 * mesh.faces.size());
+  // Every vertex moved by `t` (metres on tf, millimetres in the part): a rigid motion keeps the welding.
+  static void move(IndexedTriangles& part, const Eigen::Isometry3d& t) {
     const Vec3 shift = to_mm(1.0) * t.translation();
-    for (const auto& face : mesh.faces)
-      for (int i = 0; i < 3; ++i) corners.push_back(t.linear() * mesh.vertices[face[i]] + shift);
-    return build_mesh(corners);
+    for (Vec3& v : part.vertices) v = t.linear() * v + shift;
   }
 
   bool on_load(LoadMesh::Request& req, LoadMesh::Response& res) {
     try {
-      const Mesh mesh = load(req.path, req.units.empty() ? units_ : req.units,
-                             req.frame_id.empty() ? frame_id_ : req.frame_id);
+      const MeshReport r = load(req.path, req.units.empty() ? units_ : req.units,
+                                req.frame_id.empty() ? frame_id_ : req.frame_id);
       res.success = true;
-      res.triangles = mesh.faces.size();
-      res.closed = mesh.closed();
-      res.bounds_min = to_point_msg(mesh.bbox.min);
-      res.bounds_max = to_point_msg(mesh.bbox.max);
+      res.triangles = r.triangles;
+      res.closed = r.closed;
+      res.bounds_min = to_point_msg(r.bbox.min);
+      res.bounds_max = to_point_msg(r.bbox.max);
       res.message = "loaded " + std::to_string(res.triangles) + " triangles";
     } catch (const std::exception& e) {  // rosmill::Error and allocation failures alike: the node stays up
       res.success = false;

@@ -58,14 +58,24 @@ Vec3 from_direction_msg(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z
 
 // ---------------------------------------------------------------------------------------------------- meshes
 
-shape_msgs::Mesh to_mesh_msg(const Mesh& mesh) {
+namespace {
+
+shape_msgs::Mesh mesh_msg(const std::vector<Vec3>& vertices, const std::vector<Mesh::Face>& faces) {
   shape_msgs::Mesh msg;
-  msg.vertices.reserve(mesh.vertices.size());
-  for (const Vec3& v : mesh.vertices) msg.vertices.push_back(to_point_msg(v));
-  msg.triangles.resize(mesh.faces.size());
-  for (size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int i = 0; i < 3; ++i) msg.triangles[f].vertex_indices[i] = mesh.faces[f][i];
+  msg.vertices.reserve(vertices.size());
+  for (const Vec3& v : vertices) msg.vertices.push_back(to_point_msg(v));
+  msg.triangles.resize(faces.size());
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int i = 0; i < 3; ++i) msg.triangles[f].vertex_indices[i] = faces[f][i];
   return msg;
+}
+
+}  // namespace
+
+shape_msgs::Mesh to_mesh_msg(const Mesh& mesh) { return mesh_msg(mesh.vertices, mesh.faces); }
+
+shape_msgs::Mesh to_mesh_msg(const IndexedTriangles& triangles) {
+  return mesh_msg(triangles.vertices, triangles.faces);
 }
 
 Mesh from_mesh_msg(const shape_msgs::Mesh& msg, const std::string& where) {

@@ -65,12 +65,14 @@ visualization_msgs::Marker delete_all_marker(const std_msgs::Header& header) {
   return clear;
 }
 
-visualization_msgs::Marker mesh_marker(const Mesh& mesh, const std_msgs::Header& header, const std::string& ns,
-                                       const std_msgs::ColorRGBA& colour) {
+visualization_msgs::Marker mesh_marker(const IndexedTriangles& part, const std_msgs::Header& header,
+                                       const std::string& ns, const std_msgs::ColorRGBA& colour) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::TRIANGLE_LIST);
   m.color = colour;
-  m.points.reserve(mesh.faces.size() * 3);
-  for (size_t f = 0; f < mesh.faces.size(); ++f) add_facet(m, mesh, f);
+  m.points.reserve(part.faces.size() * 3);
+  for (const Mesh::Face& face : part.faces)
+    if (face_cross(part.vertices, face).norm() > 0.0)  // a degenerate facet has nothing to draw
+      for (uint32_t v : face) m.points.push_back(to_point_msg(part.vertices[v]));
   return m;
 }
 

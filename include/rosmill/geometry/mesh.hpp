@@ -72,6 +72,10 @@ struct IndexedTriangles {
   std::vector<Mesh::Face> faces;
 };
 
+// The cross product of a face's edges from its first corner: its normal times twice its area; zero for a
+// degenerate face (a repeated vertex, or corners on one line), the one rule for "degenerate" everywhere.
+Vec3 face_cross(const std::vector<Vec3>& vertices, const Mesh::Face& face);
+
 // Welds corners (3 per triangle) into vertices and faces.
 IndexedTriangles weld_corners(const std::vector<Vec3>& corners, const WeldOptions& options = {});
 

@@ -47,6 +47,7 @@ Eigen::Matrix4d to_mm_pose(const Eigen::Isometry3d& metres);
 // Mesh (mm) <-> shape_msgs/Mesh (m). The message keeps the welded vertices and the face order, so a facet index
 // means the same facet on both sides (msg::Segmentation.facet_labels relies on it).
 shape_msgs::Mesh to_mesh_msg(const Mesh& mesh);
+shape_msgs::Mesh to_mesh_msg(const IndexedTriangles& triangles);  // the same, from welded triangles
 Mesh from_mesh_msg(const shape_msgs::Mesh& msg, const std::string& where = "mesh message");
 
 // PointCloud2 (m, any frame) -> PointCloud (mm) after `to_target` (a rigid transform in metres). NaN and infinite

@@ -26,8 +26,8 @@ void add_facet(visualization_msgs::Marker& triangles, const Mesh& mesh, size_t f
 visualization_msgs::Marker delete_all_marker(const std_msgs::Header& header);
 
 // The part as one TRIANGLE_LIST in the workpiece frame (grey unless `colour` is given).
-visualization_msgs::Marker mesh_marker(const Mesh& mesh, const std_msgs::Header& header, const std::string& ns,
-                                       const std_msgs::ColorRGBA& colour);
+visualization_msgs::Marker mesh_marker(const IndexedTriangles& part, const std_msgs::Header& header,
+                                       const std::string& ns, const std_msgs::ColorRGBA& colour);
 
 // A job in rviz: one LINE_STRIP per pass in its own namespace "<toolpath index>/<pass name>" so each can be hidden;
 // each segment takes the colour of its move type (the vertex is doubled where the type changes, so colours do not
