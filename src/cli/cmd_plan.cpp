@@ -1,6 +1,6 @@
 // rosmill plan FILE --strategy NAME [--tool ID|ball:D|flat:D|bull:D:r] [--tools FILE] [--presets FILE]
 //   [--stepover ..] [--stepdown ..] [--allowance ..] [--tolerance ..] [--angle ..] [--units ..] [--json]
-//   [-o toolpath.json | -o prog.ngc|.nc|.gcode [--dialect linuxcnc|grbl]]
+//   [-o toolpath.json | -o prog.ngc|.nc|.gcode [--dialect linuxcnc|grbl]] [--place REGISTRATION.json]
 //   cloud files: [--orient none|ransac|lowest] [--origin corner|keep] [--voxel MM] [--outliers K]
 //   [--holes bridge|skip]
 // rosmill plan --list: the strategies, presets, templates and tools.
@@ -22,6 +22,7 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/stock.hpp"
@@ -30,6 +31,7 @@
 #include "rosmill/planner/strategy_table.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
+#include "work_offset_option.hpp"
 
 namespace rosmill::core::cli {
 namespace {
@@ -37,6 +39,7 @@ namespace {
 struct Options {
   std::string file, strategy, tool = "ball:6", tools, presets, units, out, dialect = "linuxcnc", stock, machine;
   std::string setup = "+Z";
+  std::string place;  // a registration JSON: the part is planned where the scan found it
   bool no_limits = false;
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = PlanParams{}.tolerance, angle = 0.0;
   bool json = false, list = false;
@@ -127,6 +130,8 @@ void run(const Options& o) {
     if (!o.tolerance_given) params.tolerance = NAN;  // the preset's tolerance
   }
   if (is_cloud_path(o.file)) {
+    if (!o.place.empty())
+      throw Error("--place", "a cloud is planned where it was scanned: --place moves an STL design only");
     input.holes = cloud_hole_policy(o.cloud, "--");
     cloud = prepared_cloud(o, prep_report);
     input.cloud = &cloud;
@@ -134,6 +139,9 @@ void run(const Options& o) {
     StlReadOptions ro;
     if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
     mesh = read_stl(o.file, ro);
+    // Where the scan found the part, tilted or not: the toolpath is then in the scan's frame (the machine's, for
+    // a scan taken in machine coordinates), and no work offset has to turn it.
+    if (!o.place.empty()) mesh = transformed_mesh(mesh, registered_pose(o.place), "--place " + o.place);
     input.mesh = &mesh;
   }
   // A setup turns the part over so that its tool axis becomes +Z: the toolpath is in the turned part's frame.
@@ -218,6 +226,9 @@ CommandRegistration reg([](CLI::App& app) {
          "setup: the tool direction in the part's frame, +Z, -Z, +X, -X, +Y, -Y or x,y,z; the part is turned so "
          "that it points up, and the toolpath is in the turned part's frame")
       ->capture_default_str();
+  cmd->add_option("--place", o->place,
+                  "the JSON of rosmill register --json: plan the part where the scan found it (tilted or not); the "
+                  "toolpath is in the scan's frame. An ambiguous registration is refused");
   cmd->add_option("--stock", o->stock,
                   "rough: stock STL (closed, containing the part; same --units) instead of the box");
   cmd->add_option("--units", o->units, "units of the file: mm, inch, m (STL default mm, clouds m)");

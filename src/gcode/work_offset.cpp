@@ -47,7 +47,7 @@ WorkOffset work_offset_of_pose(const Eigen::Matrix4d& pose, double max_tilt_deg,
     s.precision(4);
     s << "the workpiece is tilted " << tilt << " degrees out of the table's plane (at most " << max_tilt_deg
       << " allowed): a work offset turns the program about Z only, so a 3-axis program would cut the tilted part "
-         "wrongly; re-clamp the part level or plan on the registered pose";
+         "wrongly; re-clamp the part level or plan on the registered pose (rosmill plan --place)";
     throw Error(where, s.str());
   }
   WorkOffset w;

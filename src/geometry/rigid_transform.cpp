@@ -60,4 +60,9 @@ double rotation_angle_deg(const Eigen::Matrix4d& t) {
 
 double translation_length(const Eigen::Matrix4d& t) { return t.topRightCorner<3, 1>().norm(); }
 
+Mesh transformed_mesh(const Mesh& mesh, const Eigen::Matrix4d& t, const std::string& where) {
+  check_rigid(t, where);
+  return mesh_from_indexed({transformed_points(t, mesh.vertices), mesh.faces});
+}
+
 }  // namespace rosmill::core

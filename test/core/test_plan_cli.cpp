@@ -14,9 +14,13 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "cli_run.hpp"
-#include "rosmill/testing/reference_drop.hpp"
+#include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/testing/reference_drop.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
 
 using nlohmann::json;
 using namespace rosmill::core;
@@ -120,4 +124,58 @@ TEST(PlanCli, BadOptionsFailWithAClearError) {
     EXPECT_NE(run.out.find("error"), std::string::npos) << args << ": " << run.out;
     EXPECT_NE(run.out.find(word), std::string::npos) << args << ": " << run.out;
   }
+}
+
+// --place plans the design where a registration found it, tilted out of the table's plane too (a work offset can
+// only turn a program about Z): no cutter location of the raster gouges the placed part (the reference
+// branch-and-bound over every triangle), the passes lie over the placed part, and an ambiguous registration or a
+// cloud is refused with the reason.
+TEST(PlanCli, PlaceRunsThePlanOnTheRegisteredPose) {
+  const Mesh design = read_stl(kBox);
+  Eigen::Matrix4d pose = Eigen::Matrix4d::Identity();
+  pose.topLeftCorner<3, 3>() = (Eigen::AngleAxisd(10 * M_PI / 180, Vec3::UnitX()) *
+                                Eigen::AngleAxisd(25 * M_PI / 180, Vec3::UnitZ())).toRotationMatrix();
+  pose.topRightCorner<3, 1>() = Vec3(120, -40, 15);
+  const auto registration = [&](bool ambiguous) {
+    const std::string path = ::testing::TempDir() + (ambiguous ? "place_ambiguous.json" : "place.json");
+    json rows = json::array();
+    for (int r = 0; r < 4; ++r) rows.push_back({pose(r, 0), pose(r, 1), pose(r, 2), pose(r, 3)});
+    std::ofstream(path) << json{{"transform", rows}, {"rms", 0.02}, {"inlier_share", 1.0}, {"ambiguous", ambiguous},
+                                {"ambiguity", ambiguous ? "2 distinct poses fit about equally" : ""}}
+                               .dump();
+    return path;
+  };
+  const std::string out = ::testing::TempDir() + "placed_raster.json";
+  const CliRun run = run_cli("plan " + kBox + " --strategy raster --tool ball:6 --stepover 3 --tolerance 0.01 --place " +
+                             registration(false) + " -o " + out);
+  ASSERT_EQ(run.status, 0) << run.out;
+  const Mesh placed = transformed_mesh(design, pose, "test");
+  const Cutter ball = Cutter::ball(6);
+  size_t checked = 0;
+  Box3 covered;
+  for (const Toolpath& tp : read_toolpath_file(out))
+    for (const ToolpathPass& pass : tp.passes)
+      for (size_t k = 0; k < pass.moves.size(); ++k) {
+        const Move& m = pass.moves[k];
+        if (m.type == MoveType::Rapid) continue;
+        covered.add(m.to);
+        if (k % 7) continue;  // the gouge check on every seventh location: a spread sample
+        EXPECT_FALSE(reference_gouges(ball, placed, m.to, 0.011)) << "gouge at " << m.to.transpose();
+        ++checked;
+      }
+  EXPECT_GT(checked, 200u);
+  // The passes run over the placed part's box (not the design's at the origin).
+  EXPECT_LT(std::abs(covered.min.x() - placed.bbox.min.x()), 6.0);
+  EXPECT_LT(std::abs(covered.max.y() - placed.bbox.max.y()), 6.0);
+  EXPECT_GT(covered.max.z(), placed.bbox.max.z() - 1.0);  // over the tilted top, not at the design's height
+  std::printf("placed part box z %.3f..%.3f, the raster's z %.3f..%.3f, %zu locations checked\n", placed.bbox.min.z(),
+              placed.bbox.max.z(), covered.min.z(), covered.max.z(), checked);
+
+  const CliRun ambiguous = run_cli("plan " + kBox + " --strategy raster --place " + registration(true));
+  EXPECT_NE(ambiguous.status, 0);
+  EXPECT_NE(ambiguous.out.find("ambiguous"), std::string::npos) << ambiguous.out;
+  const CliRun cloud = run_cli("plan " + std::string(ROSMILL_TEST_DATA) + "/pcl_milk.pcd --strategy cloud-rough "
+                               "--place " + registration(false));
+  EXPECT_NE(cloud.status, 0);
+  EXPECT_NE(cloud.out.find("--place"), std::string::npos) << cloud.out;
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/types.hpp"
 
 namespace rosmill::core {
@@ -20,6 +21,9 @@ Eigen::Matrix4d rigid_from_xyz_quat(const Vec3& xyz, const Eigen::Vector4d& quat
 
 void transform_points(const Eigen::Matrix4d& t, std::vector<Vec3>& points);
 std::vector<Vec3> transformed_points(const Eigen::Matrix4d& t, const std::vector<Vec3>& points);
+// The mesh moved by `t` (checked rigid first: Error(where)): the same faces over moved vertices, a rigid motion
+// keeps the welding; normals, areas and box recomputed.
+Mesh transformed_mesh(const Mesh& mesh, const Eigen::Matrix4d& t, const std::string& where);
 // The inverse of a rigid transform (transpose of the rotation; no general matrix inverse).
 Eigen::Matrix4d rigid_inverse(const Eigen::Matrix4d& t);
 
