@@ -94,8 +94,8 @@ std::pair<double, double> material_left(const PartView& v) {
 }
 
 // The deepest cut below the design by the operation's program and the toolpath move that made it (0: none), from
-// the verifier, which simulates the program on its own grid over the part in the setup's frame, apart from the
-// stock model: a second opinion on the gouge that the stock's material left gives.
+// the verifier, which sweeps the program over a fresh height field of the part in the setup's frame, apart from
+// the stock the operations carry: a second opinion on the gouge that the stock's material left gives.
 std::pair<double, uint32_t> verified_gouge(const PartView& v, const stock::MachineProgram& program, double cell) {
   if (program.moves.empty()) return {0.0, 0};
   verify::VerifyOptions o;

@@ -25,6 +25,7 @@
 #include "rosmill/scan/mesh_distance.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
+#include "rosmill/verify/verify.hpp"
 #include "test_stock_programs.hpp"
 
 using namespace rosmill::core;
@@ -146,6 +147,56 @@ TEST(RestMachining, PocketCornersAfterATenMillimetreEndMill) {
   }
   EXPECT_GT(compared, rest.left.size() / 2);
   for (const JobReport* j : {&rest.report, &full.report}) EXPECT_GE(j->min_left_mm, -0.001);
+  std::filesystem::remove_all(dir);
+}
+
+// The stock model and the verifier agree on the material left after a job of the stock-aware planners
+// (stock-aware roughing, a waterline and a rest raster, three tools, on the pocket; the stock a box the part's
+// size), cell for cell on the same grid within a thousandth of a millimetre. The stock removes each operation
+// into its dexels and envelopes and is viewed after the last; the verifier sweeps the whole job's moves once over
+// a fresh height field. Both sweep with the same kernel (stock::simulate): what this checks is the stock's
+// bookkeeping across operations, not the sweep itself (test_stock_* and test_verify_* check that).
+TEST(StockAndVerifier, AgreeOnTheMaterialLeftByAStockAwareJob) {
+  const std::string dir = scratch("agree");
+  write_stl(dir + "/pocket.stl", build_mesh(pocket_test::pocket_corners()));
+  const std::string text = "part: pocket.stl\nresolution: 0.5\nstock: {box: {margin: 0}}\noperations:\n"
+                           "  - {name: rough, strategy: rough, tool: flat:10, stepover: 4, stepdown: 2, allowance: 0}\n"
+                           "  - {name: walls, strategy: waterline, tool: flat:10, stepdown: 2}\n"
+                           "  - {name: rest, strategy: raster, tool: ball:3, stepover: 0.5, rest: true}\n";
+  const JobSpec spec = parse_job(text, "agree.yaml", dir);
+  const Mesh part = read_stl(dir + "/pocket.stl");
+  std::vector<Toolpath> moves;  // every operation's toolpaths, in order (one setup, +Z)
+  std::vector<float> left;
+  JobOptions options;
+  options.operation_done = [&](const job::OperationView& v) {
+    moves.insert(moves.end(), v.toolpaths.begin(), v.toolpaths.end());
+    left = v.stock.material_above(part);
+  };
+  const JobReport report = run_job(spec, options);
+  ASSERT_EQ(report.operations.size(), 3u);
+  verify::VerifyOptions vo;
+  vo.resolution = 0.5;
+  verify::StockSpec box;
+  box.kind = verify::StockSpec::Kind::Box;
+  box.box = part.bbox;
+  const verify::VerifyResult v = verify::verify_program(part, stock::program_from_job(moves), box, vo);
+  ASSERT_EQ(left.size(), v.grid.deviation.size());
+  size_t compared = 0, cut = 0;
+  double worst = 0;
+  for (size_t c = 0; c < left.size(); ++c) {
+    if (std::isnan(left[c])) continue;
+    worst = std::max(worst, std::abs(double(left[c]) - v.grid.deviation[c]));
+    ++compared;
+    cut += v.grid.cut[c];
+  }
+  std::printf("stock and verifier after rough, waterline and rest: %zu cells compared (%zu cut), largest "
+              "difference %.2e mm; the verifier's deepest gouge %.4f mm, the stock's least material left %.4f mm\n",
+              compared, cut, worst, v.report.max_gouge_mm, report.min_left_mm);
+  EXPECT_GT(compared, left.size() * 9 / 10);
+  EXPECT_GT(cut, compared / 4);
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_FALSE(v.report.gouged);
+  EXPECT_EQ(report.gouge_mm, 0.0);
   std::filesystem::remove_all(dir);
 }
 
