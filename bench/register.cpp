@@ -5,6 +5,9 @@
 //             box corners, and the rotation angle of truth^-1 * found).
 //   fuse      5 views x 300k points of the same part with poses nudged by 1 mm / 0.5 degree, fused with ICP
 //             refinement (2 rounds) and a 0.2 mm voxel grid.
+//   fpfh      the peer of the global step, per pose: PCL's FPFH features and SampleConsensusPrerejective (its
+//             tutorial's robust pose estimation, fpfh_global.hpp) on the scan thinned to registration's voxel,
+//             normals oriented towards the sensor above; its time and errors beside ours (global step only).
 //   pcl_icp   when PCL's own tool is on PATH (Debian pcl-tools; bench/run installs it): the same scans written as
 //             PCD (the scan as source, 300k design surface samples as target) and given to `pcl_icp` after an
 //             initial alignment by the true pose nudged by 1 mm and 1 degree (pcl_icp has no global step); its
@@ -21,16 +24,19 @@
 #include <sstream>
 #include <string>
 
+#include <Eigen/Geometry>
 #include <tbb/global_control.h>
 #include <unistd.h>
 
 #include "cpu_time.hpp"
+#include "fpfh_global.hpp"
 #include "rosmill/heap_reuse.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/scan/design_registration.hpp"
 #include "rosmill/scan/surface_sample.hpp"
+#include "rosmill/scan/thinning.hpp"
 #include "rosmill/scan/view_fusion.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
@@ -86,6 +92,11 @@ int main(int argc, char** argv) {
     target.points = scan::sample_surface(design, 300000, 7).points;
     write_cloud(dir + "/design.pcd", target, Units::Millimetre);
   }
+  // The feature peer's design: 20k area-weighted samples with their faces' normals; registration's voxel.
+  const scan::SurfaceSample feature_design = scan::sample_surface(design, 20000, 11);
+  double area = 0;
+  for (double a : design.areas) area += a;
+  const double leaf = std::sqrt(area / 3000);
   std::mt19937_64 rng(2026);
   double worst_t = 0, worst_r = 0, worst_seconds = 0;
   for (int pose = 0; pose < 5; ++pose) {
@@ -105,6 +116,14 @@ int main(int argc, char** argv) {
                 pose, scan.points.size(), wall, r.global_seconds, r.fine_seconds, cpu_seconds_used() - c0, r.rms,
                 r.inlier_share, synthetic::box_corner_error(design, error), rotation_angle_deg(error));
     std::printf("  %zu candidates; phases: %s\n", r.candidates, scan::format_phases(r.phases).c_str());
+    const Vec3 viewpoint = (truth * sensors.front().homogeneous()).head<3>();
+    const rosmill::bench::FpfhGlobal f = rosmill::bench::fpfh_global(scan::thin_by_voxel(scan.points, leaf), viewpoint,
+                                                   feature_design.points, feature_design.normals, leaf);
+    const Eigen::Matrix4d f_error = rigid_inverse(truth) * f.design_to_scan;
+    std::printf("  PCL FPFH + SampleConsensusPrerejective (global step only, %.2f mm voxel): %.3f s wall, %s, "
+                "inliers %.3f, error %.3f mm %.3f deg (rosmill's global step %.3f s, then fine)\n",
+                leaf, f.seconds, f.converged ? "converged" : "not converged", f.inlier_share,
+                synthetic::box_corner_error(design, f_error), rotation_angle_deg(f_error), r.global_seconds);
     if (!have_pcl_icp || pose >= pcl_poses) continue;
     // pcl_icp moves the source (the scan) onto the target (the design): it starts from the scan brought back by
     // a nudged inverse of the truth.
