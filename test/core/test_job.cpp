@@ -1,13 +1,19 @@
 // Jobs: a job file read with every field checked (errors name the file, line and field); the operations run in
 // order on one in-process stock (what the first removed the second does not remove again; the figures add up);
-// `rosmill job` writes each operation's program through the checked pipeline and reports it in JSON.
+// `rosmill job` writes each operation's program through the checked pipeline and reports it in JSON; LinuxCNC's
+// rs274 accepts every program of every example job.
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "cli_run.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "rosmill/gcode/rs274_check.hpp"
 #include "test_stock_programs.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/io/stl.hpp"
@@ -173,9 +179,20 @@ TEST(Job, ExampleJobsRunFromAnyFolder) {
     EXPECT_GE(j["max_left_mm"].get<double>(), j["min_left_mm"].get<double>()) << name;
     // The verifier, simulating each program on its own grid, finds no gouge either: the two models agree.
     EXPECT_EQ(j["gouge_mm"].get<double>(), 0.0) << name;
+    std::set<std::string> programs;
     for (const auto& op : j["operations"]) {
       EXPECT_TRUE(std::filesystem::exists(op["program"].get<std::string>())) << name << ": " << op.dump();
+      programs.insert(op["program"].get<std::string>());
       EXPECT_EQ(op["gouge_mm"].get<double>() > 0, op["min_left_mm"].get<double>() < -0.01) << name << ": " << op.dump();
+    }
+    // Every program the job wrote is accepted by LinuxCNC's own interpreter.
+    for (const std::string& path : programs) {
+      std::ifstream in(path);
+      std::vector<std::string> lines;
+      for (std::string line; std::getline(in, line);) lines.push_back(line);
+      const gcode::Rs274Result r = gcode::run_rs274(lines);
+      EXPECT_TRUE(r.ok) << name << ": " << path << " line " << r.error_line << ": " << r.error;
+      EXPECT_GT(r.moves.size(), 10u) << name << ": " << path;
     }
     if (std::string(name) == "box_cube") continue;
     const JobOptions options = with_tools();
