@@ -23,8 +23,9 @@ NearSurfaceCells::NearSurfaceCells(const std::vector<Vec3>& points, const Box3& 
 
 Eigen::Vector3i NearSurfaceCells::cell_of(const Vec3& p) const {
   const Vec3 u = (p - origin_) / cell_;
-  // Far outside the grid: any cell outside it (the cast would overflow).
-  if (!(u.cwiseAbs().maxCoeff() < 1e9)) return Eigen::Vector3i(-1, -1, -1);
+  // Far outside the grid, or not a number: a cell outside it (the cast to int would be undefined).
+  for (int a = 0; a < 3; ++a)
+    if (!(std::abs(u[a]) < 1e9)) return Eigen::Vector3i(-1, -1, -1);
   return Eigen::Vector3i(int(std::floor(u.x())), int(std::floor(u.y())), int(std::floor(u.z())));
 }
 
