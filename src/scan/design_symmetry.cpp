@@ -1,7 +1,9 @@
 #include "rosmill/scan/design_symmetry.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <numeric>
 
 #include <Eigen/Geometry>
@@ -32,15 +34,18 @@ bool maps_onto_itself(const MeshDistance& distance, const std::vector<Vec3>& poi
 // sought about the normal of the design's largest flat area instead, and its turn-overs: a frame whose moments say
 // that this axis is the free one.
 PrincipalFrame frame_of_largest_flat(const Mesh& design, const Vec3& centroid) {
+  // The area per normal direction, the normals rounded to a hundredth (about half a degree).
+  std::map<std::array<long, 3>, std::pair<double, Vec3>> by_direction;
+  for (size_t f = 0; f < design.faces.size(); ++f) {
+    const Vec3& n = design.normals[f];
+    auto& [area, normal] = by_direction[{std::lround(100 * n.x()), std::lround(100 * n.y()), std::lround(100 * n.z())}];
+    area += design.areas[f];
+    normal = n;
+  }
   Vec3 normal = Vec3::UnitZ();
   double largest = 0;
-  // The area of the faces sharing a face's normal (within about a degree), over the first faces.
-  for (size_t f = 0; f < std::min<size_t>(design.faces.size(), 2000); ++f) {
-    double area = 0;
-    for (size_t g = 0; g < design.faces.size(); ++g)
-      if (design.normals[g].dot(design.normals[f]) > 0.9998) area += design.areas[g];
-    if (area > largest) largest = area, normal = design.normals[f];
-  }
+  for (const auto& [key, flat] : by_direction)
+    if (flat.first > largest && flat.second.squaredNorm() > 0.5) largest = flat.first, normal = flat.second;
   PrincipalFrame frame;
   frame.centroid = centroid;
   const Vec3 other = std::abs(normal.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
