@@ -74,9 +74,9 @@ class StlLoader {
     std_msgs::Header header;
     header.frame_id = frame_id_;
     header.stamp = ::ros::Time::now();
+    const MeshReport r = report(part);  // checks the faces' indices: nothing is published for a part it refuses
     mesh_pub_.publish(to_mesh_msg(part));
     marker_pub_.publish(mesh_marker(part, header, "part", rgba(0.7f, 0.7f, 0.75f, 1.0f)));
-    const MeshReport r = report(part);
     ROS_INFO("stl_loader: %s: %zu triangles, %zu vertices, in %.3f s", path.c_str(), r.triangles, r.vertices,
              (::ros::WallTime::now() - t0).toSec());
     diagnostics_.accepted("part", path + ": " + std::to_string(r.triangles) + " triangles");

@@ -70,15 +70,10 @@ Fit measure(const MeshDistance& design, const std::vector<Vec3>& scan, const Eig
 
 bool better(const Fit& a, const Fit& b) { return a.share > b.share + 1e-9 || (a.share >= b.share - 1e-9 && a.rms < b.rms); }
 
-bool same_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, double length) {
+// Poses that differ by less than `degrees` and `length` mm.
+bool same_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, double length, double degrees = 2.0) {
   const Eigen::Matrix4d d = rigid_inverse(a) * b;
-  return rotation_angle_deg(d) < 2.0 && translation_length(d) < length;
-}
-
-// Poses that agree to a tenth of the inlier distance and a tenth of a degree: the same minimum.
-bool same_settled_pose(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b, const RegistrationOptions& o) {
-  const Eigen::Matrix4d d = rigid_inverse(a) * b;
-  return rotation_angle_deg(d) < 0.1 && translation_length(d) < 0.1 * o.inlier_distance;
+  return rotation_angle_deg(d) < degrees && translation_length(d) < length;
 }
 
 // The global step's candidates pulled in by coarse ICP, first with a reach of a fifth of the part (to pull them in
@@ -305,9 +300,11 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
         continue;
       distinct.push_back(f.scan_to_design);
       ++taken;
-      // Two leaders that settle on one pose at the middle reach would refine to the same fit.
+      // Two leaders that settle on one pose at the middle reach (to a tenth of the inlier distance and of a degree)
+      // would refine to the same fit.
       const Eigen::Matrix4d at = settle(f.scan_to_design);
-      if (std::any_of(settled.begin(), settled.end(), [&](const auto& p) { return same_settled_pose(p, at, o); }))
+      if (std::any_of(settled.begin(), settled.end(),
+                      [&](const auto& p) { return same_pose(p, at, 0.1 * o.inlier_distance, 0.1); }))
         continue;
       settled.push_back(at);
       const Fit fit = refine(at);
