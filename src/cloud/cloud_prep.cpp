@@ -1,20 +1,19 @@
 #include "rosmill/cloud/cloud_prep.hpp"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <pcl/filters/statistical_outlier_removal.h>
-#include <pcl/filters/voxel_grid.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
 #include <pcl/sample_consensus/sac_model_plane.h>
 
 #include "rosmill/cloud/cloud_grid.hpp"
+#include "rosmill/cloud/voxel_grid.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 
@@ -115,27 +114,6 @@ Eigen::Matrix4d plane_to_xy(const Plane& pl) {
   return t;
 }
 
-std::vector<Vec3> voxel_downsample(const std::vector<Vec3>& pts, double leaf) {
-  Box3 box;
-  for (const Vec3& p : pts) box.add(p);
-  const Vec3 n = box.size() / leaf;
-  // PCL's VoxelGrid indexes voxels with 32-bit integers and silently does nothing when they overflow.
-  if ((n.x() + 1) * (n.y() + 1) * (n.z() + 1) > double(INT_MAX))
-    throw Error("voxel", "leaf size " + std::to_string(leaf) + " mm is too small for a cloud of this extent");
-  const Vec3 origin = box.min;
-  Cloud::Ptr in = to_pcl(pts, origin);
-  Cloud out;
-  pcl::VoxelGrid<pcl::PointXYZ> grid;
-  grid.setInputCloud(in);
-  const float l = float(leaf);
-  grid.setLeafSize(l, l, l);
-  grid.filter(out);
-  std::vector<Vec3> res;
-  res.reserve(out.size());
-  for (const auto& p : out) res.push_back(origin + Vec3(p.x, p.y, p.z));
-  return res;
-}
-
 std::vector<Vec3> remove_outliers(const std::vector<Vec3>& pts, int k, double stddev) {
   if (pts.size() <= size_t(k)) return pts;
   Cloud::Ptr in = to_pcl(pts, centroid(pts));
@@ -216,7 +194,7 @@ PointCloud prepare_cloud(const std::vector<Vec3>& input, const CloudPrepOptions&
       break;
   }
   if (have_plane) t = plane_to_xy(plane);
-  transform_points(t, pts);
+  if (!t.isIdentity(0)) transform_points(t, pts);
   if (have_plane && o.remove_base) {
     const size_t before = pts.size();
     pts.erase(std::remove_if(pts.begin(), pts.end(), [&](const Vec3& p) { return std::abs(p.z()) <= o.plane_threshold; }),
@@ -224,7 +202,7 @@ PointCloud prepare_cloud(const std::vector<Vec3>& input, const CloudPrepOptions&
     r.removed_base = before - pts.size();
     if (pts.empty()) throw Error("cloud preparation", "nothing left after removing the base plane");
   }
-  if (o.voxel > 0) pts = voxel_downsample(pts, o.voxel);
+  if (o.voxel > 0) pts = voxel_centroids(pts, o.voxel);
   r.after_voxel = pts.size();
   if (o.outlier_neighbours > 0) {
     const size_t before = pts.size();

@@ -84,6 +84,7 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
   const std::vector<Vec3>& fixed = index.points();
   const std::vector<Vec3>& normals = impl_->normals;
   IcpOutcome done;
+  std::vector<size_t> paired(moving.size(), PointIndex::no_hint);  // each point's pair at the last step
   std::array<Eigen::Matrix4d, 4> recent;  // the poses before the last steps (in a ring)
   recent.fill(Eigen::Matrix4d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (; done.steps < iterations && !done.converged; ++done.steps) {
@@ -97,7 +98,8 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
             const Vec3 q = r * moving[i] + t;
             size_t j;
             double sq;
-            if (!index.nearest(q, max_distance, j, sq)) continue;
+            if (!index.nearest(q, max_distance, paired[i], j, sq)) continue;
+            paired[i] = j;
             const Vec3& n = normals[j];
             Vector6 row;
             row << q.cross(n), n;

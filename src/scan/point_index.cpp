@@ -55,7 +55,12 @@ PointIndex::PointIndex(std::vector<Vec3> points) : points_(std::move(points)) {
 PointIndex::~PointIndex() = default;
 
 bool PointIndex::nearest(const Vec3& p, double reach, size_t& index, double& squared) const {
+  return nearest(p, reach, no_hint, index, squared);
+}
+
+bool PointIndex::nearest(const Vec3& p, double reach, size_t hint, size_t& index, double& squared) const {
   NearestWithin result{reach * reach};
+  if (hint < points_.size()) result.addPoint((points_[hint] - p).squaredNorm(), hint);
   tree_->index.findNeighbors(result, p.data(), nanoflann::SearchParams());
   if (!result.found) return false;
   index = result.index;

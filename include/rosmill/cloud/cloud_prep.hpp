@@ -10,7 +10,7 @@
 //      The plane's normal becomes +Z and the plane z = 0.
 //   3. Program origin at the stock corner: x, y at the minimum of the cloud's plan-view box; z = 0 at the base
 //      plane (with a fit) or at the cloud's lowest point (no fit), so every point has z >= 0 up to noise.
-//   4. PCL filters: voxel downsampling (VoxelGrid, centroid per voxel) and statistical outlier removal.
+//   4. Filters: voxel downsampling (centroid per voxel, voxel_grid.hpp) and PCL's statistical outlier removal.
 //   5. A report: counts at each step, mean spacing, holes (enclosed empty cells of a plan-view grid).
 #pragma once
 #include <string>
@@ -34,7 +34,7 @@ struct CloudPrepOptions {
   double lowest_fraction = 0.05;    // LowestFit: share of the points used
   bool remove_base = false;         // drop the fitted base plane's inliers (a table around the part)
   bool origin_at_corner = true;     // move the program origin to the stock corner
-  double voxel = 0.0;               // mm: VoxelGrid leaf size; 0 = off
+  double voxel = 0.0;               // mm: voxel grid leaf size; 0 = off
   int outlier_neighbours = 0;       // StatisticalOutlierRemoval mean-k; 0 = off
   double outlier_stddev = 2.0;      // its standard-deviation multiplier
   double hole_cell = 0.0;           // mm; 0: auto_hole_cell()
