@@ -17,6 +17,7 @@
 #include "rosmill/scan/inspection.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
 #include "rosmill/scan/surface_sample.hpp"
+#include "rosmill/testing/sanitized.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
 using namespace rosmill::core;
@@ -89,7 +90,8 @@ TEST(ScanInspect, CommandLineRegisterInspectFuse) {
   const Eigen::Matrix4d truth = synthetic::random_rigid(rng, 100);
   PointCloud scan;
   scan.points = transformed_points(
-      truth, synthetic::synthetic_scan(design, synthetic::sensors_above(design, 2, 1000), 30000, 0.02, 6).points);
+      truth, synthetic::synthetic_scan(design, synthetic::sensors_above(design, 2, 1000),
+                                       size_t(rosmill::testing::cases(30000, 8000)), 0.02, 6).points);
   write_cloud(dir + "/scan.pcd", scan, Units::Millimetre);
 
   const CliRun reg = run_rosmill("register " + kDesign + " " + dir + "/scan.pcd --scan-units mm --json");

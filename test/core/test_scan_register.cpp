@@ -12,10 +12,6 @@
 #include <string>
 
 #include <Eigen/Geometry>
-#include <pcl/PolygonMesh.h>
-#include <pcl/conversions.h>
-#include <pcl/io/ply_io.h>
-#include <pcl/point_types.h>
 
 #include "error_of.hpp"
 #include "rosmill/geometry/primitives.hpp"
@@ -28,6 +24,8 @@
 #include "rosmill/scan/near_surface_cells.hpp"
 #include "rosmill/scan/plane_icp.hpp"
 #include "rosmill/scan/surface_sample.hpp"
+#include "rosmill/testing/ply_mesh.hpp"
+#include "rosmill/testing/sanitized.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
 using namespace rosmill::core;
@@ -73,7 +71,7 @@ Errors recover(const Mesh& design, int poses, int oblique_views, uint64_t seed) 
 }  // namespace
 
 TEST(ScanRegister, MountRushTopViewTwentyPoses) {
-  const Errors e = recover(model("mount_rush.stl"), 20, 0, 17);
+  const Errors e = recover(model("mount_rush.stl"), rosmill::testing::cases(20, 2), 0, 17);
   std::printf("mount_rush.stl, one view from above: max translation error %.5f mm, max rotation error %.5f deg\n",
               e.translation, e.rotation);
   EXPECT_LE(e.translation, 0.05);
@@ -81,7 +79,7 @@ TEST(ScanRegister, MountRushTopViewTwentyPoses) {
 }
 
 TEST(ScanRegister, FeatureTypeThreeViewsTwentyPoses) {
-  const Errors e = recover(model("featuretype.STL", Units::Inch), 20, 2, 29);
+  const Errors e = recover(model("featuretype.STL", Units::Inch), rosmill::testing::cases(20, 2), 2, 29);
   std::printf("featuretype.STL, three views: max translation error %.5f mm, max rotation error %.5f deg\n",
               e.translation, e.rotation);
   EXPECT_LE(e.translation, 0.05);
@@ -101,14 +99,15 @@ TEST(ScanRegister, OneViewRecoveredRefusedOrAmbiguous) {
     int min_recovered, max_wrong_certain;
     bool symmetric;
   };
-  for (const Case& c : {Case{"pycam-textbox.stl", Units::Millimetre, 8, 0, false},
+  const int poses = rosmill::testing::cases(8, 1);
+  for (const Case& c : {Case{"pycam-textbox.stl", Units::Millimetre, poses, 0, false},
                         Case{"ktoolcav.stl", Units::Inch, 0, 0, false},
                         Case{"failedinpycam.stl", Units::Millimetre, 0, 0, true}}) {
     const Mesh design = model(c.file, c.units);
     std::mt19937_64 rng(41);
     const auto sensors = synthetic::sensors_above(design, 0, 1000);
     int recovered = 0, ambiguous = 0, truth_among = 0, refused = 0, wrong_certain = 0;
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < poses; ++i) {
       const PointCloud seen = synthetic::synthetic_scan(design, sensors, 30000, 0.02, 100 + i);
       const Eigen::Matrix4d truth = synthetic::random_rigid(rng, 200);
       PointCloud scan;
@@ -139,9 +138,9 @@ TEST(ScanRegister, OneViewRecoveredRefusedOrAmbiguous) {
                     synthetic::box_corner_error(design, rigid_inverse(truth) * r.transform), r.inlier_share, r.rms);
       }
     }
-    std::printf("%s, one view from above, 8 poses: %d recovered, %d refused, %d ambiguous (the truth among the "
-                "alternatives in %d), %d wrong and said certain\n", c.file, recovered, refused, ambiguous, truth_among,
-                wrong_certain);
+    std::printf("%s, one view from above, %d poses: %d recovered, %d refused, %d ambiguous (the truth among the "
+                "alternatives in %d), %d wrong and said certain\n", c.file, poses, recovered, refused, ambiguous,
+                truth_among, wrong_certain);
     EXPECT_GE(recovered, c.min_recovered) << c.file;
     EXPECT_LE(wrong_certain, c.max_wrong_certain) << c.file;
     if (c.symmetric) {
@@ -307,21 +306,12 @@ TEST(NearSurfaceCells, NearWithinACellFarBeyondThree) {
 // model's. Its vertices in 4 random poses are recovered to 0.05 mm and 0.05 degrees with no initial guess and
 // said certain; a real scan of another object (PCL's milk carton) is refused.
 TEST(ScanRegister, RealPartScanRecoveredAndAnotherObjectRefused) {
-  pcl::PolygonMesh polygons;
-  ASSERT_EQ(pcl::io::loadPLYFile(std::string(ROSMILL_TEST_DATA) + "/snp_part_scan.ply", polygons), 0);
-  pcl::PointCloud<pcl::PointXYZ> vertices;
-  pcl::fromPCLPointCloud2(polygons.cloud, vertices);
-  std::vector<Vec3> corners;
-  for (const pcl::Vertices& face : polygons.polygons) {
-    if (face.vertices.size() != 3) continue;
-    for (uint32_t v : face.vertices)  // metres to millimetres
-      corners.push_back(1000.0 * Vec3(vertices[v].x, vertices[v].y, vertices[v].z));
-  }
-  const Mesh design = build_mesh(corners);
+  const Mesh design = read_ply_mesh(std::string(ROSMILL_TEST_DATA) + "/snp_part_scan.ply", 1000.0);  // metres
   ASSERT_GT(design.faces.size(), 7000u);
   std::mt19937_64 rng(23);
   double worst_t = 0, worst_r = 0;
-  for (int i = 0; i < 4; ++i) {
+  const int poses = rosmill::testing::cases(4, 1);
+  for (int i = 0; i < poses; ++i) {
     const Eigen::Matrix4d truth = synthetic::random_rigid(rng, 500);
     PointCloud scan;
     scan.points = transformed_points(truth, design.vertices);
@@ -332,8 +322,8 @@ TEST(ScanRegister, RealPartScanRecoveredAndAnotherObjectRefused) {
     worst_r = std::max(worst_r, rotation_angle_deg(error));
     EXPECT_FALSE(r.ambiguous) << "pose " << i << ": " << r.ambiguity;
   }
-  std::printf("snp_part_scan.ply, its own vertices in 4 poses: max translation error %.5f mm, rotation %.5f deg\n",
-              worst_t, worst_r);
+  std::printf("snp_part_scan.ply, its own vertices in %d poses: max translation error %.5f mm, rotation %.5f deg\n",
+              poses, worst_t, worst_r);
   EXPECT_LE(worst_t, 0.05);
   EXPECT_LE(worst_r, 0.05);
   const PointCloud milk = read_cloud(std::string(ROSMILL_TEST_DATA) + "/pcl_milk.pcd");

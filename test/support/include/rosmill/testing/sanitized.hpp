@@ -1,0 +1,25 @@
+// How many random cases a test repeats. Under AddressSanitizer (the sanitizer build: clang, -O1, every memory
+// access checked) planning and registration on whole real models run ten to fifty times slower, and the stage runs
+// within CI's budget only with fewer repeats. The sanitizers look for memory errors and undefined behaviour on the
+// code paths a case takes: one or two cases per path find what twenty would, while the statistical bounds (twenty
+// poses, every model) are the normal build's to check.
+#pragma once
+
+namespace rosmill::testing {
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;  // gcc -fsanitize=address
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitized = true;  // clang -fsanitize=address
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+// `full` cases normally, `sanitized` under the sanitizers.
+constexpr int cases(int full, int sanitized) { return kSanitized ? sanitized : full; }
+
+}  // namespace rosmill::testing
