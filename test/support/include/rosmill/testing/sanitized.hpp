@@ -1,6 +1,6 @@
-// How many random cases a test repeats. Under AddressSanitizer (the sanitizer build: clang, -O1, every memory
-// access checked) planning and registration on whole real models run ten to fifty times slower, and the stage runs
-// within CI's budget only with fewer repeats. The sanitizers look for memory errors and undefined behaviour on the
+// How many random cases a test repeats. Under AddressSanitizer (the sanitizer build: clang, every memory access
+// checked) planning and registration on whole real models run several to seventy times slower, and the stage runs
+// every gtest within CI's budget only with fewer repeats. The sanitizers look for memory errors and undefined behaviour on the
 // code paths a case takes: one or two cases per path find what twenty would, while the statistical bounds (twenty
 // poses, every model) are the normal build's to check.
 #pragma once
