@@ -1,24 +1,15 @@
 #include "rosmill/scan/thinning.hpp"
 
-#include <algorithm>
-
 #include "rosmill/cloud/cloud_prep.hpp"
 
 namespace rosmill::core::scan {
-
-std::vector<size_t> evenly_spaced(size_t count, size_t limit) {
-  const size_t kept = std::min(count, limit);
-  std::vector<size_t> out(kept);
-  const double step = double(count) / double(kept);
-  for (size_t i = 0; i < kept; ++i) out[i] = count <= limit ? i : size_t(double(i) * step);
-  return out;
-}
 
 std::vector<Vec3> thin_evenly(const std::vector<Vec3>& points, size_t limit) {
   if (points.size() <= limit) return points;
   std::vector<Vec3> out;
   out.reserve(limit);
-  for (const size_t i : evenly_spaced(points.size(), limit)) out.push_back(points[i]);
+  const double step = double(points.size()) / double(limit);
+  for (size_t i = 0; i < limit; ++i) out.push_back(points[size_t(double(i) * step)]);
   return out;
 }
 

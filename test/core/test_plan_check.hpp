@@ -78,14 +78,7 @@ inline GougeReport check_toolpath(const Toolpath& tp, const Mesh& mesh, double a
     }
   const Cutter grown = grown_by_hand(tp.tool.cutter, allowance);
   const Vec3 down(0, 0, allowance);
-  // The reference searches every triangle for every sample: under the sanitizers (which check the planner, not
-  // this reference) every 16th sample is enough, the planner's own code having run whole.
-  const size_t stride = size_t(rosmill::testing::cases(1, 16));
-  if (stride > 1) {
-    std::vector<Sample> kept;
-    for (size_t i = 0; i < samples.size(); i += stride) kept.push_back(samples[i]);
-    samples.swap(kept);
-  }
+  rosmill::testing::thin_reference_samples(samples);  // every 16th under the sanitizers
   std::vector<char> bad(samples.size());
   tbb::parallel_for(size_t(0), samples.size(), [&](size_t i) {
     const Sample& s = samples[i];

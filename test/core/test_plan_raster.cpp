@@ -97,12 +97,7 @@ TEST(PlanRaster, ChordsWithinToleranceOfTheSurface) {
   std::vector<std::pair<Vec3, Vec3>> chords;
   for_each_chord(tp, [&](const Vec3& a, const Vec3& b) { chords.emplace_back(a, b); });
   ASSERT_GT(chords.size(), 1000u);
-  // The reference searches every triangle per point: under the sanitizers every 16th chord is measured.
-  if (rosmill::testing::kSanitized) {
-    std::vector<std::pair<Vec3, Vec3>> kept;
-    for (size_t i = 0; i < chords.size(); i += 16) kept.push_back(chords[i]);
-    chords.swap(kept);
-  }
+  rosmill::testing::thin_reference_samples(chords);  // every 16th under the sanitizers
   // Signed errors (path minus true CL): below is towards the part. A step over a wall (plan_support.hpp) is a
   // level chord that lies above the CL on purpose; every other chord ends on the CL.
   std::vector<double> end_error(chords.size()), below(chords.size()), above(chords.size());

@@ -50,13 +50,11 @@ void expect_loops_on_contour(const std::vector<Loop>& loops, double z, const Mes
   const Cutter grown = grown_by_hand(c, allowance + kNear);
   std::vector<Vec3> probes;
   std::vector<char> vertex;
-  // The reference searches every triangle per probe: under the sanitizers every 16th chord is probed.
-  const size_t stride = size_t(rosmill::testing::cases(1, 16));
   for (const Loop& loop : loops) {
     ASSERT_GE(loop.size(), 3u) << what;
     for (size_t k = 0; k < loop.size(); ++k) {
       EXPECT_EQ(loop[k].z(), z) << what;
-      if (k % stride != 0) continue;
+      if (k % rosmill::testing::kReferenceStride != 0) continue;  // every 16th chord under the sanitizers
       const Vec3 &a = loop[k], &b = loop[(k + 1) % loop.size()];
       for (double f : {0.0, 0.25, 0.5, 0.75}) probes.push_back(a + f * (b - a)), vertex.push_back(f == 0.0);
     }

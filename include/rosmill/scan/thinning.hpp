@@ -9,8 +9,6 @@ namespace rosmill::core::scan {
 
 // Every k-th point, at most `limit` of them, spread over the whole input.
 std::vector<Vec3> thin_evenly(const std::vector<Vec3>& points, size_t limit);
-// The indices thin_evenly keeps of `count` points (for data that goes with the points, such as their normals).
-std::vector<size_t> evenly_spaced(size_t count, size_t limit);
 
 // One point (the centroid) per occupied voxel of `leaf` mm: an even density, where a scanner crowds its points
 // on the surfaces it looks straight at. Throws Error when the leaf is too small for the cloud's extent.
