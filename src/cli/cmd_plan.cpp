@@ -26,7 +26,7 @@
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/stock.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"

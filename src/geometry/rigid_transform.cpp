@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/placement.hpp"
 
 namespace rosmill::core {
 
@@ -62,7 +63,7 @@ double translation_length(const Eigen::Matrix4d& t) { return t.topRightCorner<3,
 
 Mesh transformed_mesh(const Mesh& mesh, const Eigen::Matrix4d& t, const std::string& where) {
   check_rigid(t, where);
-  return mesh_from_indexed({transformed_points(t, mesh.vertices), mesh.faces});
+  return placed(mesh, Placement{"scan", "design", Eigen::Isometry3d(t)});
 }
 
 }  // namespace rosmill::core

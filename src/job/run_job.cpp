@@ -75,7 +75,7 @@ struct PartView {
 };
 
 PartView part_view(const stock::InProcessStock& stock, const Mesh& part, const SetupFrame& setup) {
-  PartView v{stock.view(setup), {}, mesh_in_setup(part, setup)};
+  PartView v{stock.view(setup), {}, placed(part, setup.placement)};
   v.design = stock::design_heights(v.part, v.stock.grid, v.stock.bottom);
   return v;
 }

@@ -15,7 +15,7 @@
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
 #include "rosmill/ros/segmentation_msg.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/segment/setup_segmentation.hpp"
 
 namespace rosmill::edge {
@@ -38,7 +38,7 @@ class Segmenter {
     options_.small.min_area_fraction =
         double_param(pnh, "min_area_fraction", options_.small.min_area_fraction, 0.0, 0.5);
     const std::string setup = string_param(pnh, "setup", "+Z");
-    filter_ = setup_filter_of(setup, Vec3::UnitZ(), max_angle_deg_, "parameter " + pnh.resolveName("setup"));
+    filter_ = segment::setup_filter_of(setup, Vec3::UnitZ(), max_angle_deg_, "parameter " + pnh.resolveName("setup"));
     segmentation_pub_ = nh.advertise<msg::Segmentation>("segmentation", 1, true);
     marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("segmentation_markers", 1, true);
     mesh_sub_ = nh.subscribe("mesh", 1, &Segmenter::on_mesh, this);
@@ -83,7 +83,7 @@ class Segmenter {
   bool on_set_setup(SetSetup::Request& req, SetSetup::Response& res) {
     try {
       const double max_angle_deg = req.max_angle == 0.0 ? max_angle_deg_ : max_angle_in_degrees(req.max_angle);
-      filter_ = setup_filter_of(req.setup, from_direction_msg(req.direction), max_angle_deg,
+      filter_ = segment::setup_filter_of(req.setup, from_direction_msg(req.direction), max_angle_deg,
                                 req.setup.empty() ? "direction" : "setup");
       res.success = true;
       if (!part_) {

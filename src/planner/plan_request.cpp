@@ -102,9 +102,10 @@ Job plan_turned(const PlanningRequest& r) {
   turned.input.setup = SetupFrame{};
   Mesh mesh, stock;
   PointCloud cloud;
-  if (r.input.mesh) turned.input.mesh = &(mesh = mesh_in_setup(*r.input.mesh, r.input.setup));
-  if (r.input.cloud) turned.input.cloud = &(cloud = cloud_in_setup(*r.input.cloud, r.input.setup));
-  if (r.params.stock_mesh) turned.params.stock_mesh = &(stock = mesh_in_setup(*r.params.stock_mesh, r.input.setup));
+  const Placement& into = r.input.setup.placement;
+  if (r.input.mesh) turned.input.mesh = &(mesh = placed(*r.input.mesh, into));
+  if (r.input.cloud) turned.input.cloud = &(cloud = placed(*r.input.cloud, into));
+  if (r.params.stock_mesh) turned.params.stock_mesh = &(stock = placed(*r.params.stock_mesh, into));
   return plan(turned);
 }
 

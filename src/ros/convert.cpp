@@ -56,6 +56,10 @@ geometry_msgs::Vector3 to_direction_msg(const Vec3& v) {
 
 Vec3 from_direction_msg(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
 
+geometry_msgs::Vector3 to_vector_msg(const Vec3& mm) { return to_direction_msg(mm * kMetrePerMm); }
+
+Vec3 from_vector_msg(const geometry_msgs::Vector3& m) { return from_direction_msg(m) * kMmPerMetre; }
+
 // ---------------------------------------------------------------------------------------------------- meshes
 
 namespace {
@@ -289,7 +293,8 @@ msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup)
   m.strategy = tp.strategy;
   m.setup = setup.name;
   m.tool_axis = to_direction_msg(setup.tool_axis);
-  m.setup_rotation = to_quaternion_msg(setup.to_setup);
+  m.setup_rotation = to_quaternion_msg(setup.rotation());
+  m.setup_translation = to_vector_msg(setup.placement.translation());
   m.tool = to_tool_msg(tp.tool);
   m.safe_z = to_metres(tp.safe_z);
   m.clearance_z = to_metres(tp.clearance_z);
@@ -325,6 +330,7 @@ void check_setup_rotation(const geometry_msgs::Quaternion& q, const std::string&
 
 core::Toolpath from_toolpath_msg(const msg::Toolpath& m, const std::string& where) {
   check_setup_rotation(m.setup_rotation, where);
+  if (!from_direction_msg(m.setup_translation).allFinite()) throw Error(where + " setup_translation", "is not finite");
   core::Toolpath tp;
   tp.strategy = m.strategy;
   tp.tool = from_tool_msg(m.tool, where + " tool");

@@ -110,7 +110,7 @@ visualization_msgs::Marker tool_marker(const core::Toolpath& tp, const SetupFram
   // The cylinder's centre sits half a flute above the tip; its axis is the setup's tool axis.
   const Vec3 centre = setup.to_workpiece_frame(tp.start + Vec3(0, 0, 0.5 * length));
   m.pose.position = to_point_msg(centre);
-  const Eigen::Quaterniond q = setup.to_setup.conjugate();
+  const Eigen::Quaterniond q = setup.rotation().conjugate();
   m.pose.orientation.x = q.x();
   m.pose.orientation.y = q.y();
   m.pose.orientation.z = q.z();

@@ -63,18 +63,20 @@ ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
                                    const std::optional<gcode::WorkOffset>& g54) {
   ProgramPlacement p;
   // The program is in the setup frame (the part re-fixtured); the status shows the tool on the part as it sits.
-  Eigen::Quaterniond to_setup = Eigen::Quaterniond::Identity();
+  Eigen::Isometry3d workpiece_in_setup = Eigen::Isometry3d::Identity();
   if (!msg.toolpaths.empty()) {
     const auto& q = msg.toolpaths[0].setup_rotation;
-    to_setup = Eigen::Quaterniond(q.w, q.x, q.y, q.z);
+    Eigen::Quaterniond to_setup(q.w, q.x, q.y, q.z);
     if (to_setup.norm() < 1e-9) to_setup = Eigen::Quaterniond::Identity();
+    workpiece_in_setup.linear() = to_setup.normalized().toRotationMatrix();
+    workpiece_in_setup.translation() = from_vector_msg(msg.toolpaths[0].setup_translation);
   }
   const Eigen::Isometry3d program_on_machine(g54 ? g54->pose() : Eigen::Matrix4d::Identity());
-  p.machine_to_workpiece = Eigen::Isometry3d(to_setup.normalized().conjugate()) * program_on_machine.inverse();
+  p.machine_to_workpiece = workpiece_in_setup.inverse() * program_on_machine.inverse();
   Box3 box;
   for (const core::Toolpath& tp : job) box.add(tp.bounds());
   const Vec3 centre = 0.5 * (box.min + box.max);
-  p.anchor = to_point_msg(p.machine_to_workpiece.linear() * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
+  p.anchor = to_point_msg(workpiece_in_setup.inverse() * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
   return p;
 }
 

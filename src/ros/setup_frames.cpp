@@ -28,8 +28,9 @@ std::string SetupFramePublisher::publish(const std::string& workpiece, const Set
   const std::string id = setup_frame_id(workpiece, setup);
   std::lock_guard<std::mutex> lock(mutex_);
   if (id == workpiece || !sent_.insert(id).second) return id;
-  // A point p in the setup frame is to_setup^-1 p in the workpiece frame: that rotation is the child's pose.
-  broadcaster_.sendTransform(to_transform_msg(workpiece, id, setup.to_setup.conjugate(), Vec3::Zero()));
+  // The setup frame's pose in the workpiece frame: the inverse of the workpiece's placement in the setup frame.
+  const Placement pose = setup.placement.inverse();
+  broadcaster_.sendTransform(to_transform_msg(workpiece, id, pose.rotation(), pose.translation() * kMetrePerMm));
   return id;
 }
 

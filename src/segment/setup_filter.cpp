@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 
 namespace rosmill::core::segment {
 namespace {
@@ -75,6 +76,29 @@ std::vector<SetupFilter> parse_setups(const std::string& list) {
 const std::vector<SetupFilter>& axis_setups() {
   static const std::vector<SetupFilter> setups = parse_setups("+z,-z,+x,-x,+y,-y");
   return setups;
+}
+
+SetupFilter setup_filter_of(const std::string& name, const Vec3& direction, double max_angle_deg,
+                            const std::string& where) {
+  if (!std::isfinite(max_angle_deg) || max_angle_deg <= 0 || max_angle_deg > 180)
+    throw Error(where, "max angle must lie in (0, 180] degrees, got " + std::to_string(max_angle_deg));
+  SetupFilter filter;
+  if (name.empty()) {
+    filter.axis = direction_setup(direction, where).tool_axis;
+    filter.name = "custom";
+  } else {
+    std::string text = name;
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (text.size() == 1) text = "+" + text;
+    try {
+      filter = parse_setup(text);
+    } catch (const Error&) {
+      throw Error(where, "unknown setup '" + name + "' (expected +Z, -Z, +X, -X, +Y, -Y, 4axis:x|y|z or 5axis)");
+    }
+    if (filter.kind == SetupFilter::Kind::ThreeAxis) filter.name = named_setup(text, where).name;
+  }
+  filter.max_angle_deg = max_angle_deg;
+  return filter;
 }
 
 }  // namespace rosmill::core::segment

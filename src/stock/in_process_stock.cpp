@@ -71,11 +71,10 @@ size_t InProcessStock::bytes() const {
 
 Box3 InProcessStock::turned_bounds(const SetupFrame& setup) const {
   const GridSpec& g = material_.grid;
-  Box3 turned;
-  for (int k = 0; k < 8; ++k)
-    turned.add(setup.to_setup_frame(Vec3(k & 1 ? g.x0 + g.nx * g.cell : g.x0, k & 2 ? g.y0 + g.ny * g.cell : g.y0,
-                                         k & 4 ? material_.z_max : material_.z_min)));
-  return turned;
+  Box3 grid;
+  grid.add(Vec3(g.x0, g.y0, material_.z_min));
+  grid.add(Vec3(g.x0 + g.nx * g.cell, g.y0 + g.ny * g.cell, material_.z_max));
+  return placed(grid, setup.placement);
 }
 
 GridSpec InProcessStock::setup_grid(const SetupFrame& setup) const {
@@ -96,7 +95,7 @@ GridSpec InProcessStock::setup_grid(const SetupFrame& setup) const {
 
 size_t InProcessStock::envelope_index(const SetupFrame& setup) const {
   for (size_t k = 0; k < envelopes_.size(); ++k)
-    if (envelopes_[k].setup.to_setup.angularDistance(setup.to_setup) < 1e-9) return k;
+    if (envelopes_[k].setup.same_as(setup)) return k;
   return envelopes_.size();
 }
 
@@ -170,7 +169,7 @@ HeightField InProcessStock::view(const SetupFrame& setup) const {
 void InProcessStock::clip(const Envelope& e) {
   const GridSpec& g = material_.grid;
   const GridSpec& eg = e.field.grid;
-  const Vec3 d = e.setup.to_setup_frame(Vec3::UnitZ());
+  const Vec3 d = e.setup.direction_to_setup(Vec3::UnitZ());
   const bool axial = d.head<2>().norm() < kAxial;
   Dexels out;
   out.grid = g;
@@ -255,7 +254,7 @@ RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupF
 
 std::vector<float> InProcessStock::material_above(const Mesh& design, const SetupFrame& setup) const {
   const HeightField v = view(setup);
-  const std::vector<float> h = design_heights(mesh_in_setup(design, setup), v.grid, v.bottom);
+  const std::vector<float> h = design_heights(placed(design, setup.placement), v.grid, v.bottom);
   std::vector<float> above(v.top.size(), NAN);
   for (size_t c = 0; c < above.size(); ++c)
     if (v.top[c] != kNoMaterial) above[c] = v.top[c] - h[c];

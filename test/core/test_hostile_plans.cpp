@@ -117,8 +117,8 @@ TEST(PlanValidation, NonsenseValuesAreRefusedNamingTheFieldAndItsRange) {
       {[](PlanningRequest& r) { r.params.safe_clearance = INFINITY; },
        "parameter safe_clearance: must lie in (0, 1000]"},
       {[](PlanningRequest& r) { r.params.tolerance = 1e-300; }, "parameter tolerance"},
-      {[](PlanningRequest& r) { r.input.setup.to_setup = Eigen::Quaterniond(NAN, 0, 0, 0); },
-       "setup: the rotation must be a finite unit quaternion"},
+      {[](PlanningRequest& r) { r.input.setup.placement.pose.linear()(0, 0) = NAN; },
+       "setup: the placement of 'workpiece' in 'setup +Z' is not finite"},
       {[](PlanningRequest& r) { r.input.setup.tool_axis = Vec3(NAN, 0, 1); },
        "setup: the tool axis must be a finite unit vector"},
   };

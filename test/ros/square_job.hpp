@@ -2,7 +2,7 @@
 #pragma once
 #include "rosmill/ToolpathJob.h"
 #include "rosmill/ros/convert.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rostest_support.hpp"
 
 namespace rosmill::rostest {

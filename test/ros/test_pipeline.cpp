@@ -260,10 +260,12 @@ TEST_F(Pipeline, ToolpathsForPlusZAndMinusXDoNotGouge) {
   EXPECT_EQ(srv.response.statistics.moves, move_count(tx));
   // The positions are in the setup frame: the dome turned so that -X points up.
   SetupFrame setup;
-  setup.to_setup = Eigen::Quaterniond(tx.setup_rotation.w, tx.setup_rotation.x, tx.setup_rotation.y,
-                                      tx.setup_rotation.z);
-  EXPECT_NEAR((setup.to_setup_frame(Vec3(-1, 0, 0)) - Vec3::UnitZ()).norm(), 0.0, 1e-9);
-  const Mesh turned = mesh_in_setup(dome, setup);
+  setup.placement = placement_of("setup -X", kWorkpieceFrame,
+                                 Eigen::Quaterniond(tx.setup_rotation.w, tx.setup_rotation.x, tx.setup_rotation.y,
+                                                    tx.setup_rotation.z),
+                                 edge::from_vector_msg(tx.setup_translation));
+  EXPECT_NEAR((setup.direction_to_setup(Vec3(-1, 0, 0)) - Vec3::UnitZ()).norm(), 0.0, 1e-9);
+  const Mesh turned = placed(dome, setup.placement);
   expect_within_reach(tx, turned);
   const rostest::Gouge gx = rostest::ball_gouge(turned, tx);
   EXPECT_LE(gx.depth, kGougeTolerance) << "-X gouges " << gx.depth << " mm at " << gx.at.transpose();

@@ -15,7 +15,7 @@
 #include "rosmill/plan/plan_report.hpp"
 #include "rosmill/plan/surface.hpp"
 #include "rosmill/planner/presets.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/toolpath/job.hpp"
 
 namespace rosmill::core {

@@ -24,7 +24,7 @@
 #include "rosmill/plan/plan_params.hpp"
 #include "rosmill/toolpath/job.hpp"
 #include "rosmill/toolpath/toolpath.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 
 namespace rosmill::edge {
 
@@ -38,6 +38,8 @@ Vec3 from_point_msg(const geometry_msgs::Point& m);
 geometry_msgs::TransformStamped to_transform_msg(const std::string& parent, const std::string& child,
                                                  const Eigen::Quaterniond& rotation, const Vec3& translation_m);           // -> mm
 geometry_msgs::Vector3 to_direction_msg(const Vec3& unitless);
+geometry_msgs::Vector3 to_vector_msg(const Vec3& mm);  // a displacement, -> m
+Vec3 from_vector_msg(const geometry_msgs::Vector3& m);  // -> mm
 Vec3 from_direction_msg(const geometry_msgs::Vector3& v);
 double to_metres(double mm);
 double to_mm(double metres);

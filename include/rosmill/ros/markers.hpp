@@ -8,7 +8,7 @@
 #include "rosmill/ros/namespaces.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/toolpath/job.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 
 namespace rosmill::edge {
 

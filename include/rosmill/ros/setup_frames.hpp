@@ -10,7 +10,7 @@
 #include <string>
 
 #include "rosmill/ros/namespaces.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 
 namespace rosmill::edge {
 

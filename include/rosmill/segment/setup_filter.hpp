@@ -54,4 +54,9 @@ std::vector<SetupFilter> parse_setups(const std::string& list);
 // The six 3-axis setups in the order +z, -z, +x, -x, +y, -y.
 const std::vector<SetupFilter>& axis_setups();
 
+// The filter of a setup: named ("+Z", "z", "-x", "4axis:x", "5axis", any case) or, when name is empty, the 3-axis
+// setup of `direction`. Its name is "+Z"-style for 3-axis setups. Throws Error naming `where`.
+SetupFilter setup_filter_of(const std::string& name, const Vec3& direction, double max_angle_deg,
+                            const std::string& where = "setup");
+
 }  // namespace rosmill::core::segment

@@ -15,7 +15,7 @@
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/stock/dexels.hpp"
 #include "rosmill/stock/height_field.hpp"
 #include "rosmill/stock/material_removal.hpp"

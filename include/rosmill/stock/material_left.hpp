@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "rosmill/geometry/mesh.hpp"
-#include "rosmill/segment/setup_frame.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
 
 namespace rosmill::core::stock {
