@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -104,30 +105,39 @@ struct Step {
   CanonMove move;
   double feed, rpm;
   int spindle;
-  WorkOffset offset;  // G54's origin on the machine when the move ran
+  WorkOffset offset;  // the active coordinate system's origin on the machine when the move ran
 };
 
-// G54's origin set by the block, when it is coordinate system data the checker can follow: G10 L2 for G54 (P1, or
-// P0 while G54 is active) with all of X, Y and Z given; R (LinuxCNC's turn about Z) is 0 when absent, as the
+// The coordinate systems G54..G59 as far as the checker knows them: G54 from the machine file, each of them once the
+// program sets it (G10 L2). A system neither gives is unknown, and selecting it is refused.
+using KnownOffsets = std::array<std::optional<WorkOffset>, kWorkOffsets>;
+
+// The index (1..6) of an active coordinate system G54..G59; 0 for G59.1..G59.3, which the checker does not follow.
+int offset_index(int work_offset) { return work_offset >= 54 && work_offset <= 59 ? work_offset - 53 : 0; }
+
+// The origin set by the block, when it is coordinate system data the checker can follow: G10 L2 for G54..G59 (P1..P6,
+// or P0 for the active one) with all of X, Y and Z given; R (LinuxCNC's turn about Z) is 0 when absent, as the
 // machine file's G54 has none. Empty for any other block.
 std::optional<WorkOffset> followed_work_offset(const Interpreter& reader) {
   const Block& b = reader.block();
   if (!b.has_g(100) || !b.has('L') || std::lround(b.get('L')) != 2 || !b.has('P')) return std::nullopt;
-  const long p = std::lround(b.get('P'));
-  if (!(p == 1 || (p == 0 && reader.state().work_offset == 54))) return std::nullopt;
+  long p = std::lround(b.get('P'));
+  if (p == 0) p = offset_index(reader.state().work_offset);
+  if (p < 1 || p > kWorkOffsets) return std::nullopt;
   if (!(b.has('X') && b.has('Y') && b.has('Z'))) return std::nullopt;
   const double unit = reader.state().metric ? 1.0 : 25.4;
   WorkOffset w;
   w.origin = Vec3(b.get('X'), b.get('Y'), b.get('Z')) * unit;
   w.rotation_deg = b.has('R') ? b.get('R') : 0.0;
+  w.index = static_cast<int>(p);
   return w;
 }
 
 // What the checker cannot follow is refused rather than passed unchecked: moves to stored or machine positions,
-// offset changes, and work offsets other than the one the machine file gives. Feeds it cannot check and arcs
-// outside the XY plane stop the check.
+// offset changes other than coordinate system data it follows, and a coordinate system whose origin neither the
+// machine file nor the program gives. Feeds it cannot check and arcs outside the XY plane stop the check.
 template <class Add>
-void refuse_unfollowed(const Interpreter& reader, int offset_before, Add&& add) {
+void refuse_unfollowed(const Interpreter& reader, int offset_before, const KnownOffsets& known, Add&& add) {
   const Block& block = reader.block();
   for (int k = 0; k < block.g_count; ++k) {
     const int g = block.g[k];
@@ -135,11 +145,15 @@ void refuse_unfollowed(const Interpreter& reader, int offset_before, Add&& add) 
       add("unchecked move", g_name(g) + " goes to a stored or machine position the checker cannot follow");
     if ((g == 100 && !followed_work_offset(reader)) || g == 920 || g == 921 || g == 922 || g == 923)
       add("unchecked move", g_name(g) + " changes an offset; later positions could not be checked" +
-                                (g == 100 ? " (G10 L2 P1 with X, Y and Z, setting G54's origin, is followed)" : ""));
+                                (g == 100 ? " (G10 L2 P1..P6 with X, Y and Z, setting G54..G59's origin, is followed)"
+                                          : ""));
   }
   const ModalState& s = reader.state();
-  if (s.work_offset != 54 && s.work_offset != offset_before)
-    add("work offset", work_offset_code(s.work_offset) + " selected; the machine file gives G54's origin only");
+  const int index = offset_index(s.work_offset);
+  if (s.work_offset != offset_before && (index == 0 || !known[index - 1]))
+    add("work offset", work_offset_code(s.work_offset) +
+                           " selected before the program set its origin (G10 L2); the machine file gives G54's "
+                           "origin only");
   if (s.feed_mode == 93) throw Error(reader.where(), "inverse-time feed (G93) is not followed");
   if (reader.moved() && reader.move().is_arc() && reader.move().plane != Plane::XY)
     throw Error(reader.where(), "arcs outside the XY plane (G17) are not followed");
@@ -209,15 +223,19 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
   std::vector<Step> steps;
   Interpreter reader;
   double top = -INFINITY;
-  WorkOffset offset = lim.work_offset;
+  KnownOffsets known;
+  known[0] = lim.work_offset;
   for (size_t i = 0; i < lines.size(); ++i) {
     const int offset_before = reader.state().work_offset;
     reader.read(lines[i], i + 1);
-    refuse_unfollowed(reader, offset_before, [&](std::string limit, std::string detail) {
+    if (const std::optional<WorkOffset> set = followed_work_offset(reader)) known[set->index - 1] = *set;
+    refuse_unfollowed(reader, offset_before, known, [&](std::string limit, std::string detail) {
       add(i, std::move(limit), std::move(detail));
     });
-    if (const std::optional<WorkOffset> set = followed_work_offset(reader)) offset = *set;
     const ModalState& s = reader.state();
+    const int index = offset_index(s.work_offset);
+    // A system the checker does not know was refused above; the moves are then checked as if in G54.
+    const WorkOffset offset = index > 0 && known[index - 1] ? *known[index - 1] : *known[0];
     steps.push_back({i, reader.moved(), reader.move(), s.feed, s.spindle_rpm, s.spindle, offset});
     // Cutting moves across the part (not plunges or feed retracts) run inside the stock.
     const CanonMove& m = reader.move();

@@ -255,11 +255,15 @@ Program post(const Job& job, const PostOptions& o) {
   if (!o.title.empty()) w.comment(o.title);
   w.comment("rosmill post, dialect " + d.name + ", mm");
   for (const Toolpath& tp : job) w.comment(tp.strategy + ": " + tool_text(tp.tool));
+  std::string setup = d.setup_words;
   if (o.work_offset) {
-    w.comment("work offset G54 from the workpiece's pose on the table");
+    w.comment("work offset " + o.work_offset->code() + " " + o.work_offset_note);
     w.line(work_offset_block(*o.work_offset, d, o.decimals));
+    const size_t g54 = setup.find("G54");
+    if (g54 == std::string::npos) throw Error("post", "dialect " + d.name + " selects no work offset");
+    setup.replace(g54, 3, o.work_offset->code());
   }
-  w.line(d.setup_words);
+  w.line(setup);
   if (d.path_blending) w.line("G64 P" + fixed_text(o.blend_tolerance, o.decimals));
   for (size_t t = 0; t < job.size(); ++t) {
     const Toolpath& tp = job[t];

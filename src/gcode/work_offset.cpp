@@ -23,6 +23,8 @@ Eigen::Matrix3d turn_about_z(double degrees) {
 
 }  // namespace
 
+std::string WorkOffset::code() const { return "G5" + std::to_string(3 + index); }
+
 Vec3 WorkOffset::to_machine(const Vec3& program) const { return origin + turn_about_z(rotation_deg) * program; }
 
 Vec3 WorkOffset::to_program(const Vec3& machine) const {
@@ -61,7 +63,9 @@ std::string work_offset_block(const WorkOffset& w, const Dialect& d, int decimal
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(w.origin[a])) throw Error("work offset", "origin is not a finite number");
   if (!std::isfinite(w.rotation_deg)) throw Error("work offset", "rotation is not a finite number");
-  std::string b = "G10 L2 P1";
+  if (w.index < 1 || w.index > kWorkOffsets)
+    throw Error("work offset", "P" + std::to_string(w.index) + " is not one of P1..P6 (G54..G59)");
+  std::string b = "G10 L2 P" + std::to_string(w.index);
   static const char axis[3] = {'X', 'Y', 'Z'};
   for (int a = 0; a < 3; ++a) {
     b.push_back(' ');

@@ -24,12 +24,14 @@ std::string refused_letter(char letter) {
 }
 
 // The G codes the simulation follows or that do not move the tool: motion G0-G3 and G80, the XY plane, units,
-// distance modes, dwell, comp off, tool length (positions are tool tips), G54, path control, feed and spindle
-// modes, canned-cycle return. Anything else would change the motion in a way the simulation does not model.
+// distance modes, dwell, comp off, tool length (positions are tool tips), G54..G59 (a program's coordinates are
+// the part's, whichever system holds them), path control, feed and spindle modes, canned-cycle return. Anything
+// else would change the motion in a way the simulation does not model.
 bool simulated_g(int g) {
   switch (g) {
     case 0: case 10: case 20: case 30: case 800: case 170: case 200: case 210: case 900: case 910: case 901: case 911:
-    case 40: case 400: case 490: case 430: case 540: case 610: case 611: case 640: case 930: case 940: case 950:
+    case 40: case 400: case 490: case 430: case 540: case 550: case 560: case 570: case 580: case 590:
+    case 610: case 611: case 640: case 930: case 940: case 950:
     case 960: case 970: case 980: case 990:
       return true;
     default:
@@ -60,12 +62,13 @@ void refuse_unsimulated(const Block& b, const gcode::Place& where) {
     for (char c : std::string_view("FGHIJKMNPRSTXYZ")) bits |= 1u << (c - 'A');
     return bits;
   }();
-  // G10 L2 P1 sets G54's origin on the machine (where the part was found): the program's coordinates, which the
-  // simulation follows in the workpiece frame, stay what they are. Other coordinate system data is refused.
-  const bool g54_data = b.has_g(100) && b.has('L') && std::lround(b.get('L')) == 2 && b.has('P') &&
-                        (std::lround(b.get('P')) == 1 || std::lround(b.get('P')) == 0);
+  // G10 L2 P1..P6 sets the origin of G54..G59 on the machine (where the part was found, a setup's datum): the
+  // program's coordinates, which the simulation follows in the part's frame, stay what they are. Other coordinate
+  // system data is refused.
+  const long p = b.has('P') ? std::lround(b.get('P')) : -1;
+  const bool g54_data = b.has_g(100) && b.has('L') && std::lround(b.get('L')) == 2 && p >= 0 && p <= 6;
   if (b.has_g(100) && !g54_data)
-    throw Error(where.str(), "G10 other than L2 P1 (G54's origin) is not supported by the verifier");
+    throw Error(where.str(), "G10 other than L2 P1..P6 (G54..G59's origin) is not supported by the verifier");
   if (const uint32_t other = b.present & ~kKnown & ~(g54_data ? 1u << ('L' - 'A') : 0u))
     for (int k = 0; k < 26; ++k)
       if (other >> k & 1u) throw Error(where.str(), refused_letter(static_cast<char>('A' + k)));

@@ -132,7 +132,10 @@ TEST(VerifyGcode, UnsupportedMotionNamesTheLine) {
   EXPECT_NE(error_of("G0 X0\n\nG41 D1\n").find("p.ngc:3"), std::string::npos);
   EXPECT_NE(error_of("G81 X0 Y0 Z-1 R1\n").find("p.ngc:1: G81"), std::string::npos);
   EXPECT_NE(error_of("G28\n").find("G28"), std::string::npos);
-  EXPECT_NE(error_of("G55\n").find("G55"), std::string::npos);
+  EXPECT_NE(error_of("G59.1\n").find("G59.1"), std::string::npos);
+  EXPECT_NE(error_of("G10 L2 P7 X0 Y0 Z0\n").find("G10 other than L2 P1..P6"), std::string::npos);
+  // A setup's own system: the program's coordinates are the part's, whichever system holds them.
+  EXPECT_EQ(error_of("G10 L2 P2 X5 Y6 Z-40\nG17 G21 G90 G55\nG0 X0 Y0 Z0\n"), "");
   EXPECT_NE(error_of("G0 X#1\n").find("p.ngc:1"), std::string::npos);
   EXPECT_NE(error_of("G0 X0 Y0 Z0\nG2 X10 Y0 I3\n").find("p.ngc:2: radius"), std::string::npos);
   EXPECT_NE(error_of("X1\n").find("motion mode"), std::string::npos);

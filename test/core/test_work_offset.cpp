@@ -117,12 +117,63 @@ TEST(WorkOffset, TheLimitCheckFollowsItInMachineCoordinates) {
   v = with("G10 L2 P1 X0 Y0 Z-45.5");
   ASSERT_FALSE(v.empty());
   EXPECT_EQ(v.front().limit, "table");
-  // What the check cannot follow stays refused: other coordinate systems, L20, axes left out.
-  for (const char* g10 : {"G10 L2 P2 X0 Y0 Z0", "G10 L20 P1 X0 Y0 Z0", "G10 L2 P1 X0 Y0", "G10 P1 X0 Y0 Z0"}) {
+  // Another coordinate system set and not selected leaves G54's moves as they are.
+  EXPECT_TRUE(with("G10 L2 P2 X60 Y0 Z0").empty());
+  // What the check cannot follow stays refused: L20, axes left out, P beyond the six systems.
+  for (const char* g10 : {"G10 L20 P1 X0 Y0 Z0", "G10 L2 P1 X0 Y0", "G10 P1 X0 Y0 Z0", "G10 L2 P7 X0 Y0 Z0"}) {
     v = with(g10);
     ASSERT_FALSE(v.empty()) << g10;
     EXPECT_EQ(v.front().limit, "unchecked move") << g10;
   }
+}
+
+// A job's setups each set and select their own system (G55..G59): the check follows the one selected, and refuses
+// one selected before the program gave its origin.
+TEST(WorkOffset, EachSetupsSystemIsFollowed) {
+  const MachineLimits m = machine();
+  const std::vector<std::string> cut = {"G0 Z10", "X0 Y0", "S10000 M3", "G1 Z-5 F100", "X200", "G0 Z10", "M30"};
+  auto program = [&](std::vector<std::string> head) {
+    head.insert(head.end(), cut.begin(), cut.end());
+    return head;
+  };
+  EXPECT_TRUE(check_limits(program({"G10 L2 P3 X50 Y0 Z0", "G17 G21 G90 G56"}), m).empty());
+  auto v = check_limits(program({"G10 L2 P3 X60 Y0 Z0", "G17 G21 G90 G56"}), m);
+  ASSERT_FALSE(v.empty());
+  EXPECT_EQ(v.front().limit, "envelope x max");
+  // G54's origin is the machine file's; G56 set far away does not move G54's cut.
+  EXPECT_TRUE(check_limits(program({"G10 L2 P3 X600 Y0 Z0", "G17 G21 G90 G54"}), m).empty());
+  v = check_limits(program({"G17 G21 G90 G57"}), m);
+  ASSERT_FALSE(v.empty());
+  EXPECT_EQ(v.front().limit, "work offset");
+  EXPECT_NE(v.front().detail.find("G57 selected before the program set its origin"), std::string::npos)
+      << v.front().detail;
+  // P0 sets the active system.
+  EXPECT_TRUE(check_limits(program({"G10 L2 P4 X0 Y0 Z0", "G57", "G10 L2 P0 X50 Y0 Z0"}), m).empty());
+  v = check_limits(program({"G10 L2 P4 X0 Y0 Z0", "G57", "G10 L2 P0 X60 Y0 Z0"}), m);
+  ASSERT_FALSE(v.empty());
+  EXPECT_EQ(v.front().limit, "envelope x max");
+}
+
+TEST(WorkOffset, ThePostSelectsTheSetupsSystem) {
+  const Job job{test::raster_toolpath()};
+  PostOptions o;
+  o.work_offset = WorkOffset{Vec3(10, -20, -30), 0, 3};
+  o.work_offset_note = "at setup 3's datum";
+  const Program p = post(job, o);
+  const size_t g10 = line_of(p, "G10 L2 P3");
+  ASSERT_LT(g10, p.lines.size());
+  EXPECT_EQ(p.lines[g10], "G10 L2 P3 X10 Y-20 Z-30 R0");
+  EXPECT_EQ(p.lines[g10 - 1], "(work offset G56 at setup 3's datum)");
+  const size_t setup = line_of(p, "G17");
+  ASSERT_LT(setup, p.lines.size());
+  EXPECT_NE(p.lines[setup].find("G56"), std::string::npos) << p.lines[setup];
+  EXPECT_EQ(p.lines[setup].find("G54"), std::string::npos) << p.lines[setup];
+  const Rs274Result r = run_rs274(p.lines);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(compare_with_job(p, job, r, o.arc_tolerance).ok);
+  EXPECT_TRUE(check_limits(p.lines, machine()).empty());
+  o.work_offset->index = 7;
+  EXPECT_NE(error_of([&] { post(job, o); }).find("P7 is not one of P1..P6"), std::string::npos);
 }
 
 TEST(WorkOffset, Rs274AcceptsItAndTheMovesStayTheToolpaths) {

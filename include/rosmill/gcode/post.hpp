@@ -26,9 +26,10 @@ struct PostOptions {
   double arc_tolerance = 0.005;    // mm: the arc stays this close to the polyline it replaces
   Coolant coolant = Coolant::Flood;
   std::string title;               // written as a comment in the header
-  // Set by the program before its first move (G10 L2 P1, see work_offset.hpp): where the part was found on the
-  // table. Without it the controller's G54 is used as it stands.
+  // Set and selected by the program before its first move (G10 L2 Pn, then G54..G59; see work_offset.hpp): where
+  // the part was found on the table, or a setup's datum. Without it the controller's G54 is used as it stands.
   std::optional<WorkOffset> work_offset;
+  std::string work_offset_note = "from the workpiece's pose on the table";  // the comment above the G10 block
 };
 
 // Where a program line came from: toolpath index, pass index and the moves [first_move, last_move] it carries
