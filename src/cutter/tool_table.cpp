@@ -17,7 +17,7 @@ namespace {
 
 const std::set<std::string> kFields = {"id", "name", "type", "diameter", "corner_radius", "flute_length",
                                        "shank_diameter", "spindle_rpm", "feed", "plunge_feed", "stepover",
-                                       "stepdown"};
+                                       "stepdown", "stick_out", "holder_diameter"};
 
 // Reads the fields of one tool entry; `where` is "file: tool N" so that every message names both.
 class EntryReader {
@@ -109,6 +109,12 @@ Tool read_tool(const YAML::Node& node, const std::string& source, size_t index) 
   if (t.stepover > t.cutter.diameter) e.fail("stepover", "is larger than the diameter");
   t.stepdown = e.positive("stepdown");
   if (t.stepdown > t.cutter.flute_length) e.fail("stepdown", "is larger than the flute length");
+  t.stick_out = e.number("stick_out", false, NAN);
+  if (!std::isnan(t.stick_out) && t.stick_out < t.cutter.flute_length)
+    e.fail("stick_out", "is shorter than the flute length");
+  t.holder_diameter = e.number("holder_diameter", false, NAN);
+  if (!std::isnan(t.holder_diameter) && t.holder_diameter < t.cutter.shank_diameter)
+    e.fail("holder_diameter", "is smaller than the shank's diameter");
   return t;
 }
 

@@ -60,6 +60,13 @@ std::vector<Vec3> cube_corners(double s) {
   return out;
 }
 
+std::vector<Vec3> box_corners(const Box3& b) {
+  const Vec3 s = b.size();
+  std::vector<Vec3> out = cube_corners(1.0);
+  for (Vec3& p : out) p = b.min + p.cwiseProduct(s);
+  return out;
+}
+
 std::vector<Vec3> cylinder_corners(double r, double h) {
   std::vector<Vec3> out;
   const int n = kRoundSegments;

@@ -228,6 +228,8 @@ msg::Tool to_tool_msg(const core::Tool& tool) {
   m.plunge_rate = tool.plunge_feed * kMetrePerSecondPerMmPerMinute;
   m.stepover = to_metres(tool.stepover);
   m.stepdown = to_metres(tool.stepdown);
+  m.stick_out = to_metres(tool.stick_out_mm());
+  m.holder_diameter = to_metres(tool.holder_mm());
   return m;
 }
 
@@ -252,6 +254,9 @@ core::Tool from_tool_msg(const msg::Tool& m, const std::string& where) {
   t.plunge_feed = m.plunge_rate / kMetrePerSecondPerMmPerMinute;
   t.stepover = to_mm(m.stepover);
   t.stepdown = to_mm(m.stepdown);
+  // 0: not given (a message from before these fields): the tool table's rule of thumb.
+  if (m.stick_out != 0) t.stick_out = to_mm(m.stick_out);
+  if (m.holder_diameter != 0) t.holder_diameter = to_mm(m.holder_diameter);
   return t;
 }
 

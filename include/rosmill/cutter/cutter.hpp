@@ -1,5 +1,6 @@
 // Cutter shapes and the tools of the tool table. Dimensions in millimetres, feeds in mm/min.
 #pragma once
+#include <cmath>
 #include <string>
 
 namespace rosmill::core {
@@ -31,6 +32,15 @@ struct Tool {
   double plunge_feed = 300.0;   // mm/min
   double stepover = 1.0;        // mm
   double stepdown = 1.0;        // mm
+  // How the tool sits in its holder: the length out of the holder (from the holder's face to the tip: the flutes and
+  // the exposed shank) and the holder's largest diameter near the tool (a collet nut). NaN: the rule of thumb below.
+  double stick_out = NAN;       // mm, at least the flute length
+  double holder_diameter = NAN; // mm, at least the shank's
+
+  // The flute length plus one shank diameter of exposed shank, when the table gives none.
+  double stick_out_mm() const { return std::isnan(stick_out) ? cutter.flute_length + cutter.shank_diameter : stick_out; }
+  // An ER collet nut's diameter for the shank (ER16: 32 mm for a 10 mm shank), when the table gives none.
+  double holder_mm() const { return std::isnan(holder_diameter) ? cutter.shank_diameter + 22.0 : holder_diameter; }
 };
 
 const char* cutter_type_name(CutterType t);
@@ -41,7 +51,8 @@ const char* cutter_type_name(CutterType t);
 Cutter offset_cutter(const Cutter& cutter, double allowance);
 // Throws Error naming `where` and the field when a tool's numbers are out of range: a diameter in (0, 500] mm,
 // a corner radius in [0, D/2] (0 for a flat end mill, D/2 for a ball), feeds in (0, 1e5] mm/min, a speed in
-// [0, 1e5] rpm, stepover and step-down in (0, 500] mm. A tool from a message or a request passes here.
+// [0, 1e5] rpm, stepover and step-down in (0, 500] mm, a stick-out (when given) in [flute length, 1000] mm and a
+// holder diameter in [shank diameter, 1000] mm. A tool from a message or a request passes here.
 void check_tool(const Tool& tool, const std::string& where = "tool");
 
 // Parses a cutter spec "ball:D", "flat:D" or "bull:D:r" (D diameter, r corner radius); throws Error naming

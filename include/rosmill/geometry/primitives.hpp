@@ -15,6 +15,7 @@ std::vector<Vec3> cylinder_corners(double r = 25.0, double h = 60.0);       // 1
 std::vector<Vec3> dome_corners(double r = 50.0);                            // 900: hemisphere on z = 0
 std::vector<Vec3> cone_corners(double r = 25.0, double h = 60.0);           // 72: 36 segments
 std::vector<Vec3> cavity_corners(double r = 50.0);                          // 900: hemispherical pocket in a block
+std::vector<Vec3> box_corners(const Box3& box);                             // 12: the box, normals outward
 
 // By name: "cube", "cylinder", "dome", "cone", "cavity"; throws Error for another name.
 Mesh make_primitive(const std::string& name);

@@ -1,0 +1,144 @@
+#include "rosmill/setups/reach.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "rosmill/cutter/contact.hpp"
+#include "rosmill/error.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
+
+namespace rosmill::core::setups {
+namespace {
+
+// A sample stands this far off the surface (mm) when asked whether anything stands above it: a slope rising within
+// the probe's radius (kProbe) of it cannot hold the probe above the sample then.
+constexpr double kLift = 0.01;
+constexpr double kProbe = 0.001;  // the radius of the flat probe that asks "anything above?"
+// The cutter's axis stands this much farther from the surface than the cutter's radius, so that the shank's
+// cylinder of the cutter's own radius grazes, not touches, a wall it runs along.
+constexpr double kAxisClearance = 0.01;
+
+// The surface turned into the setup with the three probes it is asked with.
+class ReachProbe {
+ public:
+  ReachProbe(const Mesh& turned, const ReachTool& tool)
+      : surface_(turned),
+        line_(Cutter::flat(2 * kProbe)),
+        shank_(Cutter::flat(2 * tool.shank_radius)),
+        holder_(Cutter::flat(2 * tool.holder_radius)) {}
+
+  // Whether anything stands above z within the probe's radius of (x, y).
+  bool above(const CutterProfile& probe, double x, double y, double z, uint32_t& hint) const {
+    return surface_.held_above_hinted(probe, x, y, z, hint);
+  }
+  const CutterProfile& line() const { return line_; }
+  const CutterProfile& shank() const { return shank_; }
+  const CutterProfile& holder() const { return holder_; }
+
+ private:
+  MeshSurface surface_;
+  CutterProfile line_, shank_, holder_;
+};
+
+// Where the tool stands to touch a sample with normal n (setup frame): its axis and its tip's height.
+struct ToolAt {
+  Vec2 axis;
+  double tip;
+};
+
+ToolAt tool_at(const ReachTool& t, const Vec3& p, const Vec3& n) {
+  ToolAt at{p.head<2>(), p.z() + t.corner_radius * (n.z() - 1.0)};
+  const double s = n.head<2>().norm();
+  if (s > 1e-9) {
+    const Vec2 out = n.head<2>() / s;
+    // The corner's centre is the corner radius out along the normal; the axis the flat bottom's radius further.
+    at.axis += t.corner_radius * n.head<2>() + (t.radius - t.corner_radius + kAxisClearance) * out;
+  }
+  return at;
+}
+
+}  // namespace
+
+double sample_spacing(const Mesh& mesh, double target) {
+  double area = 0;
+  for (double a : mesh.areas) area += a;
+  return std::max(0.05, std::sqrt(area / std::max(1.0, target)));
+}
+
+SurfaceSamples sample_surface(const Mesh& mesh, double spacing) {
+  if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("samples", "the spacing must be a positive number");
+  SurfaceSamples s;
+  s.points.reserve(mesh.face_count());
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const double area = mesh.areas[f];
+    if (!(area > 0)) continue;
+    const Vec3 a = mesh.corner(f, 0), b = mesh.corner(f, 1), c = mesh.corner(f, 2);
+    const int m = std::max(1, static_cast<int>(std::ceil(std::sqrt(area) / spacing)));
+    const double w = area / (double(m) * m);
+    // The m^2 similar triangles of the subdivision: (i, j) up and, but on the last row, (i, j) down.
+    const Vec3 u = (b - a) / m, v = (c - a) / m;
+    auto add = [&](const Vec3& p) {
+      s.points.push_back(p);
+      s.normals.push_back(mesh.normals[f]);
+      s.weights.push_back(w);
+      s.facets.push_back(static_cast<uint32_t>(f));
+    };
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; i + j < m; ++j) {
+        add(a + (i + 1.0 / 3) * u + (j + 1.0 / 3) * v);
+        if (i + j + 1 < m) add(a + (i + 2.0 / 3) * u + (j + 2.0 / 3) * v);
+      }
+  }
+  return s;
+}
+
+ReachTool reach_tool(const Tool& tool) {
+  const Cutter& c = tool.cutter;
+  ReachTool t;
+  t.radius = c.radius();
+  t.corner_radius = c.type == CutterType::FlatEnd ? 0.0 : c.type == CutterType::BallEnd ? c.radius() : c.corner_radius;
+  t.flute_length = c.flute_length;
+  t.shank_radius = 0.5 * c.shank_diameter;
+  t.stick_out = tool.stick_out_mm();
+  t.holder_radius = 0.5 * tool.holder_mm();
+  return t;
+}
+
+std::vector<Reach> reach_along(const Mesh& part, const SurfaceSamples& samples, const SetupFrame& setup,
+                               const ReachTool& tool, const std::vector<Vec3>& fixture_corners,
+                               double max_angle_deg) {
+  if (!(max_angle_deg > 0 && max_angle_deg <= 180)) throw Error("reach", "the largest angle must lie in (0, 180]");
+  const ReachProbe on_part(placed(part, setup.placement), tool);
+  std::unique_ptr<ReachProbe> on_fixture;
+  if (!fixture_corners.empty()) on_fixture = std::make_unique<ReachProbe>(build_mesh(fixture_corners), tool);
+  const double facing = std::cos(max_angle_deg * M_PI / 180.0) - 1e-9;
+  std::vector<Reach> out(samples.size(), Reach::FacesAway);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    uint32_t hints[6] = {0, 0, 0, 0, 0, 0};
+    // Clear of the probe's surface: nothing over the sample, the shank's and the holder's way free.
+    const auto clear = [&](const ReachProbe& s, const Vec3& p, const Vec3& n, const ToolAt& at, uint32_t* hint) {
+      const Vec3 q = p + kLift * n;
+      if (s.above(s.line(), q.x(), q.y(), q.z(), hint[0])) return false;
+      if (tool.stick_out > tool.flute_length &&
+          s.above(s.shank(), at.axis.x(), at.axis.y(), at.tip + tool.flute_length, hint[1]))
+        return false;
+      return !s.above(s.holder(), at.axis.x(), at.axis.y(), at.tip + tool.stick_out, hint[2]);
+    };
+    for (size_t k = r.begin(); k < r.end(); ++k) {
+      const Vec3 n = setup.direction_to_setup(samples.normals[k]);
+      if (n.z() < facing) continue;
+      const Vec3 p = setup.to_setup_frame(samples.points[k]);
+      const ToolAt at = tool_at(tool, p, n);
+      if (!clear(on_part, p, n, at, hints)) out[k] = Reach::Hidden;
+      else if (on_fixture && !clear(*on_fixture, p, n, at, hints + 3)) out[k] = Reach::Fixture;
+      else out[k] = Reach::Reached;
+    }
+  });
+  return out;
+}
+
+}  // namespace rosmill::core::setups
