@@ -4,6 +4,7 @@
 // before left, and with -o written through the checked program pipeline: one program per setup (DIR/NN_setup_S.ngc,
 // tool changes between operations), or one per operation with --per-operation (DIR/NN_NAME.ngc). Prints per operation
 // the material removed, the air-cutting share and the estimated time, and the same for the job.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -22,6 +23,9 @@ struct JobArgs {
   WorkOffsetArgs work_offset;
 };
 
+// A length as printed to three decimals, without a "-0.000" from rounding.
+double shown(double mm) { return std::abs(mm) < 5e-4 ? 0.0 : mm; }
+
 void run(const JobArgs& a) {
   const job::JobSpec spec = job::read_job(a.file);
   const ToolTable tools = read_tool_table(a.tools.empty() ? default_config("tools.yaml") : a.tools);
@@ -33,7 +37,9 @@ void run(const JobArgs& a) {
   o.per_operation = a.per_operation;
   o.dialect = a.dialect;
   o.work_offset = work_offset_of(a.work_offset);
-  if (!a.out.empty()) o.checks.machine = machine_to_check(a.machine, a.no_limits);
+  // The machine checks the programs and places each setup's fixture and datum on its table (its work offset).
+  if (!a.out.empty() || (!a.no_limits && (!a.machine.empty() || std::filesystem::exists(default_config("machine.yaml")))))
+    o.checks.machine = machine_to_check(a.machine, a.no_limits);
   // The machine's accelerations time the moves and its clearance over the stock is what links keep over it,
   // whether or not programs are written (with --no-limits, when there is a machine file).
   if (!a.no_limits || !a.machine.empty() || std::filesystem::exists(default_config("machine.yaml"))) {
@@ -47,6 +53,23 @@ void run(const JobArgs& a) {
     return;
   }
   std::printf("job %s: stock %.0f mm3 (model %.1f MB)\n", a.file.c_str(), r.stock_mm3, r.stock_bytes / 1e6);
+  for (size_t k = 0; k < r.setups.size(); ++k) {
+    const job::SetupReport& s = r.setups[k];
+    const std::string offset = s.work_offset ? s.work_offset->code() : "G54 as set";
+    std::printf("setup %zu %-8s %s down, %s; datum %s, %s", k + 1, s.name.c_str(), s.face_down.c_str(),
+                s.fixture.description.c_str(), job::datum_name(s.datum), offset.c_str());
+    if (s.work_offset)
+      std::printf(" at machine %.3f %.3f %.3f", shown(s.work_offset->origin.x()), shown(s.work_offset->origin.y()),
+                  shown(s.work_offset->origin.z()));
+    if (s.finished_area > 0) std::printf("; finishes %.0f mm2", s.finished_area);
+    std::printf("\n");
+  }
+  if (r.part_area > 0) {
+    std::printf("no setup machines %.0f of %.0f mm2 of the part\n", r.unreachable_area, r.part_area);
+    for (const setups::Unreached& u : r.unreachable)
+      std::printf("    %-11s %9.1f mm2 on patch %u around %.2f %.2f %.2f\n", u.reason.c_str(), u.area, u.patch,
+                  u.centroid.x(), u.centroid.y(), u.centroid.z());
+  }
   std::printf("%-3s %-16s %-12s %-10s %-5s %9s %12s %6s %9s %17s %s\n", "#", "operation", "strategy", "tool",
               "setup", "moves", "removed mm3", "air %", "time s", "left on part mm", "program");
   for (size_t k = 0; k < r.operations.size(); ++k) {
@@ -56,6 +79,7 @@ void run(const JobArgs& a) {
                 100 * op.air_cut_share, op.time_s, op.min_left_mm, op.max_left_mm, op.program.c_str());
     if (op.collision_line)
       std::printf("    rapid into material at toolpath move %u\n", op.collision_line);
+    if (op.nothing_to_cut) std::printf("    nothing left to cut: not planned\n");
     if (op.gouge_mm > 0)
       std::printf("    cuts %.3f mm below the design at toolpath move %u (the verifier)\n", op.gouge_mm, op.gouge_move);
   }

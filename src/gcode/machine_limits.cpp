@@ -87,6 +87,14 @@ MachineLimits parse_machine_limits(const std::string& yaml_text, const std::stri
   m.max_spindle_rpm = positive(root, "max_spindle_rpm", path);
   m.clearance_over_stock = number(root["clearance_over_stock"], "clearance_over_stock", path);
   if (m.clearance_over_stock < 0) throw Error(path, "field 'clearance_over_stock' must be >= 0");
+  m.fixture_position = m.work_offset.origin.head<2>();
+  if (const YAML::Node fp = root["fixture_position"]) {
+    if (!fp.IsSequence() || fp.size() != 2) throw Error(path, "field 'fixture_position' must be [x, y]");
+    for (int a = 0; a < 2; ++a) m.fixture_position[a] = number(fp[a], "fixture_position", path);
+    for (int a = 0; a < 2; ++a)
+      if (m.fixture_position[a] < m.envelope.min[a] || m.fixture_position[a] > m.envelope.max[a])
+        throw Error(path, "fixture_position lies outside the envelope");
+  }
   if (const YAML::Node acc = root["max_acceleration"]) {
     if (!acc.IsMap()) throw Error(path, "field 'max_acceleration' must be {x: A, y: A, z: A} (mm/s^2)");
     for (int a = 0; a < 3; ++a) m.max_acceleration[a] = positive(acc, axes[a], path + " max_acceleration");

@@ -9,91 +9,13 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/input_file.hpp"
+#include "rosmill/gcode/work_offset.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
+#include "setup_yaml.hpp"
+#include "yaml_fields.hpp"
 
 namespace rosmill::core::job {
 namespace {
-
-// A mapping of the job file with its place ("operations[2]") for errors that name the file, line and field.
-class Fields {
- public:
-  Fields(const YAML::Node& node, std::string file, std::string place, const std::set<std::string>& known)
-      : node_(node), file_(std::move(file)), place_(std::move(place)) {
-    if (!node.IsMap()) throw Error(where_at(node, ""), "expected a mapping of fields");
-    for (const auto& kv : node) {
-      const std::string key = kv.first.Scalar();
-      if (!known.count(key)) {
-        std::string list;
-        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-        throw Error(where_at(kv.first, key), "unknown field (expected one of " + list + ")");
-      }
-    }
-  }
-
-  bool has(const std::string& key) const { return static_cast<bool>(node_[key]); }
-  YAML::Node node(const std::string& key) const { return node_[key]; }
-  std::string where(const std::string& key) const { return where_at(node_[key] ? node_[key] : node_, key); }
-
-  std::string text(const std::string& key, const std::string& fallback, bool required = false) const {
-    const YAML::Node v = node_[key];
-    if (!v) {
-      if (required) throw Error(where_at(node_, key), "missing (required)");
-      return fallback;
-    }
-    if (!v.IsScalar() || v.Scalar().empty()) throw Error(where_at(v, key), "expected a text");
-    return v.Scalar();
-  }
-
-  // A number in [lo, hi] (NaN when absent and `fallback` is NaN).
-  double number(const std::string& key, double fallback, double lo, double hi) const {
-    const YAML::Node v = node_[key];
-    if (!v) return fallback;
-    const double x = converted<double>(v, key, "expected a number");
-    if (!std::isfinite(x) || x < lo || x > hi) {
-      std::ostringstream m;
-      m << "must lie in [" << lo << ", " << hi << "], got " << v.Scalar();
-      throw Error(where_at(v, key), m.str());
-    }
-    return x;
-  }
-
-  bool flag(const std::string& key, bool fallback) const {
-    const YAML::Node v = node_[key];
-    if (!v) return fallback;
-    return converted<bool>(v, key, "expected true or false");
-  }
-
-  template <class T>
-  T converted(const YAML::Node& v, const std::string& key, const std::string& expected) const {
-    try {
-      return v.as<T>();
-    } catch (const YAML::Exception&) {
-      throw Error(where_at(v, key), expected + (v.IsScalar() ? ", got '" + v.Scalar() + "'" : ""));
-    }
-  }
-
-  std::string where_at(const YAML::Node& at, const std::string& key) const {
-    const std::string field = key.empty() ? place_ : place_.empty() ? key : place_ + "." + key;
-    return file_ + ":" + std::to_string(at.Mark().line + 1) + (field.empty() ? "" : " " + field);
-  }
-
- private:
-  const YAML::Node& node_;
-  std::string file_, place_;
-};
-
-std::string resolve(const std::string& path, const std::string& folder) {
-  if (path.rfind("primitive:", 0) == 0 || path.empty()) return path;
-  const std::filesystem::path p(path);
-  return p.is_absolute() ? path : (std::filesystem::path(folder) / p).lexically_normal().string();
-}
-
-// Whether a named file exists; a name the system cannot look up (too long, a loop of links) is refused at `where`.
-bool file_exists(const std::string& path, const std::string& where) {
-  std::error_code failure;
-  const bool exists = std::filesystem::exists(path, failure);
-  if (failure) throw Error(where, "cannot look up " + path + ": " + failure.message());
-  return exists;
-}
 
 StockSpec read_stock(const YAML::Node& node, const std::string& file, const std::string& folder) {
   const Fields f(node, file, "stock", {"box", "mesh", "cloud", "table_z", "units"});
@@ -121,10 +43,12 @@ StockSpec read_stock(const YAML::Node& node, const std::string& file, const std:
   return s;
 }
 
-// `box_stock`: the stock is the part's box, where a first operation finds no rest material to keep to (a stock
-// scanned after machining, or a casting, may well start with one).
-OperationSpec read_operation(const YAML::Node& node, const std::string& file, size_t index, bool box_stock) {
-  const Fields f(node, file, "operations[" + std::to_string(index) + "]",
+// One operation at `place` ("operations[2]", "setups[1].operations[0]"). `first_on_box`: the first operation of
+// the job on a box stock, where no earlier one left rest material to keep to (a stock scanned after machining, or
+// a casting, may well start with one). `setup_field`: the older form, where an operation names its setup.
+OperationSpec read_operation(const YAML::Node& node, const std::string& file, const std::string& place,
+                             bool first_on_box, bool setup_field) {
+  const Fields f(node, file, place,
                  {"name", "strategy", "tool", "stepover", "stepdown", "allowance", "tolerance", "setup", "rest",
                   "rest_threshold"});
   OperationSpec op;
@@ -136,18 +60,98 @@ OperationSpec read_operation(const YAML::Node& node, const std::string& file, si
   op.stepdown = f.number("stepdown", NAN, 1e-3, 1000);
   op.allowance = f.number("allowance", 0.0, 0, 100);
   op.tolerance = f.number("tolerance", NAN, 1e-6, 10);
+  if (f.has("setup") && !setup_field)
+    throw Error(f.where("setup"), "an operation of a job with setups runs in its setup (give it there)");
   op.setup = f.text("setup", "+Z");
   op.rest = f.flag("rest", false);
   op.rest_threshold = f.number("rest_threshold", 0.1, 0, 100);
   if (f.has("rest_threshold") && !op.rest)
     throw Error(f.where("rest_threshold"), "only a rest operation (rest: true) has one");
-  if (op.rest && index == 0 && box_stock)
+  if (op.rest && first_on_box)
     throw Error(f.where("rest"), "the first operation on a box stock has no earlier one to leave rest material (a "
                                  "stock scanned after machining, stock: {cloud: FILE}, may start with a rest operation)");
   return op;
 }
 
+std::vector<OperationSpec> read_operations(const Fields& f, const std::string& file, const std::string& place,
+                                           bool box_stock_first, bool setup_field) {
+  const YAML::Node ops = f.node("operations");
+  if (!ops) throw Error(f.where("operations"), "missing (required): the operations in machining order");
+  if (!ops.IsSequence() || ops.size() == 0) throw Error(f.where("operations"), "expected a list of operations");
+  std::vector<OperationSpec> out;
+  for (size_t k = 0; k < ops.size(); ++k)
+    out.push_back(read_operation(ops[k], file, (place.empty() ? "" : place + ".") + "operations[" +
+                                                   std::to_string(k) + "]",
+                                 box_stock_first && k == 0, setup_field));
+  return out;
+}
+
+// The job's defaults for every setup: its fixture, datum and overlap.
+SetupSpec read_defaults(const Fields& f, const std::string& file, Datum datum) {
+  SetupSpec d;
+  if (f.has("fixture")) d.fixture = read_fixture(f.node("fixture"), file, "fixture");
+  d.datum = read_datum(f, "datum", datum);
+  d.overlap = f.number("overlap", 1.0, 0, 100);
+  return d;
+}
+
+SetupSpec read_setup(const YAML::Node& node, const std::string& file, size_t index, const SetupSpec& defaults,
+                     const JobSpec& job, std::vector<OperationSpec>& ops) {
+  const std::string place = "setups[" + std::to_string(index) + "]";
+  const Fields f(node, file, place, {"name", "direction", "fixture", "datum", "overlap", "operations"});
+  SetupSpec s = defaults;
+  s.line = node.Mark().line + 1;
+  if (!f.has("direction")) throw Error(f.where(""), "direction: missing (required): +Z, -X, ... or [x, y, z]");
+  s.direction = read_direction(f, "direction", s.name);
+  s.name = f.text("name", s.name);
+  if (f.has("fixture")) s.fixture = read_fixture(f.node("fixture"), file, place + ".fixture");
+  s.datum = read_datum(f, "datum", defaults.datum);
+  s.overlap = f.number("overlap", defaults.overlap, 0, 100);
+  for (OperationSpec& op :
+       read_operations(f, file, place, index == 0 && job.stock.kind == StockSpec::Kind::Box, false)) {
+    op.setup = s.name;
+    op.setup_index = index;
+    ops.push_back(op);
+  }
+  return s;
+}
+
+// The older form: consecutive operations of one setup are that setup (the part's own origin when it is the only one).
+void setups_of_operations(JobSpec& job, const Fields& f) {
+  for (size_t k = 0; k < job.operations.size(); ++k) {
+    OperationSpec& op = job.operations[k];
+    if (k == 0 || op.setup != job.operations[k - 1].setup) {
+      SetupSpec s = job.setup_defaults;
+      const SetupFrame named =
+          named_setup(op.setup, job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "].setup");
+      s.direction = named.tool_axis;
+      s.name = named.name;
+      s.line = op.line;
+      job.setups.push_back(s);
+    }
+    op.setup = job.setups.back().name;
+    op.setup_index = job.setups.size() - 1;
+  }
+  if (!f.has("datum") && job.setups.size() == 1) job.setups[0].datum = Datum::Workpiece;
+}
+
 }  // namespace
+
+const char* datum_name(Datum d) {
+  switch (d) {
+    case Datum::Workpiece: return "workpiece";
+    case Datum::TopCentre: return "top-centre";
+    case Datum::Corner: return "corner";
+  }
+  return "?";
+}
+
+SetupSpec default_setup(const JobSpec& job, const Vec3& direction) {
+  SetupSpec s = job.setup_defaults;
+  s.direction = direction.normalized();
+  s.name = setup_name_of(s.direction);
+  return s;
+}
 
 JobSpec parse_job(const std::string& text, const std::string& name, const std::string& folder) {
   YAML::Node root;
@@ -156,7 +160,9 @@ JobSpec parse_job(const std::string& text, const std::string& name, const std::s
   } catch (const YAML::Exception& e) {
     throw Error(name + ":" + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg);
   }
-  const Fields f(root, name, "", {"part", "units", "resolution", "rapid_feed", "stock", "operations"});
+  const Fields f(root, name, "",
+                 {"part", "units", "resolution", "rapid_feed", "stock", "operations", "setups", "fixture", "datum",
+                  "overlap", "held_face", "auto"});
   JobSpec job;
   job.source = name;
   job.part = resolve(f.text("part", "", true), folder);
@@ -166,10 +172,40 @@ JobSpec parse_job(const std::string& text, const std::string& name, const std::s
   job.resolution = f.number("resolution", 0.5, 0.01, 100);
   job.rapid_feed = f.number("rapid_feed", 5000.0, 1, 1e6);
   if (f.has("stock")) job.stock = read_stock(f.node("stock"), name, folder);
-  const YAML::Node ops = f.node("operations");
-  if (!ops) throw Error(f.where("operations"), "missing (required): the operations in machining order");
-  if (!ops.IsSequence() || ops.size() == 0) throw Error(f.where("operations"), "expected a list of operations");
-  for (size_t k = 0; k < ops.size(); ++k) job.operations.push_back(read_operation(ops[k], name, k, job.stock.kind == StockSpec::Kind::Box));
+  const bool box = job.stock.kind == StockSpec::Kind::Box;
+  job.setup_defaults = read_defaults(f, name, Datum::TopCentre);
+  const YAML::Node setups = f.node("setups");
+  const bool automatic = setups && setups.IsScalar() && setups.Scalar() == "auto";
+  if (f.has("auto") && !automatic) throw Error(f.where("auto"), "only a job with setups: auto has one");
+  if (f.has("held_face") && !setups)
+    throw Error(f.where("held_face"), "only a job with setups (a list, or auto) has one");
+  if (f.has("held_face")) {
+    std::string unused;
+    job.auto_options.held_face = read_direction(f, "held_face", unused);
+  }
+  if (!setups) {
+    job.finish_by_setup = false;
+    job.operations = read_operations(f, name, "", box, true);
+    setups_of_operations(job, f);
+  } else if (automatic) {
+    job.auto_setups = true;
+    job.operations = read_operations(f, name, "", box, false);
+    if (f.has("auto")) {
+      const Fields a(f.node("auto"), name, "auto", {"tool", "min_gain"});
+      job.auto_options.tool = a.text("tool", "");
+      job.auto_options.min_gain = a.number("min_gain", job.auto_options.min_gain, 0, 0.5);
+    }
+  } else {
+    if (!setups.IsSequence() || setups.size() == 0)
+      throw Error(f.where("setups"), "expected auto or a list of setups, each with a direction and its operations");
+    if (f.has("operations"))
+      throw Error(f.where("operations"), "a job with setups gives each setup its operations");
+    for (size_t k = 0; k < setups.size(); ++k)
+      job.setups.push_back(read_setup(setups[k], name, k, job.setup_defaults, job, job.operations));
+  }
+  if (job.setups.size() > size_t(gcode::kWorkOffsets))
+    throw Error(f.where("setups"), std::to_string(job.setups.size()) + " setups, more than the six work offsets "
+                                                                       "(G54..G59) a program can set");
   return job;
 }
 

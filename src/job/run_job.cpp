@@ -7,18 +7,23 @@
 #include <filesystem>
 #include <tuple>
 
+#include "job_setup.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/planner/plan_request.hpp"
-#include "rosmill/stock/design_height.hpp"
-#include "rosmill/stock/in_process_stock.hpp"
+#include "rosmill/segment/surface_patches.hpp"
+#include "rosmill/stock/fixture_collision.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
 #include "rosmill/verify/verify.hpp"
 
 namespace rosmill::core::job {
 namespace {
+
+// Material above the design and the allowance thinner than this (mm) is nothing left to cut: the stock model's
+// own rounding is well below it, a cut of it well above the finest tolerance anyone mills to.
+constexpr double kNothingLeft = 0.01;
 
 double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -63,30 +68,18 @@ std::string program_path(const std::string& dir, size_t index, const std::string
   return (std::filesystem::path(dir) / (prefix + safe + ".ngc")).string();
 }
 
-// The stock seen from a setup and the design's top over the same cells.
-struct PartView {
-  stock::HeightField stock;
-  std::vector<float> design;
-  Mesh part;  // in the setup's frame
-  // A cell of the part: the design stands there above the floor, and the stock has material.
-  bool on_part(size_t c) const {
-    return design[c] > stock.bottom + 1e-6 && stock.top[c] != stock::kNoMaterial;
-  }
-};
-
-PartView part_view(const stock::InProcessStock& stock, const Mesh& part, const SetupFrame& setup) {
-  PartView v{stock.view(setup), {}, placed(part, setup.placement)};
-  v.design = stock::design_heights(v.part, v.stock.grid, v.stock.bottom);
-  return v;
+// A cell of the setup's view where the design stands above the floor and the stock has material.
+bool on_part(const JobSetup& s, const stock::HeightField& view, size_t c) {
+  return s.design[c] > s.floor + 1e-6 && view.top[c] != stock::kNoMaterial;
 }
 
-// The least and the most material the stock leaves on the part, seen from the operation's setup: the stock's top
-// minus the design's, over the cells the design covers (above the floor it stands on). Negative: a gouge.
-std::pair<double, double> material_left(const PartView& v) {
+// The least and the most material the stock leaves on the part, seen from the setup: the stock's top minus the
+// design's, over the cells the design covers (above the floor it stands on). Negative: a gouge.
+std::pair<double, double> material_left(const JobSetup& s, const stock::HeightField& view) {
   double lo = INFINITY, hi = -INFINITY;
-  for (size_t c = 0; c < v.design.size(); ++c) {
-    if (!v.on_part(c)) continue;
-    const double left = double(v.stock.top[c]) - v.design[c];
+  for (size_t c = 0; c < s.design.size(); ++c) {
+    if (!on_part(s, view, c)) continue;
+    const double left = double(view.top[c]) - s.design[c];
     lo = std::min(lo, left);
     hi = std::max(hi, left);
   }
@@ -96,35 +89,143 @@ std::pair<double, double> material_left(const PartView& v) {
 // The deepest cut below the design by the operation's program and the toolpath move that made it (0: none), from
 // the verifier, which sweeps the program over a fresh height field of the part in the setup's frame, apart from
 // the stock the operations carry: a second opinion on the gouge that the stock's material left gives.
-std::pair<double, uint32_t> verified_gouge(const PartView& v, const stock::MachineProgram& program, double cell) {
+std::pair<double, uint32_t> verified_gouge(const JobSetup& s, const stock::MachineProgram& program, double cell) {
   if (program.moves.empty()) return {0.0, 0};
   verify::VerifyOptions o;
   o.resolution = cell;
-  const verify::DeviationReport d = verify::verify_program(v.part, program, verify::StockSpec{}, o).report;
+  const verify::DeviationReport d = verify::verify_program(s.part, program, verify::StockSpec{}, o).report;
   return {d.gouged ? d.max_gouge_mm : 0.0, d.gouged ? d.gouge_source : 0};
 }
 
-// What planning is told of the stock: its top from the operation's setup and, for a rest operation, the cells of
-// the part where more than the allowance and the threshold is left. Returns the number of rest cells.
-size_t material_for(const PartView& v, const OperationSpec& op, MaterialTop& m) {
-  const stock::GridSpec& g = v.stock.grid;
+// What planning is told of the stock: its top from the setup (and the fixture's, which links clear), the top of the
+// material the operation may remove (above the design and the allowance by more than kNothingLeft), and the cells
+// it keeps to: the faces its setup finishes (finishing), and, for a rest operation, where more than the allowance
+// and the threshold is left. Returns the cells with material to remove where the operation works.
+size_t material_for(const JobSetup& s, const stock::HeightField& view, const OperationSpec& op, bool roughing,
+                    MaterialTop& m, size_t& rest_cells) {
+  const stock::GridSpec& g = view.grid;
   m.x0 = g.x0, m.y0 = g.y0, m.cell = g.cell, m.nx = g.nx, m.ny = g.ny;
-  m.top = v.stock.top;
-  m.rest.clear();
-  if (!op.rest) return 0;
-  // The cells where the design stands and the stock left more than the allowance and the threshold over the
-  // design's highest within the cell (its centre height would make every steep flank rest material).
-  const std::vector<float> high = stock::design_highest_in_cells(v.part, g, v.stock.bottom, v.design);
-  m.rest.assign(m.top.size(), 0);
-  size_t n = 0;
-  for (size_t c = 0; c < m.top.size(); ++c)
-    n += m.rest[c] = v.on_part(c) && m.top[c] - high[c] > op.allowance + op.rest_threshold;
-  return n;
+  m.top = view.top;
+  m.fixture = s.fixture_top;
+  m.cut.assign(m.top.size(), -INFINITY);
+  m.keep.clear();
+  const bool by_faces = !roughing && !s.faces.empty();
+  if (by_faces || op.rest) m.keep.assign(m.top.size(), 0);
+  size_t work = 0;
+  rest_cells = 0;
+  for (size_t c = 0; c < m.top.size(); ++c) {
+    // The design's highest within the cell (its centre height would make every steep flank material to cut).
+    const bool above = m.top[c] - s.design_high[c] > op.allowance + kNothingLeft;
+    if (above) m.cut[c] = m.top[c];
+    const bool rest = op.rest && on_part(s, view, c) && m.top[c] - s.design_high[c] > op.allowance + op.rest_threshold;
+    rest_cells += rest;
+    if (!m.keep.empty()) m.keep[c] = (!by_faces || s.faces[c]) && (!op.rest || rest);
+    work += above && (m.keep.empty() || m.keep[c]);
+  }
+  return work;
 }
 
-// The job's programs: one per run of operations in the same setup (the part stays clamped; the tools change with
-// M6 T between them), or one per operation on request. Every program is prepared and checked before any is
-// written, so a job that fails a check leaves no program behind.
+// Plans one operation in its setup on the stock as it is; `nothing` tells when it had nothing to cut.
+Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const JobSpec& job, const OperationSpec& op,
+                   const JobOptions& options, const std::string& where, const PlanProgress& progress,
+                   OperationReport& r) {
+  const PlanKind kind = plan_kind(op.strategy, options.presets, where + ".strategy");
+  PlanningRequest request;
+  // The part is already turned: the planner gets it in the setup's frame (a strategy that slices the mesh sees
+  // the part alone; every other the part with the fixture kept clear of).
+  if (kind.needs_mesh) request.input.mesh = &s.part;
+  else request.input.surface = &s.surface();
+  request.strategy = op.strategy;
+  request.presets = options.presets;
+  try {
+    request.params.tool = resolve_tool(op.tool, options.tools);
+  } catch (const Error& e) {
+    throw Error(where + ".tool", e.what());
+  }
+  request.params.stepover = op.stepover;
+  request.params.stepdown = op.stepdown;
+  request.params.allowance = op.allowance;
+  if (!std::isnan(op.tolerance)) request.params.tolerance = op.tolerance;
+  if (job.stock.kind == StockSpec::Kind::Box) request.params.stock_margin = job.stock.margin;
+  if (s.stock_mesh) request.params.stock_mesh = &*s.stock_mesh;
+  request.params.link_clearance = options.link_clearance;
+  request.progress = progress;
+  r.tool = request.params.tool.name;
+  r.tool_used = request.params.tool;
+  if (!options.plan_on_stock) return plan(request);
+  MaterialTop material;
+  const size_t work = material_for(s, stock.view(s.report.frame), op, kind.roughing, material, r.rest_cells);
+  request.params.material = &material;
+  // Roughing (and rest machining) with nothing above the design and the allowance where it works: no move at all,
+  // not passes in air. A finishing operation runs: material left on a wall, beside the tool axis, does not show
+  // in the stock's top seen along it.
+  if (work == 0 && (kind.roughing || op.rest)) {
+    r.nothing_to_cut = true;
+    return {};
+  }
+  return plan(request);
+}
+
+// The job's setups: as the job names them, or chosen from the segmentation; and who finishes which faces.
+struct Setups {
+  std::vector<SetupSpec> specs;
+  std::vector<OperationSpec> operations;
+  std::optional<setups::SetupChoice> faces;
+};
+
+Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProcessStock& stock,
+                      const JobOptions& options) {
+  Setups out;
+  out.specs = job.setups;
+  out.operations = job.operations;
+  if (!job.auto_setups && !job.finish_by_setup) return out;
+  // The finishing tool's reach decides who finishes what: the last operation's tool (auto: the one named).
+  setups::ChoiceOptions o;
+  const std::string tool = !job.auto_options.tool.empty() ? job.auto_options.tool : job.operations.back().tool;
+  try {
+    o.tool = resolve_tool(tool, options.tools);
+  } catch (const Error& e) {
+    throw Error(job.source + " auto.tool", e.what());
+  }
+  o.min_gain_share = job.auto_options.min_gain;
+  o.held_face = job.auto_options.held_face;
+  o.stock = stock.bounds_in(SetupFrame{});
+  if (job.auto_setups && job.setup_defaults.fixture.kind != fixture::FixtureSpec::Kind::None)
+    o.fixture = job.setup_defaults.fixture;
+  if (!job.auto_setups) {
+    o.search = false;
+    for (const SetupSpec& s : job.setups) o.directions.push_back(s.direction);
+  }
+  const segment::SurfacePatches patches = segment::segment_surface(part);
+  out.faces = setups::choose_setups(part, patches, o);
+  if (!job.auto_setups) return out;
+  if (out.faces->setups.empty()) throw Error(job.source + " setups", "no candidate setup reaches the part");
+  if (out.faces->setups.size() > size_t(gcode::kWorkOffsets))
+    throw Error(job.source + " setups", std::to_string(out.faces->setups.size()) +
+                                           " setups chosen, more than the six work offsets (G54..G59)");
+  out.specs.clear();
+  out.operations.clear();
+  for (const setups::ChosenSetup& c : out.faces->setups) {
+    SetupSpec s = default_setup(job, c.direction);
+    s.name = c.name == "custom" ? "custom " + std::to_string(out.specs.size() + 1) : c.name;
+    for (OperationSpec op : job.operations) {
+      op.setup = s.name;
+      op.setup_index = out.specs.size();
+      out.operations.push_back(op);
+    }
+    out.specs.push_back(s);
+  }
+  return out;
+}
+
+std::string setup_note(const SetupReport& s, size_t index) {
+  return "for setup " + std::to_string(index + 1) + " (" + s.name + "): the datum, " + datum_name(s.datum) +
+         " of the stock, with the part " + s.face_down + " down in its fixture";
+}
+
+// The job's programs: one per setup (the part stays clamped; the tools change with M6 T between its operations),
+// or one per operation on request, each setting its setup's work offset. Every program is prepared and checked
+// before any is written, so a job that fails a check leaves no program behind.
 void write_programs(const JobSpec& job, const std::vector<Job>& planned, const JobOptions& options,
                     JobReport& report) {
   std::vector<std::pair<std::string, gcode::Program>> programs;
@@ -132,17 +233,26 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
   // the material need not clear the whole stock's top.
   gcode::ProgramChecks checks = options.checks;
   checks.limits.rapids_checked_by_stock = true;
-  for (const auto& [first, end] : program_groups(job, planned.size(), options.per_operation)) {
+  for (const auto& [first, end] : program_groups(report, options.per_operation)) {
     Job toolpaths;
     for (size_t k = first; k < end; ++k) toolpaths.insert(toolpaths.end(), planned[k].begin(), planned[k].end());
-    const std::string name =
-        options.per_operation ? job.operations[first].name : "setup " + job.operations[first].setup;
+    if (toolpaths.empty()) continue;  // its operations had nothing to cut
+    const size_t index = report.operations[first].setup_index;
+    SetupReport& setup = report.setups[index];
+    const std::string name = options.per_operation ? report.operations[first].name : "setup " + setup.name;
     const std::string path = program_path(options.out_dir, programs.size(), name);
     gcode::PostOptions post = gcode::post_options_for(options.dialect);
-    post.title = "rosmill job " + job.source + ": " + name;
-    post.work_offset = options.work_offset;
-    programs.emplace_back(path, gcode::prepare_program(toolpaths, post, checks).program);
+    post.title = "rosmill job " + job.source + ": " + name + ", " + setup.face_down + " down, " +
+                 setup.fixture.description;
+    post.work_offset = setup.work_offset;
+    post.work_offset_note = setup_note(setup, index);
+    try {
+      programs.emplace_back(path, gcode::prepare_program(toolpaths, post, checks).program);
+    } catch (const Error& e) {
+      throw Error("setup " + std::to_string(index + 1) + " (" + setup.name + ") program", e.what());
+    }
     for (size_t k = first; k < end; ++k) report.operations[k].program = path;
+    setup.program = path;
   }
   std::filesystem::create_directories(options.out_dir);
   for (const auto& [path, program] : programs) gcode::write_program(path, program);
@@ -150,11 +260,12 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
 
 }  // namespace
 
-std::vector<std::pair<size_t, size_t>> program_groups(const JobSpec& job, size_t operations, bool per_operation) {
+std::vector<std::pair<size_t, size_t>> program_groups(const JobReport& report, bool per_operation) {
   std::vector<std::pair<size_t, size_t>> groups;
-  for (size_t first = 0; first < operations;) {
+  const auto& ops = report.operations;
+  for (size_t first = 0; first < ops.size();) {
     size_t end = first + 1;
-    while (!per_operation && end < operations && job.operations[end].setup == job.operations[first].setup) ++end;
+    while (!per_operation && end < ops.size() && ops[end].setup_index == ops[first].setup_index) ++end;
     groups.emplace_back(first, end);
     first = end;
   }
@@ -168,60 +279,62 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   stock::InProcessStock stock = raw_stock(job, part, stock_mesh ? &*stock_mesh : nullptr);
   JobReport report;
   report.stock_mm3 = stock.volume();
+  const Setups setups = resolve_setups(job, part, stock, options);
+  if (options.work_offset && setups.specs.size() > 1)
+    throw Error(job.source, "a registered work offset places the part of one setup; this job has " +
+                                std::to_string(setups.specs.size()));
+  if (setups.faces) {
+    report.setups_chosen = job.auto_setups;
+    report.part_area = setups.faces->total_area;
+    report.unreachable_area = setups.faces->unreachable_area;
+    report.unreachable = setups.faces->unreachable;
+  }
+  const SetupContext context{job, options, part, stock_mesh ? &*stock_mesh : nullptr,
+                             setups.faces ? &*setups.faces : nullptr, 0};
   double feed_mm = 0, air_mm = 0;
   std::vector<Job> planned;  // each operation's toolpaths, for the programs
+  std::optional<JobSetup> setup;
   const auto go_on = [&](size_t k, double fraction) { return !options.progress || options.progress(k, fraction); };
-  for (size_t k = 0; k < job.operations.size(); ++k) {
+  for (size_t k = 0; k < setups.operations.size(); ++k) {
     if (!go_on(k, 0.0)) {
       report.cancelled = true;
       break;
     }
-    const OperationSpec& op = job.operations[k];
+    const OperationSpec& op = setups.operations[k];
+    if (!setup || op.setup_index != report.setups.size() - 1) {
+      SetupContext c = context;
+      c.chosen = op.setup_index;
+      setup = begin_setup(setups.specs[op.setup_index], op.setup_index, stock, c);
+      setup->report.source = job.auto_setups ? setups.faces->setups[op.setup_index].source : "given";
+      report.setups.push_back(setup->report);
+    }
     const std::string where = job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "]";
     OperationReport r;
     r.name = op.name;
     r.strategy = op.strategy;
     r.setup = op.setup;
+    r.setup_index = op.setup_index;
     r.rest = op.rest;
-    PlanningRequest request;
-    request.input.mesh = &part;
-    request.input.setup = named_setup(op.setup, where + ".setup");
-    request.strategy = op.strategy;
-    request.presets = options.presets;
-    check_plan_name(op.strategy, options.presets, where + ".strategy");
-    try {
-      request.params.tool = resolve_tool(op.tool, options.tools);
-    } catch (const Error& e) {
-      throw Error(where + ".tool", e.what());
-    }
-    request.params.stepover = op.stepover;
-    request.params.stepdown = op.stepdown;
-    request.params.allowance = op.allowance;
-    if (!std::isnan(op.tolerance)) request.params.tolerance = op.tolerance;
-    if (job.stock.kind == StockSpec::Kind::Box) request.params.stock_margin = job.stock.margin;
-    if (stock_mesh) request.params.stock_mesh = &*stock_mesh;
-    // Every operation plans on the material the ones before left (and the raw stock's real shape).
-    MaterialTop material;
-    const size_t rest_cells = material_for(part_view(stock, part, request.input.setup), op, material);
-    if (options.plan_on_stock) request.params.material = &material;
-    request.params.link_clearance = options.link_clearance;
-    r.tool = request.params.tool.name;
     // Planning takes the first 90 % of an operation's progress, the removal from the stock the rest.
     bool stopped = false;
-    request.progress = [&](double f) { return !(stopped = !go_on(k, 0.9 * f)); };
+    const PlanProgress progress = [&](double f) { return !(stopped = !go_on(k, 0.9 * f)); };
     auto t0 = std::chrono::steady_clock::now();
     Job toolpaths;
     try {
-      // A rest operation with no rest material left has nothing to cut.
-      if (!op.rest || rest_cells > 0 || !options.plan_on_stock) toolpaths = plan(request);
+      toolpaths = plan_operation(*setup, stock, job, op, options, where, progress, r);
     } catch (const Error&) {
       if (!stopped) throw;
       report.cancelled = true;
       break;
     }
     r.plan_seconds = since(t0);
+    const SetupReport& sr = report.setups.back();
     const stock::MachineProgram program = stock::program_from_job(toolpaths);
-    const stock::RemovalReport removal = stock.remove(program, request.input.setup);
+    // The tool, its shank or its holder in the fixture is a crash: no program of this job is written.
+    if (const auto hit = stock::first_fixture_collision(program, sr.fixture))
+      throw Error(where + " (" + op.name + ", setup " + sr.name + ")",
+                  hit->message() + " of its toolpaths: move the fixture, grip lower, or leave that area to another setup");
+    const stock::RemovalReport removal = stock.remove(program, sr.frame);
     // A rapid through material is a crash: no program of this job is written.
     if (removal.collided())
       throw Error(where, "a rapid runs into the stock at toolpath move " + std::to_string(removal.first_rapid_source) +
@@ -234,10 +347,9 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     r.air_cut_share = removal.air_cut_share();
     r.collision_line = removal.first_rapid_source;
     r.remove_seconds = removal.seconds;
-    const PartView after = part_view(stock, part, request.input.setup);
-    std::tie(r.min_left_mm, r.max_left_mm) = material_left(after);
-    std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(after, program, job.resolution);
-    r.rest_cells = rest_cells;
+    const stock::HeightField after = stock.view(sr.frame);
+    std::tie(r.min_left_mm, r.max_left_mm) = material_left(*setup, after);
+    std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(*setup, program, job.resolution);
     for (const Toolpath& tp : toolpaths) {
       const ToolpathStats s = toolpath_stats(tp, job.rapid_feed, options.max_acceleration);
       r.cutting_mm += s.cutting_length;
@@ -251,10 +363,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     report.time_s += r.time_s;
     report.min_left_mm = std::min(report.min_left_mm, r.min_left_mm);
     report.gouge_mm = std::max(report.gouge_mm, r.gouge_mm);
+    report.setups.back().operations.push_back(report.operations.size());
+    report.setups.back().time_s += r.time_s;
     report.operations.push_back(r);
     if (options.operation_done)
-      options.operation_done({k, report.operations.back(), planned.back(), request.input.setup, stock, part});
-    if (!go_on(k, 1.0) && k + 1 < job.operations.size()) {
+      options.operation_done({k, report.operations.back(), planned.back(), report.setups.back(), stock, part});
+    if (!go_on(k, 1.0) && k + 1 < setups.operations.size()) {
       report.cancelled = true;
       break;
     }
@@ -265,35 +379,6 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   report.air_cut_share = feed_mm > 0 ? air_mm / feed_mm : 0.0;
   report.stock_bytes = stock.bytes();
   return report;
-}
-
-nlohmann::json to_json(const JobReport& report) {
-  nlohmann::json ops = nlohmann::json::array();
-  for (const OperationReport& r : report.operations) {
-    nlohmann::json o = {{"name", r.name},           {"strategy", r.strategy},
-                        {"tool", r.tool},           {"setup", r.setup},
-                        {"moves", r.moves},         {"cutting_mm", r.cutting_mm},
-                        {"rapid_mm", r.rapid_mm},   {"air_feed_mm", r.air_feed_mm},
-                        {"air_cut_share", r.air_cut_share}, {"removed_mm3", r.removed_mm3},
-                        {"time_s", r.time_s},       {"plan_seconds", r.plan_seconds},
-                        {"rapid_collision_line", r.collision_line},
-                        {"min_left_mm", r.min_left_mm},     {"max_left_mm", r.max_left_mm},
-                        {"gouge_mm", r.gouge_mm},           {"gouge_move", r.gouge_move},
-                        {"rest", r.rest},                   {"rest_cells", r.rest_cells}};
-    if (!r.program.empty()) o["program"] = r.program;
-    ops.push_back(o);
-  }
-  return {{"operations", ops},
-          {"stock_mm3", report.stock_mm3},
-          {"left_mm3", report.left_mm3},
-          {"removed_mm3", report.removed_mm3},
-          {"air_cut_share", report.air_cut_share},
-          {"time_s", report.time_s},
-          {"min_left_mm", report.min_left_mm},
-          {"max_left_mm", report.max_left_mm},
-          {"gouge_mm", report.gouge_mm},
-          {"stock_bytes", report.stock_bytes},
-          {"cancelled", report.cancelled}};
 }
 
 }  // namespace rosmill::core::job

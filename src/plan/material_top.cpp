@@ -21,26 +21,49 @@ void MaterialTop::check(const std::string& where) const {
   if (nx <= 0 || ny <= 0 || top.size() != cells)
     throw Error(where, "the material grid's heights (" + std::to_string(top.size()) + ") do not fill its " +
                            std::to_string(nx) + " x " + std::to_string(ny) + " cells");
-  if (!rest.empty() && rest.size() != cells)
-    throw Error(where, "the rest cells (" + std::to_string(rest.size()) + ") do not fill the material grid");
+  if (!keep.empty() && keep.size() != cells)
+    throw Error(where, "the kept cells (" + std::to_string(keep.size()) + ") do not fill the material grid");
+  if (!fixture.empty() && fixture.size() != cells)
+    throw Error(where, "the fixture's heights (" + std::to_string(fixture.size()) + ") do not fill the material grid");
+  if (!cut.empty() && cut.size() != cells)
+    throw Error(where, "the heights to cut (" + std::to_string(cut.size()) + ") do not fill the material grid");
 }
 
 double MaterialTop::highest() const {
   double h = -INFINITY;
-  for (float t : top) h = std::max(h, double(t));
+  for (size_t c = 0; c < top.size(); ++c) h = std::max(h, standing(c));
   return h;
+}
+
+Box3 MaterialTop::extent() const {
+  Box3 b;
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const float t = top[static_cast<size_t>(j) * nx + i];
+      if (!std::isfinite(t)) continue;
+      b.add(Vec3(x0 + i * cell, y0 + j * cell, t));
+      b.add(Vec3(x0 + (i + 1) * cell, y0 + (j + 1) * cell, t));
+    }
+  return b;
 }
 
 double MaterialTop::highest_along(const Vec2& a, const Vec2& b, double radius) const {
   double h = -INFINITY;
-  cells_near(a, b, radius + cell, [&](size_t c, double) { h = std::max(h, double(top[c])); });
+  cells_near(a, b, radius + cell, [&](size_t c, double) { h = std::max(h, standing(c)); });
   return h;
 }
 
-bool MaterialTop::rest_near(const Vec2& p, double radius) const {
+double MaterialTop::highest_cut_under(const Vec2& p, double radius) const {
+  const std::vector<float>& heights = cut.empty() ? top : cut;
+  double h = -INFINITY;
+  cells_near(p, p, radius + cell, [&](size_t c, double) { h = std::max(h, double(heights[c])); });
+  return h;
+}
+
+bool MaterialTop::keep_near(const Vec2& p, double radius) const {
   bool found = false;
-  if (rest.empty()) return false;
-  cells_near(p, p, radius, [&](size_t c, double) { found = found || rest[c]; });
+  if (keep.empty()) return false;
+  cells_near(p, p, radius, [&](size_t c, double) { found = found || keep[c]; });
   return found;
 }
 

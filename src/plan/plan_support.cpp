@@ -42,8 +42,13 @@ PlanFrame make_frame(const Surface& surface, const PlanParams& params) {
   f.stock.max.z() += params.stock_margin;
   if (params.stock_mesh) f.stock = params.stock_mesh->bbox;
   // A job's material: the levels start at its top and the safe height clears it, however high a scan stands.
-  if (params.material && std::isfinite(params.material->highest()))
+  if (params.material && std::isfinite(params.material->highest())) {
     f.stock.max.z() = std::max(params.material->highest(), f.part.max.z());
+    // Sideways the material's own extent (a stock turned for a setup stands out of the part differently each way).
+    const Box3 m = params.material->extent();
+    f.stock.min.head<2>() = m.min.head<2>().cwiseMin(f.part.min.head<2>());
+    f.stock.max.head<2>() = m.max.head<2>().cwiseMax(f.part.max.head<2>());
+  }
   f.safe_z = f.stock.max.z() + params.safe_clearance;
   return f;
 }

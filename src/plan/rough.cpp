@@ -112,7 +112,7 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
       const Vec2 p = a + s * L.dir;
       L.s.push_back(s);
       L.h.push_back(cl_height(surface, fw, p.x(), p.y()));
-      if (params.material) L.material.push_back(params.material->highest_under(p, R + half));
+      if (params.material) L.material.push_back(params.material->highest_cut_under(p, R + half));
     }
   });
 

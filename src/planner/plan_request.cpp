@@ -6,7 +6,7 @@
 #include "rosmill/cloud/cloud_surface.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
-#include "rosmill/plan/rest_moves.hpp"
+#include "rosmill/plan/kept_moves.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 
 namespace rosmill::core {
@@ -57,11 +57,11 @@ Job run(const StrategyEntry& entry, const std::string& name, const PlanningReque
   const StrategyCall call{entry.needs_mesh ? nullptr : &surface.get(), r.input.mesh, params, progress, &report};
   Job job = entry.function(call);
   // Rest machining: whatever the strategy, only where an earlier tool left rest material.
-  if (params.material && params.material->has_rest()) {
-    RestOptions rest;
+  if (params.material && params.material->keeps()) {
+    KeepOptions rest;
     rest.link_clearance = params.link_clearance;
     rest.approach = params.approach;
-    job = keep_to_rest(job, *params.material, rest);
+    job = keep_to_cells(job, *params.material, rest);
   }
   for (Toolpath& tp : job) tp.strategy = name;
   if (r.reports) {
@@ -90,6 +90,27 @@ double surface_tolerance(const PlanningRequest& r, const Preset* preset) {
 void check_plan_name(const std::string& name, const PresetTable* presets, const std::string& where) {
   if (find_strategy(name) || (presets && (presets->find(name) || presets->find_template(name)))) return;
   throw Error(where, "unknown strategy '" + name + "' (known: " + known_names(presets) + ")");
+}
+
+PlanKind plan_kind(const std::string& name, const PresetTable* presets, const std::string& where) {
+  check_plan_name(name, presets, where);
+  std::vector<std::string> strategies;
+  if (find_strategy(name)) {
+    strategies.push_back(name);
+  } else if (const Preset* p = presets->find(name)) {
+    strategies.push_back(p->strategy);
+  } else {
+    for (const std::string& stage : presets->find_template(name)->stages)
+      strategies.push_back(presets->find(stage)->strategy);
+  }
+  PlanKind k;
+  for (const std::string& s : strategies) {
+    const StrategyEntry* e = find_strategy(s);
+    if (!e) throw Error(where, "unknown strategy '" + s + "'");
+    k.needs_mesh |= e->needs_mesh;
+    k.roughing &= e->roughing;
+  }
+  return k;
 }
 
 namespace {

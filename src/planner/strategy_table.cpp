@@ -31,9 +31,9 @@ const std::vector<StrategyEntry>& strategies() {
        raster_entry},
       {"waterline", "closed z-level finishing loops every step-down", false,
        [](const StrategyCall& c) { return waterline_strategy(*c.surface, c.params, c.progress); }},
-      {"rough", "z-level zigzag area clearing with ramp entry", false, rough_entry},
+      {"rough", "z-level zigzag area clearing with ramp entry", false, rough_entry, true},
       {"grid-rough", "grid-method roughing (Muslimin et al.): levels of the step-down, staircase over the drops",
-       false, [](const StrategyCall& c) { return grid_rough_on(*c.surface, c.params, c.progress, c.report); }},
+       false, [](const StrategyCall& c) { return grid_rough_on(*c.surface, c.params, c.progress, c.report); }, true},
       {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true,
        [](const StrategyCall& c) { return plan_contour(*c.mesh, c.params, c.progress); }},
   };

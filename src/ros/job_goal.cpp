@@ -82,7 +82,7 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
       throw Error("output_dir", "must be an absolute folder, got '" + goal.output_dir + "'");
     std::vector<std::pair<Job, SetupFrame>> planned;  // each operation's toolpaths, for the programs
     options.operation_done = [&](const job::OperationView& view) {
-      planned.emplace_back(view.toolpaths, view.setup);
+      planned.emplace_back(view.toolpaths, view.setup.frame);
       if (context.show) context.show(view);
     };
     const uint32_t operations = static_cast<uint32_t>(spec.operations.size());
@@ -104,7 +104,7 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
     };
     const job::JobReport report = job::run_job(spec, options);
     result = to_job_result(report);
-    for (const auto& [first, end] : job::program_groups(spec, planned.size(), goal.per_operation)) {
+    for (const auto& [first, end] : job::program_groups(report, goal.per_operation)) {
       Job toolpaths;
       for (size_t k = first; k < end; ++k)
         toolpaths.insert(toolpaths.end(), planned[k].first.begin(), planned[k].first.end());

@@ -39,7 +39,7 @@ std_msgs::ColorRGBA material_left_colour(float left, double tolerance, double fu
 const visualization_msgs::MarkerArray& JobMarkers::add_operation(const job::OperationView& view) {
   if (toolpaths_.markers.empty()) toolpaths_.markers.push_back(delete_all_marker(header_));
   const visualization_msgs::MarkerArray op =
-      toolpath_markers(view.toolpaths, view.setup, header_, view.report.name + "/");
+      toolpath_markers(view.toolpaths, view.setup.frame, header_, view.report.name + "/");
   toolpaths_.markers.insert(toolpaths_.markers.end(), op.markers.begin() + 1, op.markers.end());  // not its DELETEALL
   return toolpaths_;
 }
@@ -51,7 +51,7 @@ visualization_msgs::MarkerArray JobMarkers::stock(const job::OperationView& view
     const auto& face = surface.faces[f];
     centres[f] = (surface.vertices[face[0]] + surface.vertices[face[1]] + surface.vertices[face[2]]) / 3.0;
   }
-  const std::vector<float> left = stock::material_left_at(view.stock, view.part, view.setup, centres);
+  const std::vector<float> left = stock::material_left_at(view.stock, view.part, view.setup.frame, centres);
   visualization_msgs::MarkerArray array;
   array.markers.push_back(delete_all_marker(header_));
   visualization_msgs::Marker m = base_marker(header_, "stock", 0, visualization_msgs::Marker::TRIANGLE_LIST);

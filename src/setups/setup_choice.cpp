@@ -151,6 +151,22 @@ Search greedy_search(const Units& u, uint64_t usable, double slack) {
 
 }  // namespace
 
+std::vector<int> facet_setups(const SetupChoice& c, size_t facets) {
+  const size_t n = c.setups.size() + 1;  // the last column: no setup
+  std::vector<double> area(facets * n, 0.0);
+  for (size_t k = 0; k < c.samples.size(); ++k) {
+    const int by = c.machined_by[k];
+    area[c.samples.facets[k] * n + (by < 0 ? n - 1 : size_t(by))] += c.samples.weights[k];
+  }
+  std::vector<int> out(facets, -1);
+  for (size_t f = 0; f < facets; ++f) {
+    const double* a = area.data() + f * n;
+    const size_t best = std::max_element(a, a + n) - a;
+    out[f] = best + 1 == n || a[best] == 0 ? -1 : static_cast<int>(best);
+  }
+  return out;
+}
+
 SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patches, const ChoiceOptions& o) {
   check_has_area(part, "setups: the part");
   check_tool(o.tool, "setups: tool");
@@ -218,11 +234,14 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
   for (size_t k = 0; k < s.size(); ++k) r.total_area += s.weights[k];
   const double slack = o.min_gain_share * r.total_area;
   const bool exhaustive = static_cast<size_t>(__builtin_popcountll(usable)) <= o.exhaustive_limit;
-  const Search found = exhaustive ? exhaustive_search(units, usable, slack) : greedy_search(units, usable, slack);
+  Search found;
+  if (!o.search) found.chosen = usable;
+  else found = exhaustive ? exhaustive_search(units, usable, slack) : greedy_search(units, usable, slack);
   r.exhaustive = found.exhaustive;
   r.subsets = found.compared;
   r.best_cover = cover(units, usable);
   r.search_seconds = since(t1);
+  r.reached = reached;
 
   // The chosen setups, in candidate order, and who machines each sample.
   std::vector<size_t> chosen;

@@ -261,6 +261,21 @@ std::vector<float> InProcessStock::material_above(const Mesh& design, const Setu
   return above;
 }
 
+Box3 InProcessStock::bounds_in(const SetupFrame& setup) const {
+  const GridSpec& g = material_.grid;
+  Box3 b;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const size_t c = g.index(i, j);
+      if (material_.begin(c) == material_.end(c)) continue;
+      const double lo = material_.begin(c)->lo, hi = (material_.end(c) - 1)->hi;
+      for (int k = 0; k < 8; ++k)
+        b.add(setup.to_setup_frame(Vec3(g.x0 + (i + (k & 1)) * g.cell, g.y0 + (j + (k >> 1 & 1)) * g.cell,
+                                        k & 4 ? hi : lo)));
+    }
+  return b;
+}
+
 bool InProcessStock::material_in(const Vec2& lo, const Vec2& hi, double z, const SetupFrame& setup) const {
   if (!lo.allFinite() || !hi.allFinite() || !std::isfinite(z)) throw Error("region", "not finite");
   const GridSpec g = setup_grid(setup);

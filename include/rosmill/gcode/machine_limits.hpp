@@ -22,6 +22,9 @@ struct MachineLimits {
   double clearance_over_stock = 0.0;  // rapids end at least this high over the stock top
   // Per axis (mm/s^2; zero where the file gives none): the time estimate's accelerations.
   Vec3 max_acceleration = Vec3::Zero();
+  // Machine X and Y over which a job's setups centre the stock in its fixture (where the vise sits on the table):
+  // each setup's work offset (G54..G59) is its datum there. The work offset's X and Y unless the file gives it.
+  Vec2 fixture_position = Vec2::Zero();
 };
 
 // Reads and validates the YAML file; throws Error naming the file and the field.

@@ -1,7 +1,10 @@
-// Runs a job: each operation planned on the part in its setup, its moves removed from the in-process stock left
-// by the operations before it, and, when asked, written as a G-code program through the one program pipeline.
-// The report gives per operation and for the job the material removed, the share of the feed path that cut only
-// air, and the machining time estimated from the feeds and the rapid feed.
+// Runs a job: its setups in order (chosen from the segmentation with `setups: auto`), each with the part turned so
+// that its tool axis points up, held in its fixture, its program's zero at its datum; each operation planned in its
+// setup on the in-process stock the operations before left (whatever setup they ran in), kept clear of the
+// fixture, its moves removed from the stock, and, when asked, every setup written as a G-code program that sets its
+// own work offset, through the one program pipeline. Roughing cuts only what is left; a setup's finishing keeps to
+// the faces the setup machines and an overlap band. The report gives per operation, per setup and for the job the
+// material removed, the share of the feed path that cut only air, and the machining time.
 #pragma once
 #include <nlohmann/json.hpp>
 
@@ -11,9 +14,12 @@
 #include <vector>
 
 #include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/fixture/fixture.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/job/job_spec.hpp"
 #include "rosmill/planner/presets.hpp"
+#include "rosmill/setups/setup_choice.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
 
 namespace rosmill::core::job {
@@ -26,8 +32,11 @@ struct JobOptions {
   std::string out_dir;                   // empty: no programs written
   bool per_operation = false;            // one program per operation instead of one per setup
   std::string dialect = "linuxcnc";
-  std::optional<gcode::WorkOffset> work_offset;  // set by every written program (G10 L2 P1); none: G54 as it stands
-  gcode::ProgramChecks checks;           // what every written program is checked against
+  // Where the part was found on the table (a registration): the program of a job's one setup with the workpiece
+  // datum sets G54 there (G10 L2 P1); none: G54 as it stands. A job of several setups is refused with one.
+  std::optional<gcode::WorkOffset> work_offset;
+  gcode::ProgramChecks checks;           // what every written program is checked against; its machine also places
+                                         // each setup's fixture and datum on the table (fixture_position, table_z)
   // Called with the operation's index and the fraction of it done (0 before it starts, 1 when its moves are
   // removed from the stock; in between while it is planned). Returning false cancels the job: the operations
   // finished so far are kept in the report (and their programs written), the rest are not run.
@@ -49,8 +58,11 @@ struct JobOptions {
 
 struct OperationReport {
   std::string name, strategy, tool, setup;
+  Tool tool_used;          // the tool as it ran: its cutter, stick-out and holder (the setup sheet lists them)
+  size_t setup_index = 0;  // into JobReport::setups
   bool rest = false;
   size_t rest_cells = 0;  // a rest operation: the cells of the stock's grid it was sent to
+  bool nothing_to_cut = false;  // no material stood above the design and the allowance where it works: not planned
   size_t moves = 0;
   double cutting_mm = 0, rapid_mm = 0, air_feed_mm = 0, air_cut_share = 0;
   double removed_mm3 = 0, time_s = 0, plan_seconds = 0, remove_seconds = 0;
@@ -64,8 +76,33 @@ struct OperationReport {
   std::string program;          // the written program (with an output folder)
 };
 
+// A setup as the job ran it: what the operator clamps and where the program's zero is.
+struct SetupReport {
+  std::string name;
+  Vec3 direction = Vec3::UnitZ();   // the tool axis, workpiece frame
+  std::string source;               // why it is a setup: "given", or what setup selection saw ("axis", ...)
+  SetupFrame frame;                 // the workpiece in the setup's program frame (the datum at its origin)
+  Datum datum = Datum::TopCentre;
+  Vec3 datum_point = Vec3::Zero();  // the datum in the workpiece frame
+  std::string face_down;            // the face the part stands on: "-Z" (the side opposite the tool axis)
+  Box3 stock;                       // the stock when the setup began, in its frame
+  fixture::Fixture fixture;         // placed, in the setup's frame
+  // The work offset the setup's program sets (G10 L2 Pn, G54..G59: the datum on the machine); none: G54 as the
+  // controller has it (the workpiece datum without a registration).
+  std::optional<gcode::WorkOffset> work_offset;
+  std::vector<size_t> operations;   // indices into JobReport::operations
+  double finished_area = 0;         // mm^2 of the part's faces this setup finishes (0: not bound to faces)
+  double time_s = 0;
+  std::string program;
+};
+
 struct JobReport {
   std::vector<OperationReport> operations;
+  std::vector<SetupReport> setups;
+  // With `setups: auto`, what setup selection found: the surface no setup machines, and why.
+  bool setups_chosen = false;
+  double part_area = 0, unreachable_area = 0;
+  std::vector<setups::Unreached> unreachable;
   double stock_mm3 = 0;       // the raw stock
   double left_mm3 = 0;        // the stock after the job
   double removed_mm3 = 0, air_cut_share = 0, time_s = 0;
@@ -80,17 +117,17 @@ struct JobReport {
 struct OperationView {
   size_t index;
   const OperationReport& report;
-  const Job& toolpaths;  // in the setup's frame
-  const SetupFrame& setup;
+  const Job& toolpaths;          // in the setup's frame
+  const SetupReport& setup;      // its frame, fixture and datum
   const stock::InProcessStock& stock;
-  const Mesh& part;
+  const Mesh& part;              // workpiece frame
 };
 
 JobReport run_job(const JobSpec& job, const JobOptions& options);
 
-// The job's programs as ranges [first, end) of its first `operations` operations: one per run of operations in the
-// same setup (the part stays clamped; the tools change between them), or one per operation.
-std::vector<std::pair<size_t, size_t>> program_groups(const JobSpec& job, size_t operations, bool per_operation);
+// The job's programs as ranges [first, end) of the report's operations: one per setup (the part stays clamped;
+// the tools change between its operations), or one per operation.
+std::vector<std::pair<size_t, size_t>> program_groups(const JobReport& report, bool per_operation);
 
 nlohmann::json to_json(const JobReport& report);
 

@@ -1,8 +1,9 @@
 // The workpiece's material as planning sees it: the top of material per square cell of an XY grid in the plan's
-// frame (minus infinity where a cell has none), and optionally the cells that hold rest material. Planning knows
-// no stock model; a job fills this from its in-process stock seen from the operation's setup, so that roughing
-// cuts only where material is and links low over it, and a rest operation keeps to the material an earlier tool
-// left. A height per cell (not polygons like Region) because that is what the stock is and what every query
+// frame (minus infinity where a cell has none), optionally the top of the material an operation may remove (what
+// stands above the design by more than the allowance) and the cells an operation keeps to (rest material, the faces
+// its setup finishes). Planning knows no stock model; a job fills this from its in-process stock seen from the
+// operation's setup, so that roughing cuts only where material is left to cut and links low over what stands
+// (the fixture too), and a rest or setup-bound operation keeps to its cells. A height per cell (not polygons like Region) because that is what the stock is and what every query
 // here asks: "the highest material under this cutter" is a maximum over the cells the cutter's disc covers.
 #pragma once
 #include <algorithm>
@@ -20,25 +21,35 @@ struct MaterialTop {
   double cell = 1.0;          // cell edge, mm
   int nx = 0, ny = 0;
   std::vector<float> top;     // nx * ny, row by row (j * nx + i): top of material, -infinity where none
-  std::vector<uint8_t> rest;  // empty, or nx * ny: 1 where material stands above the design by more than the
-                              // allowance and the rest threshold (rest machining keeps to these)
+  std::vector<float> cut;     // empty (all of `top`), or nx * ny: the top of the material an operation may remove,
+                              // -infinity where what stands is the design plus the allowance, or the fixture
+  std::vector<float> fixture; // empty, or nx * ny: the top of the fixture holding the part (-infinity where none):
+                              // links and the safe height clear it as they clear the material
+  std::vector<uint8_t> keep;  // empty, or nx * ny: 1 where the operation's moves are kept (kept_moves.hpp): rest
+                              // material above the design by more than the allowance and the rest threshold, or
+                              // the faces the operation's setup finishes
 
   // Throws Error naming `where` when the sizes disagree or the cell is not a positive number.
   void check(const std::string& where) const;
-  bool has_rest() const { return !rest.empty(); }
-  double highest() const;  // over the whole grid; -infinity when empty
-  // The highest material a cutter of `radius` with its axis on the segment a-b may meet: over the cells whose
+  bool keeps() const { return !keep.empty(); }
+  double highest() const;  // of the material and the fixture over the whole grid; -infinity when empty
+  Box3 extent() const;     // the squares of the cells with material, and their heights (empty without)
+  // What stands in cell c: the material, or the fixture where it is higher.
+  double standing(size_t c) const { return fixture.empty() ? top[c] : std::max(top[c], fixture[c]); }
+  // The highest material (or fixture) a cutter of `radius` with its axis on the segment a-b may meet: over the cells whose
   // centre lies within radius + one cell of the segment (a cell's material may reach half a cell beyond its
   // centre, and its neighbour's another half). -infinity when none.
   double highest_along(const Vec2& a, const Vec2& b, double radius) const;
   double highest_under(const Vec2& p, double radius) const { return highest_along(p, p, radius); }
+  // The same over the material an operation may remove (`cut`, else `top`).
+  double highest_cut_under(const Vec2& p, double radius) const;
   // The lowest tip height at p at which a cutter (`radius`; lift(d): its bottom's height above the tip at distance d
   // from the axis) stands clear of the material at every cell centre under it: what the stock model, which samples
   // the same centres, finds the cutter touching as it comes down there. -infinity when there is no material.
   template <class Lift>
   double clear_height(const Vec2& p, double radius, const Lift& lift) const;
-  // True when a rest cell's centre lies within `radius` of p.
-  bool rest_near(const Vec2& p, double radius) const;
+  // True when a kept cell's centre lies within `radius` of p.
+  bool keep_near(const Vec2& p, double radius) const;
   // What a cutter with its tip at z along a-b has certainly cut: every cell whose whole square lies within the
   // disc swept by `radius` is lowered to at most z + lift(d), d the farthest its square gets from the axis (lift:
   // the cutter's bottom at that distance above its tip; 0 for a flat end mill).
@@ -72,7 +83,7 @@ void MaterialTop::cells_near(const Vec2& a, const Vec2& b, double reach, const F
 template <class Lift>
 double MaterialTop::clear_height(const Vec2& p, double radius, const Lift& lift) const {
   double h = -INFINITY;
-  cells_near(p, p, radius, [&](size_t c, double d) { h = std::max(h, double(top[c]) - lift(d)); });
+  cells_near(p, p, radius, [&](size_t c, double d) { h = std::max(h, standing(c) - lift(d)); });
   return h;
 }
 

@@ -48,4 +48,12 @@ Job plan(const PlanningRequest& request);
 // Throws the error plan() would give for an unknown name.
 void check_plan_name(const std::string& name, const PresetTable* presets, const std::string& where);
 
+// What a strategy, preset or template plans: on the mesh itself rather than a Surface (any of its stages), and
+// whether every stage clears stock in levels (roughing) rather than finishing the surface. Throws like
+// check_plan_name.
+struct PlanKind {
+  bool needs_mesh = false, roughing = true;
+};
+PlanKind plan_kind(const std::string& name, const PresetTable* presets, const std::string& where);
+
 }  // namespace rosmill::core

@@ -29,6 +29,7 @@ struct StrategyEntry {
   std::string description;
   bool needs_mesh = false;  // works on the mesh itself (slices), not through a Surface
   std::function<Job(const StrategyCall&)> function;
+  bool roughing = false;    // clears stock in levels down to the allowance, rather than following the surface
 };
 
 const std::vector<StrategyEntry>& strategies();

@@ -38,6 +38,8 @@ struct ChoiceOptions {
   double spacing = 0.0;             // between samples (mm); 0: about 40,000 samples over the part
   CandidateOptions candidates;
   std::vector<Vec3> directions;     // when given, the candidates instead of the axes, flats and EGI peaks
+  // false: every usable candidate is a setup (a job that names its setups): only who machines what is found.
+  bool search = true;
   size_t exhaustive_limit = 16;
 };
 
@@ -77,11 +79,16 @@ struct SetupChoice {
   std::vector<Unreached> unreachable;
   SurfaceSamples samples;
   std::vector<int> machined_by;  // per sample: the index into `setups` that machines it, -1 none
+  std::vector<uint64_t> reached;  // per sample: bit c set when candidate c reaches it
   bool exhaustive = true;
   uint64_t subsets = 0;       // sets of setups compared
   double reach_seconds = 0, search_seconds = 0;
 };
 
 SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patches, const ChoiceOptions& options);
+
+// Per facet of the part, the chosen setup that machines most of its area (an index into `setups`), -1 for a facet no
+// setup machines: what a view colours the part by.
+std::vector<int> facet_setups(const SetupChoice& choice, size_t facets);
 
 }  // namespace rosmill::core::setups

@@ -65,6 +65,9 @@ class InProcessStock {
   // Material left above the design, per cell of view(setup): the stock's top minus the design's (the mesh in the
   // workpiece frame, turned into the setup's); NaN where there is no material.
   std::vector<float> material_above(const Mesh& design, const SetupFrame& setup = {}) const;
+  // The bounds of the material left, in the setup's frame (each cell's square prism from its lowest to its highest
+  // material turned); empty when nothing is left. What a fixture holds and a datum is found on.
+  Box3 bounds_in(const SetupFrame& setup) const;
   // True when some material stands at or above z over the XY box [lo, hi] (the setup's frame).
   bool material_in(const Vec2& lo, const Vec2& hi, double z, const SetupFrame& setup = {}) const;
 

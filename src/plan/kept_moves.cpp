@@ -1,4 +1,4 @@
-#include "rosmill/plan/rest_moves.hpp"
+#include "rosmill/plan/kept_moves.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -22,7 +22,7 @@ struct Piece {
 class RestWriter {
  public:
   // `m` is copied: it is lowered as the kept moves cut it.
-  RestWriter(Toolpath& out, const MaterialTop& m, const RestOptions& o)
+  RestWriter(Toolpath& out, const MaterialTop& m, const KeepOptions& o)
       : out_(out), m_(m), o_(o), R_(out.tool.cutter.radius()), profile_(out.tool.cutter), pos_(out.start) {}
 
   void begin_pass(const std::string& name) { name_ = name, begun_ = false; }
@@ -99,7 +99,7 @@ class RestWriter {
 
   Toolpath& out_;
   MaterialTop m_;
-  const RestOptions& o_;
+  const KeepOptions& o_;
   double R_;
   CutterProfile profile_;
   Vec3 pos_;
@@ -109,9 +109,9 @@ class RestWriter {
 
 }  // namespace
 
-Toolpath keep_to_rest(const Toolpath& toolpath, const MaterialTop& material, const RestOptions& options) {
-  material.check("rest machining");
-  if (!material.has_rest()) throw Error("rest machining", "the material map has no rest cells");
+Toolpath keep_to_cells(const Toolpath& toolpath, const MaterialTop& material, const KeepOptions& options) {
+  material.check("kept moves");
+  if (!material.keeps()) throw Error("kept moves", "the material map has no cells to keep to");
   Toolpath out = toolpath;
   out.passes.clear();
   RestWriter writer(out, material, options);
@@ -134,10 +134,10 @@ Toolpath keep_to_rest(const Toolpath& toolpath, const MaterialTop& material, con
         continue;
       }
       const int n = std::max(1, static_cast<int>(std::ceil((m.to - from).head<2>().norm() / step)));
-      bool near_prev = material.rest_near(from.head<2>(), reach);
+      bool near_prev = material.keep_near(from.head<2>(), reach);
       for (int k = 1; k <= n; ++k) {
         const Vec3 q = from + (m.to - from) * (double(k) / n);
-        const bool near = material.rest_near(q.head<2>(), reach);
+        const bool near = material.keep_near(q.head<2>(), reach);
         chain.push_back({k == 1 ? from : chain.back().to, q, index, m.type, m.feed, near || near_prev});
         near_prev = near;
       }
@@ -148,9 +148,9 @@ Toolpath keep_to_rest(const Toolpath& toolpath, const MaterialTop& material, con
   return out;
 }
 
-Job keep_to_rest(const Job& job, const MaterialTop& material, const RestOptions& options) {
+Job keep_to_cells(const Job& job, const MaterialTop& material, const KeepOptions& options) {
   Job out;
-  for (const Toolpath& tp : job) out.push_back(keep_to_rest(tp, material, options));
+  for (const Toolpath& tp : job) out.push_back(keep_to_cells(tp, material, options));
   return out;
 }
 

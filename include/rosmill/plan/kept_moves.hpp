@@ -1,6 +1,7 @@
-// Rest machining for any strategy: a toolpath planned over the whole part, kept to where an earlier tool left rest
-// material (MaterialTop::rest). A cutting move is kept where the cutter's axis passes within its radius (plus one
-// cell) of a rest cell; between kept stretches the cutter leaves by a feed up to clear the material it stands in,
+// Any strategy kept to marked cells (MaterialTop::keep): a toolpath planned over the whole part, kept to where an
+// earlier tool left rest material (rest machining), or to the faces a setup of a job finishes (its segments and an
+// overlap band, so that the seams of several setups blend). A cutting move is kept where the cutter's axis passes
+// within its radius (plus one cell) of a marked cell; between kept stretches the cutter leaves by a feed up to clear the material it stands in,
 // a rapid over the material on the way (link_clearance above the highest within its reach, checked along the
 // whole link) and a rapid down to the approach over the material under the cutter and a plunge into the next
 // stretch. A dropped stretch shorter than `bridge` between
@@ -12,14 +13,14 @@
 
 namespace rosmill::core {
 
-struct RestOptions {
+struct KeepOptions {
   double link_clearance = 2.0;  // mm over the material a link keeps
   double approach = 0.5;        // mm over the material under the cutter where the rapid down into a cut stops
   double bridge = NAN;          // mm; NaN: the cutter's diameter
 };
 
-// Throws Error when `material` has no rest cells.
-Toolpath keep_to_rest(const Toolpath& toolpath, const MaterialTop& material, const RestOptions& options = {});
-Job keep_to_rest(const Job& job, const MaterialTop& material, const RestOptions& options = {});
+// Throws Error when `material` has no cells to keep to.
+Toolpath keep_to_cells(const Toolpath& toolpath, const MaterialTop& material, const KeepOptions& options = {});
+Job keep_to_cells(const Job& job, const MaterialTop& material, const KeepOptions& options = {});
 
 }  // namespace rosmill::core

@@ -1,0 +1,155 @@
+#include "job_setup.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <unordered_map>
+
+#include "rosmill/error.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/stock/design_height.hpp"
+
+namespace rosmill::core::job {
+namespace {
+
+// The datum in the turned frame: the stock's top centre or its corner at the lowest x and y on top (the machinist
+// sees the stock from the tool), or the part's own origin.
+Vec3 datum_at(Datum datum, const Box3& stock) {
+  switch (datum) {
+    case Datum::Workpiece: return Vec3::Zero();
+    case Datum::TopCentre: return Vec3(0.5 * (stock.min.x() + stock.max.x()), 0.5 * (stock.min.y() + stock.max.y()),
+                                       stock.max.z());
+    case Datum::Corner: return Vec3(stock.min.x(), stock.min.y(), stock.max.z());
+  }
+  return Vec3::Zero();
+}
+
+std::string face_down(const Vec3& direction) {
+  const std::string n = setup_name_of(-direction);
+  if (n != "custom") return n;
+  char s[96];
+  std::snprintf(s, sizeof s, "the side facing [%.3f, %.3f, %.3f]", -direction.x() + 0.0, -direction.y() + 0.0,
+                -direction.z() + 0.0);
+  return s;
+}
+
+// The setup's work offset: its datum on the machine, the stock centred over the machine's fixture position and
+// standing on the fixture's seat above the table. The workpiece datum keeps G54 where it is (a registration's, or
+// the controller's own).
+std::optional<gcode::WorkOffset> work_offset_of(const SetupReport& s, size_t index, const JobOptions& o) {
+  if (s.datum == Datum::Workpiece) return o.work_offset;
+  gcode::WorkOffset w;
+  w.index = static_cast<int>(index) + 1;
+  const Vec2 at = o.checks.machine ? o.checks.machine->fixture_position : Vec2::Zero();
+  const double table = o.checks.machine ? o.checks.machine->table_z : 0.0;
+  const Vec2 centre = 0.5 * (s.stock.min.head<2>() + s.stock.max.head<2>());
+  w.origin = Vec3(at.x() - centre.x(), at.y() - centre.y(), table - s.fixture.table_z);
+  return w;
+}
+
+// Per cell of the grid, the top of the fixture over its square (-infinity where none).
+std::vector<float> fixture_tops(const fixture::Fixture& f, const stock::GridSpec& g) {
+  std::vector<float> top(g.cells(), -INFINITY);
+  const double half = 0.5 * g.cell;  // a cell whose square the box overlaps, not only its centre
+  for (const fixture::FixtureBox& b : f.boxes)
+    for (int j = g.first_y(b.box.min.y() - half); j <= g.last_y(b.box.max.y() + half); ++j)
+      for (int i = g.first_x(b.box.min.x() - half); i <= g.last_x(b.box.max.x() + half); ++i) {
+        float& t = top[g.index(i, j)];
+        t = std::max(t, static_cast<float>(b.box.max.z()));
+      }
+  return top;
+}
+
+// The fixture's boxes grown by the check clearance, as the surface planning keeps clear of.
+Mesh fixture_check_mesh(const fixture::Fixture& f) {
+  std::vector<Vec3> corners;
+  for (const fixture::FixtureBox& b : f.boxes) {
+    Box3 grown = b.box;
+    grown.min -= Vec3::Constant(kFixtureCheckClearance);
+    grown.max += Vec3::Constant(kFixtureCheckClearance);
+    const std::vector<Vec3> c = box_corners(grown);
+    corners.insert(corners.end(), c.begin(), c.end());
+  }
+  return build_mesh(corners);
+}
+
+// The cells under the faces this setup finishes: the samples setup selection gave it, and those it reaches within
+// `overlap` of them (the band where the setups' finishes meet), projected into the setup's frame.
+std::vector<uint8_t> finished_faces(const setups::SetupChoice& c, size_t chosen, const SetupFrame& frame,
+                                    const stock::GridSpec& g, double overlap, double& area) {
+  const setups::SurfaceSamples& s = c.samples;
+  const uint64_t bit = uint64_t(1) << c.setups[chosen].candidate;
+  const double cell = std::max(overlap, 0.1);
+  const auto key = [cell](const Vec3& p) {
+    const auto q = [cell](double v) { return static_cast<int64_t>(std::floor(v / cell)) & 0x1fffff; };
+    return q(p.x()) << 42 | q(p.y()) << 21 | q(p.z());
+  };
+  std::unordered_map<int64_t, std::vector<uint32_t>> own;
+  for (size_t k = 0; k < s.size(); ++k)
+    if (c.machined_by[k] == static_cast<int>(chosen)) own[key(s.points[k])].push_back(static_cast<uint32_t>(k));
+  const auto near_own = [&](const Vec3& p) {
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto it = own.find(key(p + cell * Vec3(dx, dy, dz)));
+          if (it == own.end()) continue;
+          for (const uint32_t k : it->second)
+            if ((s.points[k] - p).norm() <= overlap) return true;
+        }
+    return false;
+  };
+  std::vector<uint8_t> cells(g.cells(), 0);
+  area = 0;
+  for (size_t k = 0; k < s.size(); ++k) {
+    const bool mine = c.machined_by[k] == static_cast<int>(chosen);
+    if (!mine && !((c.reached[k] & bit) && overlap > 0 && near_own(s.points[k]))) continue;
+    if (mine) area += s.weights[k];
+    const Vec3 p = frame.to_setup_frame(s.points[k]);
+    const double i = std::floor((p.x() - g.x0) / g.cell), j = std::floor((p.y() - g.y0) / g.cell);
+    if (i >= 0 && j >= 0 && i < g.nx && j < g.ny) cells[g.index(int(i), int(j))] = 1;
+  }
+  return cells;
+}
+
+}  // namespace
+
+JobSetup begin_setup(const SetupSpec& spec, size_t index, const stock::InProcessStock& stock,
+                     const SetupContext& c) {
+  const std::string where = c.job.source + (spec.line ? ":" + std::to_string(spec.line) : "") + " setups[" +
+                            std::to_string(index) + "] (" + spec.name + ")";
+  JobSetup s;
+  SetupReport& r = s.report;
+  r.name = spec.name;
+  r.direction = spec.direction;
+  r.datum = spec.datum;
+  r.face_down = face_down(spec.direction);
+  SetupFrame turned = direction_setup(spec.direction, where);
+  turned.name = spec.name;
+  turned.placement.parent = "setup " + spec.name;
+  const Box3 held = stock.bounds_in(turned);
+  if (held.empty()) throw Error(where, "no stock is left to hold");
+  const Vec3 datum = datum_at(spec.datum, held);
+  r.frame = turned.with_origin(datum);
+  r.datum_point = turned.to_workpiece_frame(datum);
+  r.stock = placed(held, Placement{r.frame.placement.parent, turned.placement.parent,
+                                   Eigen::Isometry3d(Eigen::Translation3d(-datum))});
+  r.fixture = fixture::place_fixture(spec.fixture, r.stock, where + " fixture");
+  r.work_offset = work_offset_of(r, index, c.options);
+
+  s.part = placed(c.part, r.frame.placement);
+  if (c.stock_mesh) s.stock_mesh = placed(*c.stock_mesh, r.frame.placement);
+  s.part_surface = std::make_unique<MeshSurface>(s.part);
+  if (!r.fixture.empty()) {
+    s.fixture_surface = std::make_unique<MeshSurface>(fixture_check_mesh(r.fixture));
+    s.checked = std::make_unique<CheckedSurface>(*s.part_surface, *s.fixture_surface);
+  }
+  s.grid = stock.setup_grid(r.frame);
+  const stock::HeightField view = stock.view(r.frame);
+  s.floor = view.bottom;
+  s.design = stock::design_heights(s.part, s.grid, s.floor);
+  s.design_high = stock::design_highest_in_cells(s.part, s.grid, s.floor, s.design);
+  if (!r.fixture.empty()) s.fixture_top = fixture_tops(r.fixture, s.grid);
+  if (c.faces) s.faces = finished_faces(*c.faces, c.chosen, r.frame, s.grid, spec.overlap, r.finished_area);
+  return s;
+}
+
+}  // namespace rosmill::core::job
