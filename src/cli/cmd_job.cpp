@@ -3,7 +3,8 @@
 // Runs the job's operations in order on the in-process stock: each planned, removed from the stock the ones
 // before left, and with -o written through the checked program pipeline: one program per setup (DIR/NN_setup_S.ngc,
 // tool changes between operations), or one per operation with --per-operation (DIR/NN_NAME.ngc). Prints per operation
-// the material removed, the air-cutting share and the estimated time, and the same for the job.
+// the material removed, the air-cutting share and the estimated time, and the same for the job. With -o also
+// DIR/setup_sheet.html: per setup the fixture, the datum and work offset, the tools, the operations and a picture.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,7 +13,9 @@
 #include "command.hpp"
 #include "config_file.hpp"
 #include "work_offset_option.hpp"
+#include "rosmill/io/stl.hpp"
 #include "rosmill/job/run_job.hpp"
+#include "rosmill/sheet/setup_sheet.hpp"
 
 namespace rosmill::core::cli {
 namespace {
@@ -47,7 +50,17 @@ void run(const JobArgs& a) {
     o.max_acceleration = m.max_acceleration;
     if (m.clearance_over_stock > 0) o.link_clearance = m.clearance_over_stock;
   }
+  // With -o, the setup sheet beside the programs: each operation's toolpaths for its setup's picture.
+  sheet::SheetJob sheet;
+  sheet.title = a.file;
+  if (!a.out.empty()) o.operation_done = [&](const job::OperationView& v) { sheet.toolpaths.push_back(v.toolpaths); };
   const job::JobReport r = job::run_job(spec, o);
+  if (!a.out.empty()) {
+    const Mesh part = job::read_part(spec);
+    sheet.report = &r;
+    sheet.part = &part;
+    sheet::write_setup_sheet((std::filesystem::path(a.out) / "setup_sheet.html").string(), sheet);
+  }
   if (a.json) {
     std::printf("%s\n", job::to_json(r).dump().c_str());
     return;

@@ -72,10 +72,11 @@ Mesh fixture_check_mesh(const fixture::Fixture& f) {
   return build_mesh(corners);
 }
 
-// The cells under the faces this setup finishes: the samples setup selection gave it, and those it reaches within
-// `overlap` of them (the band where the setups' finishes meet), projected into the setup's frame.
-std::vector<uint8_t> finished_faces(const setups::SetupChoice& c, size_t chosen, const SetupFrame& frame,
-                                    const stock::GridSpec& g, double overlap, double& area) {
+// The cells under the faces this setup finishes, and the heights they stand at in each: the samples setup
+// selection gave the setup, and those it reaches within `overlap` of them (the band where the setups' finishes
+// meet), projected into the setup's frame.
+void finished_faces(const setups::SetupChoice& c, size_t chosen, const SetupFrame& frame, const stock::GridSpec& g,
+                    double overlap, JobSetup& s_out) {
   const setups::SurfaceSamples& s = c.samples;
   const uint64_t bit = uint64_t(1) << c.setups[chosen].candidate;
   const double cell = std::max(overlap, 0.1);
@@ -97,7 +98,10 @@ std::vector<uint8_t> finished_faces(const setups::SetupChoice& c, size_t chosen,
         }
     return false;
   };
-  std::vector<uint8_t> cells(g.cells(), 0);
+  s_out.faces.assign(g.cells(), 0);
+  s_out.face_low.assign(g.cells(), INFINITY);
+  s_out.face_high.assign(g.cells(), -INFINITY);
+  double& area = s_out.report.finished_area;
   area = 0;
   for (size_t k = 0; k < s.size(); ++k) {
     const bool mine = c.machined_by[k] == static_cast<int>(chosen);
@@ -105,9 +109,12 @@ std::vector<uint8_t> finished_faces(const setups::SetupChoice& c, size_t chosen,
     if (mine) area += s.weights[k];
     const Vec3 p = frame.to_setup_frame(s.points[k]);
     const double i = std::floor((p.x() - g.x0) / g.cell), j = std::floor((p.y() - g.y0) / g.cell);
-    if (i >= 0 && j >= 0 && i < g.nx && j < g.ny) cells[g.index(int(i), int(j))] = 1;
+    if (!(i >= 0 && j >= 0 && i < g.nx && j < g.ny)) continue;
+    const size_t cell = g.index(int(i), int(j));
+    s_out.faces[cell] = 1;
+    s_out.face_low[cell] = std::min(s_out.face_low[cell], static_cast<float>(p.z()));
+    s_out.face_high[cell] = std::max(s_out.face_high[cell], static_cast<float>(p.z()));
   }
-  return cells;
 }
 
 }  // namespace
@@ -148,7 +155,7 @@ JobSetup begin_setup(const SetupSpec& spec, size_t index, const stock::InProcess
   s.design = stock::design_heights(s.part, s.grid, s.floor);
   s.design_high = stock::design_highest_in_cells(s.part, s.grid, s.floor, s.design);
   if (!r.fixture.empty()) s.fixture_top = fixture_tops(r.fixture, s.grid);
-  if (c.faces) s.faces = finished_faces(*c.faces, c.chosen, r.frame, s.grid, spec.overlap, r.finished_area);
+  if (c.faces) finished_faces(*c.faces, c.chosen, r.frame, s.grid, spec.overlap, s);
   return s;
 }
 

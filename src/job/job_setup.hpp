@@ -29,6 +29,7 @@ struct JobSetup {
   std::vector<float> design, design_high;  // the design's centre height and highest per cell (floor where none)
   std::vector<float> fixture_top;      // per cell (-infinity where none; empty without a fixture)
   std::vector<uint8_t> faces;          // per cell: the faces this setup finishes (empty: the whole part)
+  std::vector<float> face_low, face_high;  // per cell: the heights those faces stand at there
 
   const Surface& surface() const { return checked ? static_cast<const Surface&>(*checked) : *part_surface; }
 };

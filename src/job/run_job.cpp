@@ -109,8 +109,11 @@ size_t material_for(const JobSetup& s, const stock::HeightField& view, const Ope
   m.fixture = s.fixture_top;
   m.cut.assign(m.top.size(), -INFINITY);
   m.keep.clear();
+  m.keep_low.clear();
+  m.keep_high.clear();
   const bool by_faces = !roughing && !s.faces.empty();
   if (by_faces || op.rest) m.keep.assign(m.top.size(), 0);
+  if (by_faces) m.keep_low = s.face_low, m.keep_high = s.face_high;
   size_t work = 0;
   rest_cells = 0;
   for (size_t c = 0; c < m.top.size(); ++c) {
@@ -260,6 +263,8 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
 
 }  // namespace
 
+Mesh read_part(const JobSpec& job) { return read_mesh(job.part, job.units); }
+
 std::vector<std::pair<size_t, size_t>> program_groups(const JobReport& report, bool per_operation) {
   std::vector<std::pair<size_t, size_t>> groups;
   const auto& ops = report.operations;
@@ -273,7 +278,7 @@ std::vector<std::pair<size_t, size_t>> program_groups(const JobReport& report, b
 }
 
 JobReport run_job(const JobSpec& job, const JobOptions& options) {
-  const Mesh part = options.part ? *options.part : read_mesh(job.part, job.units);
+  const Mesh part = options.part ? *options.part : read_part(job);
   std::optional<Mesh> stock_mesh;
   if (job.stock.kind == StockSpec::Kind::Mesh) stock_mesh = read_mesh(job.stock.file, job.units);
   stock::InProcessStock stock = raw_stock(job, part, stock_mesh ? &*stock_mesh : nullptr);

@@ -116,6 +116,9 @@ Toolpath keep_to_cells(const Toolpath& toolpath, const MaterialTop& material, co
   out.passes.clear();
   RestWriter writer(out, material, options);
   const double R = toolpath.tool.cutter.radius(), reach = R + material.cell;
+  // A cut touches the kept surface between a cell below its tip (the surface's rounding into the cells) and its
+  // corner's top (a ball touches up to its radius above the tip).
+  const double below = material.cell, above = R + material.cell;
   // Moves are judged every half cell, so that no rest cell is passed between two samples.
   const double step = 0.5 * material.cell;
   Vec3 at = toolpath.start;
@@ -134,10 +137,10 @@ Toolpath keep_to_cells(const Toolpath& toolpath, const MaterialTop& material, co
         continue;
       }
       const int n = std::max(1, static_cast<int>(std::ceil((m.to - from).head<2>().norm() / step)));
-      bool near_prev = material.keep_near(from.head<2>(), reach);
+      bool near_prev = material.keep_near(from.head<2>(), reach, from.z(), below, above);
       for (int k = 1; k <= n; ++k) {
         const Vec3 q = from + (m.to - from) * (double(k) / n);
-        const bool near = material.keep_near(q.head<2>(), reach);
+        const bool near = material.keep_near(q.head<2>(), reach, q.z(), below, above);
         chain.push_back({k == 1 ? from : chain.back().to, q, index, m.type, m.feed, near || near_prev});
         near_prev = near;
       }

@@ -25,6 +25,8 @@ void MaterialTop::check(const std::string& where) const {
     throw Error(where, "the kept cells (" + std::to_string(keep.size()) + ") do not fill the material grid");
   if (!fixture.empty() && fixture.size() != cells)
     throw Error(where, "the fixture's heights (" + std::to_string(fixture.size()) + ") do not fill the material grid");
+  if (keep_low.size() != keep_high.size() || (!keep_low.empty() && keep_low.size() != cells))
+    throw Error(where, "the kept heights do not fill the material grid");
   if (!cut.empty() && cut.size() != cells)
     throw Error(where, "the heights to cut (" + std::to_string(cut.size()) + ") do not fill the material grid");
 }
@@ -60,10 +62,13 @@ double MaterialTop::highest_cut_under(const Vec2& p, double radius) const {
   return h;
 }
 
-bool MaterialTop::keep_near(const Vec2& p, double radius) const {
+bool MaterialTop::keep_near(const Vec2& p, double radius, double z, double below, double above) const {
   bool found = false;
   if (keep.empty()) return false;
-  cells_near(p, p, radius, [&](size_t c, double) { found = found || keep[c]; });
+  const bool any_height = keep_low.empty() || std::isnan(z);
+  cells_near(p, p, radius, [&](size_t c, double) {
+    found = found || (keep[c] && (any_height || (keep_high[c] >= z - below && keep_low[c] <= z + above)));
+  });
   return found;
 }
 

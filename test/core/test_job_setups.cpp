@@ -104,31 +104,31 @@ TEST(JobSetups, CubeFromTheTopThenTheSideCutsOnlyWhatIsLeft) {
   std::filesystem::remove_all(dir);
 }
 
-// A side setup held in a vise whose jaws stand 45 mm up the stock: the waterline keeps its cutter off the jaws,
-// but its holder comes down onto one, and the job is refused naming the move and the jaw. With the jaws gripping
-// 5 mm the same job runs.
+// A side setup held in a vise whose jaws stand 65 mm up the stock (90 mm high from -X, 15 mm over the cube all
+// round): the roughing keeps its cutter off the jaws, but at its deepest levels beside them its holder (32 mm
+// across, 40 mm above the tip) comes down onto one, and the job is refused naming the operation, the move and the
+// jaw. With the jaws gripping 5 mm the same job runs.
 TEST(JobSetups, AJawInTheHoldersWayIsRefusedAndLowerJawsRun) {
   const std::string job =
-      "part: primitive:cube\nstock: {box: {margin: 5}}\nsetups:\n"
+      "part: primitive:cube\nstock: {box: {margin: 15}}\nsetups:\n"
       "  - direction: -X\n"
       "    fixture: {vise: {jaw_width: 100, jaw_height: JAW, grip: GRIP, clamp: y}}\n"
       "    operations:\n"
-      "      - {name: rough, strategy: rough, tool: 1, stepover: 4, stepdown: 2.5, allowance: 0.5}\n"
-      "      - {name: walls, strategy: waterline, tool: 2, stepdown: 2}\n";
+      "      - {name: rough, strategy: rough, tool: 1, stepover: 4, stepdown: 2.5, allowance: 0.5}\n";
   auto with = [&](const std::string& jaw, const std::string& grip) {
     std::string text = job;
     text.replace(text.find("JAW"), 3, jaw);
     text.replace(text.find("GRIP"), 4, grip);
     return parse_job(text, "vise.yaml", ROSMILL_SOURCE_DIR);
   };
-  const std::string refused = error_of([&] { run_job(with("50", "45"), options()); });
-  EXPECT_NE(refused.find("vise.yaml:8 operations[1] (walls, setup -X): the holder enters the fixture's vise "),
+  const std::string refused = error_of([&] { run_job(with("70", "65"), options()); });
+  EXPECT_NE(refused.find("vise.yaml:7 operations[0] (rough, setup -X): the holder enters the fixture's vise "),
             std::string::npos)
       << refused;
   EXPECT_NE(refused.find(" jaw at move "), std::string::npos) << refused;
   const JobReport r = run_job(with("25", "5"), options());
-  ASSERT_EQ(r.operations.size(), 2u);
-  EXPECT_GT(r.operations[1].moves, 0u);
+  ASSERT_EQ(r.operations.size(), 1u);
+  EXPECT_GT(r.operations[0].moves, 0u);
   EXPECT_EQ(r.gouge_mm, 0.0);
 }
 

@@ -125,6 +125,9 @@ struct OperationView {
 
 JobReport run_job(const JobSpec& job, const JobOptions& options);
 
+// The job's part as run_job reads it: its STL in the job's units, or a primitive.
+Mesh read_part(const JobSpec& job);
+
 // The job's programs as ranges [first, end) of the report's operations: one per setup (the part stays clamped;
 // the tools change between its operations), or one per operation.
 std::vector<std::pair<size_t, size_t>> program_groups(const JobReport& report, bool per_operation);

@@ -28,6 +28,10 @@ struct MaterialTop {
   std::vector<uint8_t> keep;  // empty, or nx * ny: 1 where the operation's moves are kept (kept_moves.hpp): rest
                               // material above the design by more than the allowance and the rest threshold, or
                               // the faces the operation's setup finishes
+  // Empty (a kept cell keeps every height), or nx * ny: the lowest and highest the kept surface stands in each kept
+  // cell, so that a cut at another height over the same cell (a wall below a face that another setup finishes)
+  // is not kept.
+  std::vector<float> keep_low, keep_high;
 
   // Throws Error naming `where` when the sizes disagree or the cell is not a positive number.
   void check(const std::string& where) const;
@@ -48,8 +52,9 @@ struct MaterialTop {
   // the same centres, finds the cutter touching as it comes down there. -infinity when there is no material.
   template <class Lift>
   double clear_height(const Vec2& p, double radius, const Lift& lift) const;
-  // True when a kept cell's centre lies within `radius` of p.
-  bool keep_near(const Vec2& p, double radius) const;
+  // True when a kept cell's centre lies within `radius` of p and its kept heights meet [z - below, z + above] (a
+  // cutter with its tip at z touches the surface from below its tip, by rounding, to its corner's top).
+  bool keep_near(const Vec2& p, double radius, double z = NAN, double below = 0, double above = 0) const;
   // What a cutter with its tip at z along a-b has certainly cut: every cell whose whole square lies within the
   // disc swept by `radius` is lowered to at most z + lift(d), d the farthest its square gets from the axis (lift:
   // the cutter's bottom at that distance above its tip; 0 for a flat end mill).
