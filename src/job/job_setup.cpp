@@ -75,10 +75,14 @@ Mesh fixture_check_mesh(const fixture::Fixture& f) {
 // The cells under the faces this setup finishes, and the heights they stand at in each: the samples setup
 // selection gave the setup, and those it reaches within `overlap` of them (the band where the setups' finishes
 // meet), projected into the setup's frame.
-void finished_faces(const setups::SetupChoice& c, size_t chosen, const SetupFrame& frame, const stock::GridSpec& g,
+void finished_faces(const setups::SetupChoice& c, int chosen, const SetupFrame& frame, const stock::GridSpec& g,
                     double overlap, JobSetup& s_out) {
+  s_out.faces.assign(g.cells(), 0);
+  s_out.face_low.assign(g.cells(), INFINITY);
+  s_out.face_high.assign(g.cells(), -INFINITY);
+  if (chosen < 0) return;
   const setups::SurfaceSamples& s = c.samples;
-  const uint64_t bit = uint64_t(1) << c.setups[chosen].candidate;
+  const uint64_t bit = uint64_t(1) << c.setups[size_t(chosen)].candidate;
   const double cell = std::max(overlap, 0.1);
   const auto key = [cell](const Vec3& p) {
     const auto q = [cell](double v) { return static_cast<int64_t>(std::floor(v / cell)) & 0x1fffff; };
@@ -86,7 +90,7 @@ void finished_faces(const setups::SetupChoice& c, size_t chosen, const SetupFram
   };
   std::unordered_map<int64_t, std::vector<uint32_t>> own;
   for (size_t k = 0; k < s.size(); ++k)
-    if (c.machined_by[k] == static_cast<int>(chosen)) own[key(s.points[k])].push_back(static_cast<uint32_t>(k));
+    if (c.machined_by[k] == chosen) own[key(s.points[k])].push_back(static_cast<uint32_t>(k));
   const auto near_own = [&](const Vec3& p) {
     for (int dx = -1; dx <= 1; ++dx)
       for (int dy = -1; dy <= 1; ++dy)
@@ -98,13 +102,10 @@ void finished_faces(const setups::SetupChoice& c, size_t chosen, const SetupFram
         }
     return false;
   };
-  s_out.faces.assign(g.cells(), 0);
-  s_out.face_low.assign(g.cells(), INFINITY);
-  s_out.face_high.assign(g.cells(), -INFINITY);
   double& area = s_out.report.finished_area;
   area = 0;
   for (size_t k = 0; k < s.size(); ++k) {
-    const bool mine = c.machined_by[k] == static_cast<int>(chosen);
+    const bool mine = c.machined_by[k] == chosen;
     if (!mine && !((c.reached[k] & bit) && overlap > 0 && near_own(s.points[k]))) continue;
     if (mine) area += s.weights[k];
     const Vec3 p = frame.to_setup_frame(s.points[k]);

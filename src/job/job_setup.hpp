@@ -39,9 +39,10 @@ struct SetupContext {
   const JobOptions& options;
   const Mesh& part;
   const Mesh* stock_mesh;
-  // Who finishes what (setup selection's assignment), and which of its setups this one is; null: the whole part.
+  // Who finishes what (setup selection's assignment), and which of its setups this one is (-1: none of them, the
+  // setup finishes no face); null: the whole part.
   const setups::SetupChoice* faces = nullptr;
-  size_t chosen = 0;
+  int chosen = 0;
 };
 
 // Begins the setup `index` of the job on the stock as the setups before left it. Throws Error naming the setup when

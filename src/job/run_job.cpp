@@ -1,5 +1,6 @@
 #include "rosmill/job/run_job.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -174,6 +175,7 @@ struct Setups {
   std::vector<SetupSpec> specs;
   std::vector<OperationSpec> operations;
   std::optional<setups::SetupChoice> faces;
+  std::vector<int> chosen;  // per setup, its index in faces->setups (-1: it finishes no face)
 };
 
 Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProcessStock& stock,
@@ -201,7 +203,12 @@ Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProce
   }
   const segment::SurfacePatches patches = segment::segment_surface(part);
   out.faces = setups::choose_setups(part, patches, o);
-  if (!job.auto_setups) return out;
+  if (!job.auto_setups) {
+    // The job's setups are the candidates in order: each finishes what the choice gave its candidate.
+    out.chosen.assign(job.setups.size(), -1);
+    for (size_t i = 0; i < out.faces->setups.size(); ++i) out.chosen[out.faces->setups[i].candidate] = int(i);
+    return out;
+  }
   if (out.faces->setups.empty()) throw Error(job.source + " setups", "no candidate setup reaches the part");
   if (out.faces->setups.size() > size_t(gcode::kWorkOffsets))
     throw Error(job.source + " setups", std::to_string(out.faces->setups.size()) +
@@ -216,6 +223,7 @@ Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProce
       op.setup_index = out.specs.size();
       out.operations.push_back(op);
     }
+    out.chosen.push_back(int(out.specs.size()));
     out.specs.push_back(s);
   }
   return out;
@@ -285,14 +293,23 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   JobReport report;
   report.stock_mm3 = stock.volume();
   const Setups setups = resolve_setups(job, part, stock, options);
-  if (options.work_offset && setups.specs.size() > 1)
-    throw Error(job.source, "a registered work offset places the part of one setup; this job has " +
-                                std::to_string(setups.specs.size()));
+  if (options.operations_known) options.operations_known(setups.operations);
+  // A registration places the part as it sits: the setup whose datum is the part's own origin (the others' fixtures
+  // place them on the table). Two such setups cannot both be where it found the part.
+  const size_t at_workpiece = std::count_if(setups.specs.begin(), setups.specs.end(),
+                                            [](const SetupSpec& s) { return s.datum == Datum::Workpiece; });
+  if (options.work_offset && at_workpiece > 1)
+    throw Error(job.source, "a registered work offset places the part of one setup; " + std::to_string(at_workpiece) +
+                                " of this job's setups have the workpiece datum");
   if (setups.faces) {
     report.setups_chosen = job.auto_setups;
     report.part_area = setups.faces->total_area;
     report.unreachable_area = setups.faces->unreachable_area;
     report.unreachable = setups.faces->unreachable;
+    // Per facet, the setup that finishes it (the choice's own indices turned into the job's).
+    report.facet_setup = setups::facet_setups(*setups.faces, part.face_count());
+    for (int& s : report.facet_setup)
+      if (s >= 0) s = int(std::find(setups.chosen.begin(), setups.chosen.end(), s) - setups.chosen.begin());
   }
   const SetupContext context{job, options, part, stock_mesh ? &*stock_mesh : nullptr,
                              setups.faces ? &*setups.faces : nullptr, 0};
@@ -308,9 +325,9 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     const OperationSpec& op = setups.operations[k];
     if (!setup || op.setup_index != report.setups.size() - 1) {
       SetupContext c = context;
-      c.chosen = op.setup_index;
+      c.chosen = setups.faces ? setups.chosen[op.setup_index] : -1;
       setup = begin_setup(setups.specs[op.setup_index], op.setup_index, stock, c);
-      setup->report.source = job.auto_setups ? setups.faces->setups[op.setup_index].source : "given";
+      setup->report.source = job.auto_setups ? setups.faces->setups[size_t(setups.chosen[op.setup_index])].source : "given";
       report.setups.push_back(setup->report);
     }
     const std::string where = job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "]";
@@ -372,7 +389,8 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     report.setups.back().time_s += r.time_s;
     report.operations.push_back(r);
     if (options.operation_done)
-      options.operation_done({k, report.operations.back(), planned.back(), report.setups.back(), stock, part});
+      options.operation_done(
+          {k, report.operations.back(), planned.back(), report.setups.back(), report.facet_setup, stock, part});
     if (!go_on(k, 1.0) && k + 1 < setups.operations.size()) {
       report.cancelled = true;
       break;

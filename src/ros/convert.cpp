@@ -384,6 +384,25 @@ Job from_job_msg(const msg::ToolpathJob& m) {
   return job;
 }
 
+std::optional<gcode::WorkOffset> work_offset_of(const msg::ToolpathJob& m) {
+  if (m.work_offset == 0) return std::nullopt;
+  if (m.work_offset > gcode::kWorkOffsets)
+    throw Error("job work_offset", "must be 0 (none) or 1..6 (G54..G59), got " + std::to_string(m.work_offset));
+  gcode::WorkOffset w;
+  w.index = m.work_offset;
+  w.origin = from_point_msg(m.work_offset_origin);
+  w.rotation_deg = m.work_offset_rotation * 180.0 / M_PI;
+  if (!w.origin.allFinite() || !std::isfinite(w.rotation_deg))
+    throw Error("job work_offset_origin", "is not finite");
+  return w;
+}
+
+void set_work_offset(msg::ToolpathJob& m, const gcode::WorkOffset& w) {
+  m.work_offset = static_cast<uint8_t>(w.index);
+  m.work_offset_origin = to_point_msg(w.origin);
+  m.work_offset_rotation = w.rotation_deg * M_PI / 180.0;
+}
+
 // ---------------------------------------------------------------------------------------------------- planning
 
 namespace {

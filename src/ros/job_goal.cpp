@@ -11,6 +11,7 @@
 #include "rosmill/ros/finish_goal.hpp"
 #include "rosmill/ros/job_markers.hpp"
 #include "rosmill/ros/params.hpp"
+#include "rosmill/sheet/setup_sheet.hpp"
 
 namespace rosmill::edge {
 namespace {
@@ -30,6 +31,7 @@ msg::JobOperationReport to_operation_msg(const job::OperationReport& r) {
   m.strategy = r.strategy;
   m.tool = r.tool;
   m.setup = r.setup;
+  m.setup_index = static_cast<uint32_t>(r.setup_index);
   m.moves = static_cast<uint32_t>(r.moves);
   m.cutting_length = to_metres(r.cutting_mm);
   m.rapid_length = to_metres(r.rapid_mm);
@@ -43,11 +45,32 @@ msg::JobOperationReport to_operation_msg(const job::OperationReport& r) {
   return m;
 }
 
+msg::JobSetup to_setup_msg(const job::SetupReport& s, const std::string& frame_id) {
+  msg::JobSetup m;
+  m.name = s.name;
+  m.frame_id = frame_id;
+  m.tool_axis = to_direction_msg(s.direction);
+  m.source = s.source;
+  m.face_down = s.face_down;
+  m.fixture = s.fixture.description;
+  m.datum = job::datum_name(s.datum);
+  m.datum_point = to_point_msg(s.datum_point);
+  m.work_offset = s.work_offset ? s.work_offset->code() : "G54";
+  m.work_offset_set = s.work_offset.has_value();
+  if (s.work_offset) m.work_offset_origin = to_point_msg(s.work_offset->origin);
+  for (size_t k : s.operations) m.operations.push_back(static_cast<uint32_t>(k));
+  m.finished_area = s.finished_area * kMetrePerMm * kMetrePerMm;
+  m.time = s.time_s;
+  m.program = s.program;
+  return m;
+}
+
 }  // namespace
 
 PlanJobResult to_job_result(const job::JobReport& report) {
   PlanJobResult result;
   for (const job::OperationReport& r : report.operations) result.operations.push_back(to_operation_msg(r));
+  result.unreachable_area = report.unreachable_area * kMetrePerMm * kMetrePerMm;
   result.cancelled = report.cancelled;
   result.stock_volume = report.stock_mm3 * kMm3ToM3;
   result.left_volume = report.left_mm3 * kMm3ToM3;
@@ -80,12 +103,23 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
     options.part = received.get();
     if (!goal.output_dir.empty() && goal.output_dir.front() != '/')
       throw Error("output_dir", "must be an absolute folder, got '" + goal.output_dir + "'");
-    std::vector<std::pair<Job, SetupFrame>> planned;  // each operation's toolpaths, for the programs
+    std::vector<Job> planned;  // each operation's toolpaths, for the programs and the setup sheet
+    std::vector<std::string> frames;  // each setup's frame on tf
     options.operation_done = [&](const job::OperationView& view) {
-      planned.emplace_back(view.toolpaths, view.setup.frame);
+      planned.push_back(view.toolpaths);
+      if (view.report.setup_index == frames.size()) {
+        frames.push_back(context.setup_frame(view.setup.frame, view.report.setup_index));
+      }
       if (context.show) context.show(view);
     };
-    const uint32_t operations = static_cast<uint32_t>(spec.operations.size());
+    uint32_t operations = static_cast<uint32_t>(spec.operations.size());
+    std::vector<std::string> names;
+    for (const job::OperationSpec& op : spec.operations) names.push_back(op.name);
+    options.operations_known = [&](const std::vector<job::OperationSpec>& ops) {
+      operations = static_cast<uint32_t>(ops.size());
+      names.clear();
+      for (const job::OperationSpec& op : ops) names.push_back(op.name);
+    };
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
     options.progress = [&](size_t op, double fraction) {
       if (context.cancel_requested()) return false;
@@ -95,7 +129,7 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
       PlanJobFeedback fb;
       fb.operation = static_cast<uint32_t>(op);
       fb.operations = operations;
-      fb.name = op < spec.operations.size() ? spec.operations[op].name : "";
+      fb.name = op < names.size() ? names[op] : "";
       fb.stage = fraction >= 1 ? "done" : "running";
       fb.operation_progress = static_cast<float>(fraction);
       fb.progress = static_cast<float>((op + fraction) / std::max<uint32_t>(operations, 1));
@@ -104,15 +138,32 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
     };
     const job::JobReport report = job::run_job(spec, options);
     result = to_job_result(report);
+    for (size_t k = 0; k < report.setups.size() && k < frames.size(); ++k)
+      result.setups.push_back(to_setup_msg(report.setups[k], frames[k]));
     for (const auto& [first, end] : job::program_groups(report, goal.per_operation)) {
       Job toolpaths;
-      for (size_t k = first; k < end; ++k)
-        toolpaths.insert(toolpaths.end(), planned[k].first.begin(), planned[k].first.end());
+      for (size_t k = first; k < end; ++k) toolpaths.insert(toolpaths.end(), planned[k].begin(), planned[k].end());
+      const size_t index = report.operations[first].setup_index;
+      const job::SetupReport& setup = report.setups[index];
       std_msgs::Header header;
-      header.frame_id = context.setup_frame(planned[first].second);
+      header.frame_id = frames[index];
       header.stamp = ::ros::Time::now();
-      result.programs.push_back(to_job_msg(toolpaths, planned[first].second, header));
-      result.programs.back().rapids_checked_by_stock = true;  // run_job refuses a job with a rapid into the stock
+      msg::ToolpathJob program = to_job_msg(toolpaths, setup.frame, header);
+      program.rapids_checked_by_stock = true;  // run_job refuses a job with a rapid into the stock
+      // The program sets the setup's own work offset, as the job's programs do.
+      if (setup.work_offset) set_work_offset(program, *setup.work_offset);
+      program.setup_note = "for setup " + std::to_string(index + 1) + " (" + setup.name + "), " + setup.face_down +
+                           " down: " + setup.fixture.description;
+      result.programs.push_back(program);
+    }
+    if (!goal.output_dir.empty() && !report.setups.empty()) {
+      sheet::SheetJob sheet;
+      sheet.title = goal.job_file.empty() ? "the goal's job" : goal.job_file;
+      sheet.report = &report;
+      const Mesh part = received ? *received : job::read_part(spec);
+      sheet.part = &part;
+      sheet.toolpaths = planned;
+      sheet::write_setup_sheet(goal.output_dir + "/setup_sheet.html", sheet);
     }
     cancelled = report.cancelled;
     result.success = !report.cancelled;
@@ -142,7 +193,13 @@ JobActionServer::JobActionServer(::ros::NodeHandle& nh, const ::ros::NodeHandle&
   context_.received_mesh = std::move(received_mesh);
   const WorkOffsetSource offset = work_offset_source(pnh);
   if (!offset.workpiece_frame.empty()) context_.work_offset = [offset, tf] { return offset.now(tf); };
-  context_.setup_frame = [this](const SetupFrame& setup) { return setup_frames_.publish(frame_id_, setup); };
+  context_.setup_frame = [this](const SetupFrame& setup, size_t index) {
+    // A setup that neither turns nor moves the part (+Z at the workpiece datum) is the workpiece frame itself.
+    if (setup.identity()) return frame_id_;
+    const std::string id = job_setup_frame_id(frame_id_, index);
+    setup_frames_.publish_as(frame_id_, id, setup);
+    return id;
+  };
   context_.cancel_requested = [this] { return server_.isPreemptRequested(); };
   context_.feedback = [this](const PlanJobFeedback& fb) { server_.publishFeedback(fb); };
   job_markers_ = nh.advertise<visualization_msgs::MarkerArray>("job_markers", 1, true);

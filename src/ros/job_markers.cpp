@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/fixture/fixture.hpp"
 #include "rosmill/ros/markers.hpp"
 #include "rosmill/stock/material_left.hpp"
 #include "rosmill/stock/stock_surface.hpp"
@@ -36,10 +37,36 @@ std_msgs::ColorRGBA material_left_colour(float left, double tolerance, double fu
   return t < 0.5f ? rgba(2 * t, 0.8f + 0.2f * 2 * t, 0.1f) : rgba(1.0f, 2 * (1 - t), 0.1f);
 }
 
+namespace {
+
+// A setup's fixture, its boxes turned back from the setup's frame into the workpiece's.
+visualization_msgs::Marker fixture_marker(const job::SetupReport& s, const std_msgs::Header& header, size_t index) {
+  visualization_msgs::Marker m =
+      base_marker(header, "fixture/" + std::to_string(index + 1) + "_" + s.name, 0, visualization_msgs::Marker::TRIANGLE_LIST);
+  m.color = rgba(0.62f, 0.44f, 0.27f, 0.55f);
+  for (const Vec3& corner : fixture::fixture_corners(s.fixture))
+    m.points.push_back(to_point_msg(s.frame.to_workpiece_frame(corner)));
+  return m;
+}
+
+}  // namespace
+
+std::string operation_namespace(const job::OperationView& view) {
+  return std::to_string(view.index + 1) + "_" + view.report.name + "/";
+}
+
 const visualization_msgs::MarkerArray& JobMarkers::add_operation(const job::OperationView& view) {
   if (toolpaths_.markers.empty()) toolpaths_.markers.push_back(delete_all_marker(header_));
-  const visualization_msgs::MarkerArray op =
-      toolpath_markers(view.toolpaths, view.setup.frame, header_, view.report.name + "/");
+  const size_t setup = view.report.setup_index;
+  if (setup + 1 > size_t(setups_seen_)) {
+    setups_seen_ = int(setup) + 1;
+    if (!view.setup.fixture.empty()) toolpaths_.markers.push_back(fixture_marker(view.setup, header_, setup));
+    if (setup == 0 && view.facet_setup.size() == view.part.faces.size())
+      toolpaths_.markers.push_back(facets_by_setup_marker(view.part, view.facet_setup, header_));
+  }
+  const std_msgs::ColorRGBA colour = setup_colour(setup);
+  const visualization_msgs::MarkerArray op = toolpath_markers(view.toolpaths, view.setup.frame, header_,
+                                                              operation_namespace(view), &colour);
   toolpaths_.markers.insert(toolpaths_.markers.end(), op.markers.begin() + 1, op.markers.end());  // not its DELETEALL
   return toolpaths_;
 }

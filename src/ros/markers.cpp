@@ -65,6 +65,19 @@ visualization_msgs::Marker delete_all_marker(const std_msgs::Header& header) {
   return clear;
 }
 
+std_msgs::ColorRGBA setup_colour(size_t setup) { return label_colour(static_cast<uint32_t>(setup)); }
+
+visualization_msgs::Marker facets_by_setup_marker(const Mesh& part, const std::vector<int>& facet_setup,
+                                                  const std_msgs::Header& header) {
+  visualization_msgs::Marker m = base_marker(header, "setups", 0, visualization_msgs::Marker::TRIANGLE_LIST);
+  m.color = rgba(1, 1, 1);
+  for (size_t f = 0; f < part.faces.size() && f < facet_setup.size(); ++f) {
+    add_facet(m, part, f);
+    m.colors.resize(m.points.size(), facet_setup[f] < 0 ? rgba(0.6f, 0.6f, 0.6f, 0.8f) : setup_colour(facet_setup[f]));
+  }
+  return m;
+}
+
 visualization_msgs::Marker mesh_marker(const IndexedTriangles& part, const std_msgs::Header& header,
                                        const std::string& ns, const std_msgs::ColorRGBA& colour) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::TRIANGLE_LIST);
@@ -84,7 +97,8 @@ void add_vertex(visualization_msgs::Marker& strip, const Vec3& p, const std_msgs
 }
 
 visualization_msgs::Marker pass_marker(const core::ToolpathPass& pass, Vec3 at, const SetupFrame& setup,
-                                       const std_msgs::Header& header, const std::string& ns) {
+                                       const std_msgs::Header& header, const std::string& ns,
+                                       const std_msgs::ColorRGBA* cut_colour) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::LINE_STRIP);
   m.scale.x = 0.0004;  // line width, m
   m.color = rgba(1, 1, 1);
@@ -93,7 +107,9 @@ visualization_msgs::Marker pass_marker(const core::ToolpathPass& pass, Vec3 at, 
   bool first = true;
   MoveType current = MoveType::Feed;
   for (const Move& move : pass.moves) {
-    const std_msgs::ColorRGBA c = move_colour(move.type);
+    const std_msgs::ColorRGBA c = !cut_colour                      ? move_colour(move.type)
+                                  : move.type == MoveType::Rapid ? rgba(0.55f, 0.55f, 0.55f, 0.6f)
+                                                                 : *cut_colour;
     if (first || move.type != current) add_vertex(m, setup.to_workpiece_frame(at), c);  // colour switch point
     add_vertex(m, setup.to_workpiece_frame(move.to), c);
     at = move.to;
@@ -124,7 +140,8 @@ visualization_msgs::Marker tool_marker(const core::Toolpath& tp, const SetupFram
 }  // namespace
 
 visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
-                                                 const std_msgs::Header& header, const std::string& ns_prefix) {
+                                                 const std_msgs::Header& header, const std::string& ns_prefix,
+                                                 const std_msgs::ColorRGBA* cut_colour) {
   visualization_msgs::MarkerArray array;
   array.markers.push_back(delete_all_marker(header));
   for (size_t t = 0; t < job.size(); ++t) {
@@ -135,7 +152,8 @@ visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFram
       const core::ToolpathPass& pass = tp.passes[p];
       if (pass.moves.empty()) continue;
       const std::string name = pass.name.empty() ? "pass" + std::to_string(p) : pass.name;
-      array.markers.push_back(pass_marker(pass, at, setup, header, prefix + std::to_string(p) + "_" + name));
+      array.markers.push_back(
+          pass_marker(pass, at, setup, header, prefix + std::to_string(p) + "_" + name, cut_colour));
       at = pass.moves.back().to;
     }
     array.markers.push_back(tool_marker(tp, setup, header, prefix + "tool"));

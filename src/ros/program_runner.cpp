@@ -59,7 +59,9 @@ std::string ProgramRunner::write_program(const msg::ToolpathJob& msg, const Job&
   if (job.empty()) throw Error("job", "has no toolpath (none received on the toolpath topic yet?)");
   gcode::PostOptions options = settings_.post;
   options.title = "rosmill gcode_bridge: " + msg.toolpaths[0].strategy + ", setup " + msg.toolpaths[0].setup;
-  options.work_offset = offset = settings_.work_offset.now(tf_);
+  // A job's setup brings its own work offset (its datum on the machine); else the workpiece frame's on tf.
+  options.work_offset = offset = msg.work_offset ? work_offset_of(msg) : settings_.work_offset.now(tf_);
+  if (!msg.setup_note.empty()) options.work_offset_note = msg.setup_note;
   gcode::ProgramChecks checks = settings_.checks;
   checks.limits.rapids_checked_by_stock = msg.rapids_checked_by_stock;
   program = gcode::prepare_program(job, options, checks).program;

@@ -1,4 +1,5 @@
 // rostest node for test/ros/pipeline.test: the mesh pipeline on the seed dome (r 50 mm, 900 facets).
+#include <algorithm>
 #include <shape_msgs/Mesh.h>
 #include <visualization_msgs/Marker.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -146,6 +147,35 @@ TEST_F(Pipeline, SegmentationsOfPlusZAndMinusXDiffer) {
     triangles += mk->markers[i].points.size() / 3;
   }
   EXPECT_EQ(triangles, 900u);
+}
+
+// set_setup "auto": the setups chosen for the dome (its bottom disc needs -Z; the 6 mm ball's 28 mm holder keeps
+// it from the dome's lowest belt from above), every facet coloured by the setup that machines it, and what they
+// machine and leave adding up to the dome's area.
+TEST_F(Pipeline, SetupsChosenForTheDome) {
+  Latest<visualization_msgs::MarkerArray> markers(nh, "segmentation_markers");
+  const size_t before = markers.count();
+  SetSetup chosen = set_setup("auto");
+  ASSERT_TRUE(chosen.response.success) << chosen.response.message;
+  ASSERT_GE(chosen.response.setups.size(), 2u);
+  EXPECT_EQ(chosen.response.setups.size(), chosen.response.setup_directions.size());
+  EXPECT_EQ(chosen.response.setups.front(), "+Z");
+  EXPECT_NE(std::find(chosen.response.setups.begin(), chosen.response.setups.end(), "-Z"), chosen.response.setups.end());
+  double machined = chosen.response.unreachable_area;
+  for (double a : chosen.response.setup_areas) machined += a;
+  const double r = kRadius;
+  EXPECT_NEAR(machined, 3 * M_PI * r * r, 0.02 * 3 * M_PI * r * r);
+  auto mk = markers.wait(10.0, before);
+  ASSERT_TRUE(mk);
+  bool by_setup = false;
+  for (const auto& m : mk->markers)
+    if (m.ns == "setups") {
+      by_setup = true;
+      EXPECT_EQ(m.points.size(), 900u * 3);
+      EXPECT_EQ(m.colors.size(), m.points.size());
+    }
+  EXPECT_TRUE(by_setup);
+  ASSERT_TRUE(set_setup("+Z").response.success);  // the segmentation the other tests expect
 }
 
 TEST_F(Pipeline, InvalidSetupsAreRefused) {

@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <atomic>
@@ -116,7 +118,7 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
   std::set<std::string> operations;
   for (const auto& marker : p->markers)
     if (!marker.ns.empty()) operations.insert(marker.ns.substr(0, marker.ns.find('/')));
-  EXPECT_EQ(operations, (std::set<std::string>{"rough", "finish"}));
+  EXPECT_EQ(operations, (std::set<std::string>{"1_rough", "2_finish"}));
 }
 
 // A job given as text on the mesh the planner received: the box stock is the received part's bounds grown by the
@@ -153,6 +155,60 @@ TEST_F(PlanJob, TextJobOnTheReceivedMeshWritesCheckedPrograms) {
   for (const std::string& l : gcode::read_program_lines(r->operations[0].program))
     if (l.rfind("G10 L2 P1", 0) == 0) g54 = l;
   EXPECT_EQ(g54, "G10 L2 P1 X40 Y-30 Z-10 R11.4592");
+  std::filesystem::remove_all(folder);
+}
+
+// A job whose setups are chosen (setups: auto) and held in a vise: the cube held on its bottom takes five setups,
+// each in the result with its frame on tf (the part turned onto its tool axis, the origin at the stock's top
+// centre), its own work offset (G54..G58) in its program message, its fixture among the job's markers with the
+// part's faces coloured by setup, and the setup sheet beside the programs.
+TEST_F(PlanJob, ChosenSetupsInAViseAreOnTfAndInTheResult) {
+  Latest<visualization_msgs::MarkerArray> paths(nh, "job_markers");
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  Client client("plan_job", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  char folder[] = "/tmp/rosmill-plan-job-setups-XXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  PlanJobGoal goal;
+  goal.job_yaml = "part: primitive:cube\nstock: {box: {margin: 5}}\nsetups: auto\nheld_face: -Z\n"
+                  "auto: {tool: 2}\nfixture: {vise: {jaw_width: 100, jaw_height: 25, grip: 5, clamp: y}}\n"
+                  "operations:\n  - {name: rough, strategy: rough, tool: 1, stepover: 4, stepdown: 5, allowance: 0.5}\n";
+  goal.output_dir = folder;
+  const auto r = run(client, goal);
+  ASSERT_TRUE(r);
+  ASSERT_TRUE(r->success) << r->message;
+  ASSERT_EQ(r->setups.size(), 5u);
+  EXPECT_NEAR(r->unreachable_area, 3600e-6, 1e-9);  // the bottom the cube is held by
+  ASSERT_EQ(r->programs.size(), 5u);
+  for (size_t k = 0; k < 5; ++k) {
+    const msg::JobSetup& s = r->setups[k];
+    EXPECT_EQ(s.frame_id, "workpiece_setup" + std::to_string(k + 1));
+    EXPECT_EQ(s.work_offset, "G5" + std::to_string(4 + k));
+    EXPECT_TRUE(s.work_offset_set);
+    EXPECT_EQ(s.datum, "top-centre");
+    EXPECT_NE(s.fixture.find("vise"), std::string::npos) << s.fixture;
+    EXPECT_EQ(r->programs[k].header.frame_id, s.frame_id);
+    EXPECT_EQ(r->programs[k].work_offset, k + 1);
+    EXPECT_TRUE(std::filesystem::is_regular_file(s.program)) << s.program;
+    // The setup's frame: its tool axis is its +Z, and its origin (the datum) is on the stock's top.
+    ASSERT_TRUE(buffer.canTransform("workpiece", s.frame_id, ros::Time(0), ros::Duration(5.0))) << s.frame_id;
+    const Eigen::Isometry3d pose = tf2::transformToEigen(buffer.lookupTransform("workpiece", s.frame_id, ros::Time(0)));
+    const Vec3 axis = pose.linear() * Vec3::UnitZ();
+    EXPECT_NEAR((axis - from_direction_msg(s.tool_axis)).norm(), 0.0, 1e-9) << s.name;
+    EXPECT_NEAR((pose.translation() - Vec3(s.datum_point.x, s.datum_point.y, s.datum_point.z)).norm(), 0.0, 1e-9);
+  }
+  EXPECT_TRUE(std::filesystem::is_regular_file(std::string(folder) + "/setup_sheet.html"));
+  const auto p = paths.wait(10.0);
+  ASSERT_TRUE(p);
+  size_t fixtures = 0;
+  bool by_setup = false;
+  for (const auto& marker : p->markers) {
+    fixtures += marker.ns.rfind("fixture/", 0) == 0;
+    by_setup = by_setup || marker.ns == "setups";
+  }
+  EXPECT_EQ(fixtures, 5u);
+  EXPECT_TRUE(by_setup);
   std::filesystem::remove_all(folder);
 }
 

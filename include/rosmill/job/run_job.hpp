@@ -41,6 +41,8 @@ struct JobOptions {
   // removed from the stock; in between while it is planned). Returning false cancels the job: the operations
   // finished so far are kept in the report (and their programs written), the rest are not run.
   std::function<bool(size_t operation, double fraction)> progress;
+  // Called once the setups are known (chosen, with `setups: auto`), with every operation the job will run.
+  std::function<void(const std::vector<OperationSpec>& operations)> operations_known;
   // Called after each operation with what it did, for a live view (rviz): its toolpaths, its setup, the stock it
   // left and the part.
   std::function<void(const OperationView&)> operation_done;
@@ -103,6 +105,9 @@ struct JobReport {
   bool setups_chosen = false;
   double part_area = 0, unreachable_area = 0;
   std::vector<setups::Unreached> unreachable;
+  // Per facet of the part: the setup (index into `setups`) that finishes most of it, -1 for none; empty when the
+  // job's operations work over the whole part (the older form).
+  std::vector<int> facet_setup;
   double stock_mm3 = 0;       // the raw stock
   double left_mm3 = 0;        // the stock after the job
   double removed_mm3 = 0, air_cut_share = 0, time_s = 0;
@@ -119,6 +124,7 @@ struct OperationView {
   const OperationReport& report;
   const Job& toolpaths;          // in the setup's frame
   const SetupReport& setup;      // its frame, fixture and datum
+  const std::vector<int>& facet_setup;  // JobReport::facet_setup
   const stock::InProcessStock& stock;
   const Mesh& part;              // workpiece frame
 };

@@ -11,6 +11,7 @@
 #include <shape_msgs/Mesh.h>
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 
 #include "rosmill/ros/namespaces.hpp"
@@ -19,6 +20,7 @@
 #include "rosmill/Tool.h"
 #include "rosmill/ToolpathJob.h"
 #include "rosmill/Toolpath.h"
+#include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/plan/plan_params.hpp"
@@ -68,6 +70,10 @@ msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup)
 core::Toolpath from_toolpath_msg(const msg::Toolpath& msg, const std::string& where = "toolpath message");
 msg::ToolpathJob to_job_msg(const Job& job, const SetupFrame& setup, const std_msgs::Header& header);
 Job from_job_msg(const msg::ToolpathJob& msg);
+// The work offset a job message asks its program to set (none for work_offset 0); throws Error naming the field for
+// an index beyond P6 or a position that is not finite.
+std::optional<gcode::WorkOffset> work_offset_of(const msg::ToolpathJob& msg);
+void set_work_offset(msg::ToolpathJob& msg, const gcode::WorkOffset& offset);
 
 // Planning parameters of a request on top of the tool's; throws Error naming the bad field.
 PlanParams from_plan_parameters(const msg::PlanParameters& msg, const core::Tool& tool, const PlanParams& defaults);

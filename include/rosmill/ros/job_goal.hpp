@@ -31,7 +31,8 @@ struct JobGoalContext {
   std::function<bool()> cancel_requested;
   std::function<void(const PlanJobFeedback&)> feedback;
   std::function<void(const job::OperationView&)> show;
-  std::function<std::string(const SetupFrame&)> setup_frame;  // the frame a setup's toolpaths are stamped with
+  // Publishes the frame of the job's setup `index` on tf; returns its name (job_setup_frame_id).
+  std::function<std::string(const SetupFrame&, size_t index)> setup_frame;
   // Where G54 is for the written programs (G10 L2 P1 in each); none: the controller's G54 as it stands.
   std::function<std::optional<gcode::WorkOffset>()> work_offset;
 };

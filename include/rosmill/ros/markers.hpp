@@ -17,6 +17,8 @@ std_msgs::ColorRGBA rgba(float r, float g, float b, float a = 1.0f);
 std_msgs::ColorRGBA move_colour(MoveType t);
 // A distinct colour per label (golden-ratio hues), for patches.
 std_msgs::ColorRGBA label_colour(uint32_t label);
+// The colour of a setup (by its index) in every view: the segments it machines, its toolpaths.
+std_msgs::ColorRGBA setup_colour(size_t setup);
 
 // A marker with an identity pose and unit scale, ready for points.
 visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std::string& ns, int id, int type);
@@ -24,6 +26,11 @@ visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std
 void add_facet(visualization_msgs::Marker& triangles, const Mesh& mesh, size_t f);
 // A DELETEALL marker: the first of an array that replaces a whole view.
 visualization_msgs::Marker delete_all_marker(const std_msgs::Header& header);
+
+// The part's facets coloured by the setup that machines them (facet_setup: an index, -1 for none: grey), one
+// TRIANGLE_LIST in namespace "setups".
+visualization_msgs::Marker facets_by_setup_marker(const Mesh& part, const std::vector<int>& facet_setup,
+                                                  const std_msgs::Header& header);
 
 // The part as one TRIANGLE_LIST in the workpiece frame (grey unless `colour` is given).
 visualization_msgs::Marker mesh_marker(const IndexedTriangles& part, const std_msgs::Header& header,
@@ -33,8 +40,10 @@ visualization_msgs::Marker mesh_marker(const IndexedTriangles& part, const std_m
 // each segment takes the colour of its move type (the vertex is doubled where the type changes, so colours do not
 // blend); a CYLINDER for the tool at the toolpath's start. Positions are rotated from the setup frame back into the
 // workpiece frame so the path is drawn around the part as it sits. Starts with a DELETEALL so older views vanish.
-// `ns_prefix` goes before every namespace (a job's operations: "rough/toolpath0/...").
+// `ns_prefix` goes before every namespace (a job's operations: "rough/toolpath0/..."). With `cut_colour`, the feeds
+// and plunges take it (a job's setup's colour) and the rapids are grey.
 visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
-                                                 const std_msgs::Header& header, const std::string& ns_prefix = "");
+                                                 const std_msgs::Header& header, const std::string& ns_prefix = "",
+                                                 const std_msgs::ColorRGBA* cut_colour = nullptr);
 
 }  // namespace rosmill::edge

@@ -5,8 +5,8 @@
 #pragma once
 #include <tf2_ros/static_transform_broadcaster.h>
 
+#include <map>
 #include <mutex>
-#include <set>
 #include <string>
 
 #include "rosmill/ros/namespaces.hpp"
@@ -19,14 +19,20 @@ namespace rosmill::edge {
 // with the unit direction in thousandths ("workpiece_setup_d577_m577_577").
 std::string setup_frame_id(const std::string& workpiece, const SetupFrame& setup);
 
+// The frame of a job's setup `index` (from 0): "<workpiece>_setup<index + 1>" (workpiece_setup1, ...), the part
+// turned onto the setup's tool axis with its origin at the setup's datum (the program's zero).
+std::string job_setup_frame_id(const std::string& workpiece, size_t index);
+
 class SetupFramePublisher {
  public:
   // Publishes (once per frame) the setup's frame as a static child of `workpiece`; returns its name.
   std::string publish(const std::string& workpiece, const SetupFrame& setup);
+  // Publishes the setup's frame under `id`, again whenever its pose differs from the one last sent under it.
+  void publish_as(const std::string& workpiece, const std::string& id, const SetupFrame& setup);
 
  private:
   std::mutex mutex_;
-  std::set<std::string> sent_;
+  std::map<std::string, Eigen::Matrix4d> sent_;
   tf2_ros::StaticTransformBroadcaster broadcaster_;
 };
 
