@@ -6,9 +6,16 @@
 //   AFTER:  the job's own stock (a casting or a scan), every operation planned on what the ones before left, the
 //           last one rest machining.
 // Jobs: config/jobs/rest_pocket.yaml (pocket from a casting: rough 10 flat, finish 6 ball, rest 3 ball) and
-// config/jobs/scanned_dome.yaml with a rest operation with the 3 mm ball added. Usage: bench_job [threads]
+// config/jobs/scanned_dome.yaml with a rest operation with the 3 mm ball added.
+// Then the multi-setup job config/jobs/pocket_sides.yaml (the pocket casting, top and four sides in a vise): per
+// setup the planning seconds, the estimated machining time and the air-cutting share, the job's totals, and the
+// whole job as a user meets it: `rosmill job ... -o DIR` in a fresh process (programs checked, setup sheet
+// written; best of 3). Usage: bench_job [threads]
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include <tbb/global_control.h>
@@ -48,6 +55,42 @@ void compare(const std::string& name, const JobSpec& after, const JobOptions& op
   std::printf("  (cpu %.1f s for both)\n", cpu_seconds_used() - cpu0);
 }
 
+void multi_setup(const std::string& file, const JobOptions& options) {
+  std::printf("== %s\n", file.c_str());
+  const double cpu0 = cpu_seconds_used();
+  const JobReport r = run_job(read_job(file), options);
+  double plan_all = 0;
+  for (size_t k = 0; k < r.setups.size(); ++k) {
+    const SetupReport& s = r.setups[k];
+    double plan = 0, feed = 0, air = 0;
+    for (size_t op : s.operations) {
+      plan += r.operations[op].plan_seconds + r.operations[op].remove_seconds;
+      feed += r.operations[op].cutting_mm;
+      air += r.operations[op].air_feed_mm;
+    }
+    plan_all += plan;
+    std::printf("  setup %zu %-6s %s down  %zu operations  plan %5.2f s  time %6.0f s  air %5.1f %%  finishes %5.0f mm2\n",
+                k + 1, s.name.c_str(), s.face_down.c_str(), s.operations.size(), plan, s.time_s,
+                feed > 0 ? 100 * air / feed : 0.0, s.finished_area);
+  }
+  std::printf("  job: %zu setups, plan %.2f s (cpu %.2f s), time %.0f s, air %.1f %%, removed %.0f mm3, left %.0f mm3\n",
+              r.setups.size(), plan_all, cpu_seconds_used() - cpu0, r.time_s, 100 * r.air_cut_share, r.removed_mm3,
+              r.left_mm3);
+  const std::string out = "/tmp/rosmill_bench_job_setups";
+  const std::string command = std::string(ROSMILL_CLI) + " job '" + file + "' -o " + out + " > /dev/null";
+  double best = 1e9;
+  for (int i = 0; i < 3; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    if (std::system(command.c_str()) != 0) {
+      std::printf("  rosmill job failed\n");
+      return;
+    }
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::printf("  rosmill job -o (a fresh process: 5 programs checked, the setup sheet): %.2f s\n", best);
+  std::filesystem::remove_all(out);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -69,5 +112,8 @@ int main(int argc, char** argv) {
   rest.rest = true;
   dome.operations.push_back(rest);
   compare("scanned_dome + rest 3 mm ball (scan)", dome, options);
+  JobOptions checked = options;
+  checked.checks.machine = machine;
+  multi_setup(config + "jobs/pocket_sides.yaml", checked);
   return 0;
 }

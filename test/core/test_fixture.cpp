@@ -16,13 +16,6 @@ using namespace rosmill::core::fixture;
 
 namespace {
 
-Box3 box(const Vec3& lo, const Vec3& hi) {
-  Box3 b;
-  b.add(lo);
-  b.add(hi);
-  return b;
-}
-
 const FixtureBox& named(const Fixture& f, const std::string& name) {
   for (const FixtureBox& b : f.boxes)
     if (b.name == name) return b;
@@ -57,7 +50,7 @@ stock::MachineProgram program(const std::vector<std::pair<Vec3, Vec3>>& moves, b
 
 TEST(Fixture, ViseGripsTheStockByTheRule) {
   // A stock 54 x 44 x 23 mm, the vise's jaws closing along y.
-  const Box3 stock = box(Vec3(-2, -2, 0), Vec3(52, 42, 23));
+  const Box3 stock = Box3::between(Vec3(-2, -2, 0), Vec3(52, 42, 23));
   FixtureSpec spec;
   spec.kind = FixtureSpec::Kind::Vise;
   spec.vise.grip = 5;
@@ -80,7 +73,7 @@ TEST(Fixture, ViseGripsTheStockByTheRule) {
 }
 
 TEST(Fixture, BadFixturesAreRefusedWithTheReason) {
-  const Box3 stock = box(Vec3(0, 0, 0), Vec3(60, 60, 60));
+  const Box3 stock = Box3::between(Vec3(0, 0, 0), Vec3(60, 60, 60));
   FixtureSpec spec;
   spec.kind = FixtureSpec::Kind::Vise;
   spec.vise.opening = 50;
@@ -95,10 +88,10 @@ TEST(Fixture, BadFixturesAreRefusedWithTheReason) {
   EXPECT_NE(error_of([&] { place_fixture(spec, stock, "f"); }).find("must be x or y"), std::string::npos);
   spec = FixtureSpec{};
   spec.kind = FixtureSpec::Kind::Boxes;
-  spec.boxes = {{"stop", box(Vec3(55, 0, 0), Vec3(70, 10, 10))}};
+  spec.boxes = {{"stop", Box3::between(Vec3(55, 0, 0), Vec3(70, 10, 10))}};
   EXPECT_NE(error_of([&] { place_fixture(spec, stock, "f"); }).find("box 'stop' cuts into the stock"),
             std::string::npos);
-  spec.boxes = {{"stop", box(Vec3(60, 0, 0), Vec3(70, 10, 10))}};  // touching is holding
+  spec.boxes = {{"stop", Box3::between(Vec3(60, 0, 0), Vec3(70, 10, 10))}};  // touching is holding
   EXPECT_EQ(place_fixture(spec, stock, "f").boxes.size(), 1u);
   spec = FixtureSpec{};
   spec.kind = FixtureSpec::Kind::Table;
@@ -115,7 +108,7 @@ TEST(Fixture, BadFixturesAreRefusedWithTheReason) {
 // Which part of the tool enters: the cutter beside a jaw, the holder over it, nothing a hair away.
 TEST(FixtureCollision, NamesThePartTheBoxAndTheMove) {
   Fixture f;
-  f.boxes = {{"vise fixed jaw", box(Vec3(-50, -20, -25), Vec3(50, 0, 5))}};
+  f.boxes = {{"vise fixed jaw", Box3::between(Vec3(-50, -20, -25), Vec3(50, 0, 5))}};
   // The ball (r 3) plunging beside the jaw: 3.01 mm off its face is clear, 2.9 mm is in.
   EXPECT_FALSE(stock::first_fixture_collision(program({{Vec3(0, 3.01, 20), Vec3(0, 3.01, 0)}}), f));
   const auto cutter = stock::first_fixture_collision(program({{Vec3(0, 10, 20), Vec3(0, 10, 0)},
@@ -145,7 +138,7 @@ TEST(FixtureCollision, NamesThePartTheBoxAndTheMove) {
 TEST(FixtureCollision, SweepAgreesWithDensePositions) {
   std::mt19937 random(11);
   std::uniform_real_distribution<double> u(-40, 40);
-  const Box3 b = box(Vec3(-10, -5, -8), Vec3(12, 7, 3));
+  const Box3 b = Box3::between(Vec3(-10, -5, -8), Vec3(12, 7, 3));
   const stock::ToolBody body = stock::tool_body(ball6());
   auto meets_at = [&](const Vec3& tip, const stock::ToolBodyPart& p, double grow) {
     const double zlo = tip.z() + p.from, zhi = tip.z() + p.to;

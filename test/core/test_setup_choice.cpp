@@ -18,6 +18,7 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/segment/surface_patches.hpp"
 #include "rosmill/setups/setup_choice.hpp"
+#include "rosmill/testing/exhaustive_cover.hpp"
 #include "rosmill/testing/reference_drop.hpp"
 #include "rosmill/testing/sanitized.hpp"
 
@@ -224,9 +225,10 @@ TEST(SetupChoice, AreaHiddenByTheFixtureIsReportedAsSuch) {
   EXPECT_TRUE(narrow.setups.empty());
 }
 
-// The choice against a brute force written here: every set of candidates, the fewest whose cover under the rule
-// (a face reached whole by one setup counts only whole; other surface where any setup reaches it) comes within
-// the least gain of all candidates', and the largest cover among those. On every bundled model.
+// The choice against a brute force (test support's exhaustive_cover, apart from the search's code): every set of
+// candidates, the fewest whose cover under the rule (a face reached whole by one setup counts only whole; other
+// surface where any setup reaches it) comes within the least gain of all candidates', and the largest cover among
+// those. On every bundled model.
 TEST(SetupChoice, TheChoiceIsTheBestOfEverySetOfCandidates) {
   std::vector<std::pair<std::string, Mesh>> models = {{"cube", make_primitive("cube")},
                                                       {"cavity", make_primitive("cavity")},
@@ -242,53 +244,16 @@ TEST(SetupChoice, TheChoiceIsTheBestOfEverySetOfCandidates) {
     ChoiceOptions o = with_tool(finishing_ball());
     o.spacing = sample_spacing(part, rosmill::testing::cases(8000, 2000));
     const SetupChoice c = choose_setups(part, sp, o);
-    // The reach per candidate again (the search, not the reach, is under test here).
-    const size_t n = c.candidates.size();
-    ASSERT_LE(n, 16u) << name;
-    std::vector<uint32_t> reached(c.samples.size(), 0);
-    for (size_t i = 0; i < n; ++i) {
-      const std::vector<Reach> r =
-          reach_along(part, c.samples, direction_setup(c.candidates[i].direction), reach_tool(o.tool), {});
-      for (size_t k = 0; k < r.size(); ++k) reached[k] |= uint32_t(r[k] == Reach::Reached) << i;
-    }
-    // Per face: its area and the candidates reaching 99.5 % of it.
-    std::map<uint32_t, double> face_area;
-    std::map<uint32_t, std::vector<double>> face_reach;
-    for (size_t k = 0; k < c.samples.size(); ++k) {
-      const uint32_t f = sp.label(c.samples.facets[k]);
-      face_area[f] += c.samples.weights[k];
-      face_reach[f].resize(n);
-      for (size_t i = 0; i < n; ++i) face_reach[f][i] += (reached[k] >> i & 1) * c.samples.weights[k];
-    }
-    auto whole = [&](uint32_t f, uint32_t set) {
-      for (size_t i = 0; i < n; ++i)
-        if ((set >> i & 1) && face_reach[f][i] >= 0.995 * face_area[f]) return true;
-      return false;
-    };
-    auto cover = [&](uint32_t set) {
-      double a = 0;
-      for (size_t k = 0; k < c.samples.size(); ++k) {
-        const uint32_t f = sp.label(c.samples.facets[k]);
-        a += (whole(f, (1u << n) - 1) ? whole(f, set) : (reached[k] & set) != 0) * c.samples.weights[k];
-      }
-      return a;
-    };
-    const double all = cover((1u << n) - 1), slack = o.min_gain_share * c.total_area;
-    size_t fewest = 0;
-    double best = -1;
-    for (size_t size = 1; size <= n && fewest == 0; ++size)
-      for (uint32_t set = 1; set < (1u << n); ++set)
-        if (size_t(__builtin_popcount(set)) == size && cover(set) >= all - slack) {
-          fewest = size;
-          best = std::max(best, cover(set));
-        }
-    uint32_t chosen = 0;
-    for (const ChosenSetup& s : c.setups) chosen |= 1u << s.candidate;
-    EXPECT_EQ(c.setups.size(), fewest) << name;
-    EXPECT_NEAR(cover(chosen), best, 1e-6 * c.total_area) << name;
-    EXPECT_NEAR(c.best_cover, all, 1e-6 * c.total_area) << name;
+    ASSERT_LE(c.candidates.size(), 16u) << name;
+    uint64_t chosen = 0;
+    for (const ChosenSetup& s : c.setups) chosen |= uint64_t(1) << s.candidate;
+    const rosmill::core::testing::ExhaustiveCover e =
+        rosmill::core::testing::exhaustive_cover(c, sp, o.min_gain_share * c.total_area, chosen);
+    EXPECT_EQ(c.setups.size(), e.fewest) << name;
+    EXPECT_NEAR(e.of_chosen, e.best, 1e-6 * c.total_area) << name;
+    EXPECT_NEAR(c.best_cover, e.all, 1e-6 * c.total_area) << name;
     std::printf("%-22s %zu candidates, %zu setups chosen, cover %.1f of %.1f mm^2 (all candidates %.1f)\n",
-                name.c_str(), n, c.setups.size(), cover(chosen), c.total_area, all);
+                name.c_str(), c.candidates.size(), c.setups.size(), e.of_chosen, c.total_area, e.all);
   }
 }
 

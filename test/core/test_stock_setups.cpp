@@ -21,13 +21,6 @@ using namespace stock_test;
 
 namespace {
 
-Box3 box_of(const Vec3& lo, const Vec3& hi) {
-  Box3 b;
-  b.add(lo);
-  b.add(hi);
-  return b;
-}
-
 // A slot of a flat end along x at height z of the setup's frame, through y = y (entered and left outside x0..x1).
 MachineProgram slot_along_x(double D, double x0, double x1, double y, double z, double clear) {
   return program_of(Cutter::flat(D), {{Vec3(x0, y, clear), Vec3(x0, y, z)}, {Vec3(x0, y, z), Vec3(x1, y, z)},
@@ -43,7 +36,7 @@ std::vector<Span> spans_at(const InProcessStock& s, double x, double y) {
 }  // namespace
 
 TEST(StockSetups, CuttingFromBelowRemovesTheUnderside) {
-  InProcessStock stock = InProcessStock::box(box_of(Vec3(0, 0, 0), Vec3(40, 30, 20)), 0.5);
+  InProcessStock stock = InProcessStock::box(Box3::between(Vec3(0, 0, 0), Vec3(40, 30, 20)), 0.5);
   // +Z: a 10 mm slot 3 mm deep through y 10..20.
   const RemovalReport top = stock.remove(slot_along_x(10, -10, 50, 15, 17, 30));
   EXPECT_NEAR(top.removed_mm3, 40.0 * 10 * 3, 1e-3);
@@ -81,7 +74,7 @@ TEST(StockSetups, CuttingFromBelowRemovesTheUnderside) {
 }
 
 TEST(StockSetups, PocketInASideIsSeenFromThatSide) {
-  InProcessStock stock = InProcessStock::box(box_of(Vec3(0, 0, 0), Vec3(40, 30, 20)), 0.25);
+  InProcessStock stock = InProcessStock::box(Box3::between(Vec3(0, 0, 0), Vec3(40, 30, 20)), 0.25);
   // -X: the tool comes from x < 0; a 10 mm flat plunged 4 mm into the face x = 0 at y 15, z 10.
   const SetupFrame side = named_setup("-X");
   const Vec3 face = side.to_setup_frame(Vec3(0, 15, 10));
@@ -109,7 +102,7 @@ TEST(StockSetups, PocketInASideIsSeenFromThatSide) {
 TEST(StockSetups, MaterialAboveTheDesign) {
   // The cube primitive in a box 5 mm taller: 5 mm above the design over the cube, none elsewhere in this stock.
   const Mesh cube = make_primitive("cube");
-  const InProcessStock stock = InProcessStock::box(box_of(Vec3(0, 0, 0), Vec3(60, 60, 65)), 1.0);
+  const InProcessStock stock = InProcessStock::box(Box3::between(Vec3(0, 0, 0), Vec3(60, 60, 65)), 1.0);
   const std::vector<float> above = stock.material_above(cube);
   for (float a : above) ASSERT_NEAR(a, 5.0, 1e-5);
   // From -X the box stands 0 mm beyond the cube's side x = 0 (the stock's side is the cube's).
@@ -127,7 +120,7 @@ TEST(StockSetups, MaterialAboveTheDesign) {
 
 TEST(StockSetups, ExportedSurfaceIsClosedWithTheModelVolume) {
   const double cell = 0.5;
-  InProcessStock stock = InProcessStock::box(box_of(Vec3(0, 0, 0), Vec3(40, 30, 20)), cell);
+  InProcessStock stock = InProcessStock::box(Box3::between(Vec3(0, 0, 0), Vec3(40, 30, 20)), cell);
   stock.remove(slot_along_x(10, -10, 50, 15, 17, 30));
   stock.remove(slot_along_x(10, -10, 50, -10, -2, 10), named_setup("-Z"));
   stock.remove(program_of(Cutter::ball(6), {{Vec3(10, 10, 30), Vec3(10, 10, 18)}}));

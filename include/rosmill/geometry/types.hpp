@@ -15,6 +15,13 @@ struct Box3 {
   Vec3 min = Vec3::Constant(std::numeric_limits<double>::infinity());
   Vec3 max = Vec3::Constant(-std::numeric_limits<double>::infinity());
 
+  // The box between two corners.
+  static Box3 between(const Vec3& a, const Vec3& b) {
+    Box3 box;
+    box.add(a);
+    box.add(b);
+    return box;
+  }
   bool empty() const { return min.x() > max.x(); }
   void add(const Vec3& p) {
     min = min.cwiseMin(p);
