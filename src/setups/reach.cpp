@@ -9,6 +9,7 @@
 
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
+#include "height_bound.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 
 namespace rosmill::core::setups {
@@ -22,26 +23,49 @@ constexpr double kProbe = 0.001;  // the radius of the flat probe that asks "any
 // cylinder of the cutter's own radius grazes, not touches, a wall it runs along.
 constexpr double kAxisClearance = 0.01;
 
-// The surface turned into the setup with the three probes it is asked with.
+// The height bound's cell: half the samples' spacing (a finer one answers few more questions), but between 1/1024
+// and 1/128 of the part's longer side.
+double bound_cell(const Mesh& turned, double spacing) {
+  const double extent = std::max({turned.bbox.size().x(), turned.bbox.size().y(), 1e-3});
+  return std::clamp(0.5 * spacing, extent / 1024, extent / 128);
+}
+
+// A probe: a flat cylinder of a radius asked whether anything stands above a height near a point, with the height
+// bound grown to its radius (height_bound.hpp), which answers "nothing" for most questions before the exact drop.
+struct Probe {
+  CutterProfile cutter;
+  std::vector<float> bound;
+};
+
+// The surface turned into the setup with the three probes it is asked with: a thin line over a sample, the shank
+// and the holder. `bounded`: with the height bound (the part's many triangles), or the exact drop alone (a
+// fixture's few boxes).
 class ReachProbe {
  public:
-  ReachProbe(const Mesh& turned, const ReachTool& tool)
+  ReachProbe(const Mesh& turned, const ReachTool& tool, double spacing, bool bounded)
       : surface_(turned),
-        line_(Cutter::flat(2 * kProbe)),
-        shank_(Cutter::flat(2 * tool.shank_radius)),
-        holder_(Cutter::flat(2 * tool.holder_radius)) {}
+        bound_(bounded ? std::make_unique<HeightBound>(turned, bound_cell(turned, spacing),
+                                                       std::max({kProbe, tool.shank_radius, tool.holder_radius}))
+                       : nullptr),
+        line_{CutterProfile(Cutter::flat(2 * kProbe)), grown(kProbe)},
+        shank_{CutterProfile(Cutter::flat(2 * tool.shank_radius)), grown(tool.shank_radius)},
+        holder_{CutterProfile(Cutter::flat(2 * tool.holder_radius)), grown(tool.holder_radius)} {}
 
-  // Whether anything stands above z within the probe's radius of (x, y).
-  bool above(const CutterProfile& probe, double x, double y, double z, uint32_t& hint) const {
-    return surface_.held_above_hinted(probe, x, y, z, hint);
+  // Whether anything stands above z within the probe's radius of (x, y): the bound first, the exact drop when the
+  // bound cannot tell.
+  bool above(const Probe& probe, double x, double y, double z, uint32_t& hint) const {
+    return (!bound_ || bound_->at(probe.bound, x, y) > z) && surface_.held_above_hinted(probe.cutter, x, y, z, hint);
   }
-  const CutterProfile& line() const { return line_; }
-  const CutterProfile& shank() const { return shank_; }
-  const CutterProfile& holder() const { return holder_; }
+  const Probe& line() const { return line_; }
+  const Probe& shank() const { return shank_; }
+  const Probe& holder() const { return holder_; }
 
  private:
+  std::vector<float> grown(double radius) const { return bound_ ? bound_->grown(radius) : std::vector<float>{}; }
+
   MeshSurface surface_;
-  CutterProfile line_, shank_, holder_;
+  std::unique_ptr<HeightBound> bound_;
+  Probe line_, shank_, holder_;
 };
 
 // Where the tool stands to touch a sample with normal n (setup frame): its axis and its tip's height.
@@ -112,9 +136,14 @@ std::vector<Reach> reach_along(const Mesh& part, const SurfaceSamples& samples, 
                                const ReachTool& tool, const std::vector<Vec3>& fixture_corners,
                                double max_angle_deg) {
   if (!(max_angle_deg > 0 && max_angle_deg <= 180)) throw Error("reach", "the largest angle must lie in (0, 180]");
-  const ReachProbe on_part(placed(part, setup.placement), tool);
+  // The samples' spacing: the side of the square a sample's weight would be.
+  double area = 0;
+  for (double w : samples.weights) area += w;
+  const double spacing = std::sqrt(area / std::max<size_t>(samples.size(), 1));
+  const ReachProbe on_part(placed(part, setup.placement), tool, spacing, true);
   std::unique_ptr<ReachProbe> on_fixture;
-  if (!fixture_corners.empty()) on_fixture = std::make_unique<ReachProbe>(build_mesh(fixture_corners), tool);
+  if (!fixture_corners.empty())
+    on_fixture = std::make_unique<ReachProbe>(build_mesh(fixture_corners), tool, spacing, false);
   const double facing = std::cos(max_angle_deg * M_PI / 180.0) - 1e-9;
   std::vector<Reach> out(samples.size(), Reach::FacesAway);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
