@@ -75,6 +75,7 @@ void run(const JobArgs& a) {
       std::printf(" at machine %.3f %.3f %.3f", shown(s.work_offset->origin.x()), shown(s.work_offset->origin.y()),
                   shown(s.work_offset->origin.z()));
     if (s.finished_area > 0) std::printf("; finishes %.0f mm2", s.finished_area);
+    if (s.index) std::printf("; indexed A %.4f C %.4f (%.1f s)", s.index->a, s.index->c, s.indexing_s);
     std::printf("\n");
   }
   if (r.part_area > 0) {
@@ -99,6 +100,13 @@ void run(const JobArgs& a) {
   std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s, material left on the part "
               "%.3f to %.3f mm, deepest gouge (the verifier) %.3f mm\n",
               r.removed_mm3, r.left_mm3, 100 * r.air_cut_share, r.time_s, r.min_left_mm, r.max_left_mm, r.gouge_mm);
+  if (r.program_check.done) {
+    const job::JobReport::ProgramCheck& c = r.program_check;
+    std::printf("3+2 program read back and simulated through its %zu indexings: deepest gouge %.3f mm%s, material "
+                "left on the part %.3f to %.3f mm, %.0f mm3 over the design (%.2f s)\n",
+                c.runs, c.gouge_mm, c.gouge_line ? (" at line " + std::to_string(c.gouge_line)).c_str() : "",
+                c.min_left_mm, c.max_left_mm, c.left_mm3, c.seconds);
+  }
 }
 
 CommandRegistration reg([](CLI::App& app) {

@@ -1,22 +1,30 @@
 // rosmill verify DESIGN (PROGRAM.ngc|toolpath.json) [--stock box|x0,y0,z0,x1,y1,z1|STOCK.stl] [--resolution MM]
 //   [--tool SPEC]... [--tools FILE] [--units U] [--tolerance MM] [--stepover MM] [--json] [--image deviation.png]
+//   [--machine MACHINE.yaml --on-table X,Y,Z]
 // Simulates the program on the stock and compares the result with the design (an STL or a cloud): the deepest
-// gouge and the line that made it, the material left, the scallop, the area never reached.
+// gouge and the line that made it, the material left, the scallop, the area never reached. With a trunnion machine
+// (a machine file with `rotary:`), a 3+2 program is followed through its A/C indexing (verify/indexed.hpp): the
+// design stands on the table at --on-table (where `rosmill job --json` says, workpiece_on_table).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
 #include "config_file.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/machine_limits.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/verify/deviation_image.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
+#include "rosmill/verify/indexed.hpp"
 #include "rosmill/verify/verify.hpp"
 
 namespace rosmill::core::cli {
@@ -26,13 +34,13 @@ using namespace rosmill::core::verify;
 using namespace rosmill::core::stock;
 
 struct VerifyArgs {
-  std::string design, program, stock = "box", tools, units, image;
+  std::string design, program, stock = "box", tools, units, image, machine, on_table;
   std::vector<std::string> tool;
   double resolution = 0.5, tolerance = 0.01, stepover = 0;
   bool json = false;
 };
 
-MachineProgram read_program(const VerifyArgs& a) {
+MachineProgram read_program(const VerifyArgs& a, bool rotary) {
   if (is_toolpath_path(a.program)) {
     if (!a.tool.empty()) throw Error("--tool", "a toolpath file names its own tools; --tool is for G-code programs");
     return program_from_job(read_toolpath_file(a.program));
@@ -44,7 +52,9 @@ MachineProgram read_program(const VerifyArgs& a) {
                                                                           : "";
   std::unique_ptr<ToolTable> table;
   if (!table_path.empty()) table = std::make_unique<ToolTable>(read_tool_table(table_path));
-  return read_gcode(a.program, tool_setup(a.tool, table.get()));
+  ToolSetup tools = tool_setup(a.tool, table.get());
+  tools.rotary = rotary;
+  return read_gcode(a.program, tools);
 }
 
 nlohmann::ordered_json to_json(const DeviationReport& r, double seconds) {
@@ -85,6 +95,50 @@ void print_text(const VerifyArgs& a, const MachineProgram& p, const VerifyResult
   std::printf("seconds    %.3f (simulation %.3f)\n", seconds, v.simulation_seconds);
 }
 
+// "x,y,z" in mm.
+Vec3 parse_point(const std::string& text, const std::string& where) {
+  Vec3 p;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> p.x() >> c1 >> p.y() >> c2 >> p.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
+      !p.allFinite())
+    throw Error(where, "expected x,y,z (mm), got '" + text + "'");
+  return p;
+}
+
+void print_indexed(const VerifyArgs& a, const IndexedVerifyResult& r) {
+  if (a.json) {
+    nlohmann::ordered_json runs = nlohmann::ordered_json::array();
+    for (const IndexedRun& k : r.runs)
+      runs.push_back({{"a_deg", k.a}, {"c_deg", k.c}, {"moves", k.moves}, {"first_line", k.first_source},
+                      {"max_gouge_mm", k.report.gouged ? k.report.max_gouge_mm : 0.0}});
+    nlohmann::ordered_json j;
+    j["runs"] = runs;
+    j["max_gouge_mm"] = r.max_gouge_mm;
+    j["gouge_line"] = r.gouge_source ? nlohmann::ordered_json(r.gouge_source) : nlohmann::ordered_json();
+    j["min_left_mm"] = r.min_left_mm;
+    j["max_left_mm"] = r.max_left_mm;
+    j["stock_mm3"] = r.stock_mm3;
+    j["design_mm3"] = r.design_mm3;
+    j["left_mm3"] = r.left_mm3;
+    j["seconds"] = r.seconds;
+    std::printf("%s\n", j.dump().c_str());
+    return;
+  }
+  std::printf("verify %s with %s on the trunnion: %zu runs between indexings\n", a.design.c_str(), a.program.c_str(),
+              r.runs.size());
+  for (const IndexedRun& k : r.runs)
+    std::printf("  A %9.4f C %9.4f from line %u: %zu moves, gouge %.4f mm\n", k.a, k.c, k.first_source, k.moves,
+                k.report.gouged ? k.report.max_gouge_mm : 0.0);
+  if (r.gouge_source)
+    std::printf("gouge      %.4f mm deep, line %u\n", r.max_gouge_mm, r.gouge_source);
+  else
+    std::printf("gouge      none deeper than %g mm\n", a.tolerance);
+  std::printf("left       %.4f to %.4f mm on the part seen from the runs' sides; %.0f mm3 over the design\n",
+              r.min_left_mm, r.max_left_mm, r.left_mm3);
+  std::printf("seconds    %.3f\n", r.seconds);
+}
+
 void run(const VerifyArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   VerifyOptions o;
@@ -93,7 +147,17 @@ void run(const VerifyArgs& a) {
   o.compare.stepover = a.stepover;
   if (!(a.tolerance >= 0)) throw Error("--tolerance", "must be zero or more mm");
   if (!(a.stepover >= 0)) throw Error("--stepover", "must be zero or more mm");
-  const MachineProgram program = read_program(a);
+  std::optional<machine::Trunnion> trunnion;
+  if (!a.machine.empty()) {
+    trunnion = gcode::load_machine_limits(a.machine).trunnion;
+    if (!trunnion) throw Error("--machine " + a.machine, "has no rotary axes: verify a 3-axis program without it");
+    if (a.on_table.empty())
+      throw Error("--on-table", "missing: where the design stands on the table at A = C = 0, x,y,z (mm; `rosmill job "
+                                "--json` gives it as workpiece_on_table)");
+  } else if (!a.on_table.empty()) {
+    throw Error("--on-table", "is for a trunnion machine: give --machine too");
+  }
+  const MachineProgram program = read_program(a, trunnion.has_value());
 
   Mesh stock_mesh;
   StockSpec stock;
@@ -107,6 +171,16 @@ void run(const VerifyArgs& a) {
     stock.mesh = &stock_mesh;
   }
 
+  if (trunnion) {
+    if (is_cloud_file(a.design)) throw Error(a.design, "a 3+2 program is verified against an STL design");
+    StlReadOptions so;
+    if (!a.units.empty()) so.units = parse_units(a.units, "--units");
+    const Vec3 at = parse_point(a.on_table, "--on-table");
+    const Placement on_table{"table", kWorkpieceFrame, Eigen::Isometry3d(Eigen::Translation3d(at))};
+    const IndexedVerifyResult r = verify_indexed(read_stl(a.design, so), program, *trunnion, on_table, stock, o);
+    print_indexed(a, r);
+    return;
+  }
   VerifyResult v;
   if (is_cloud_file(a.design)) {
     CloudReadOptions co;
@@ -143,6 +217,10 @@ CommandRegistration reg([](CLI::App& app) {
                                              "(toolpath files carry theirs)");
   cmd->add_flag("--json", a->json, "print one JSON object");
   cmd->add_option("--image", a->image, "write the deviation map as a PNG picture");
+  cmd->add_option("--machine", a->machine,
+                  "a trunnion machine file (rotary:): follow a 3+2 program through its A/C indexing");
+  cmd->add_option("--on-table", a->on_table,
+                  "with --machine: x,y,z (mm) where the design's origin stands on the table at A = C = 0");
   cmd->callback([a] { run(*a); });
 });
 

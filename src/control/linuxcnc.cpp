@@ -5,6 +5,7 @@
 
 #include <cctype>
 #include <sstream>
+#include <vector>
 #include <thread>
 
 #include "rosmill/error.hpp"
@@ -147,7 +148,13 @@ ControllerStatus LinuxcncController::poll(double timeout_s) {
     const std::string run = upper(get("program_status"));
     const size_t line = program_line_of(std::strtoul(get("program_line").c_str(), nullptr, 10));
     std::istringstream pos(get("abs_act_pos"));
-    status_.position_known = static_cast<bool>(pos >> status_.position.x() >> status_.position.y() >> status_.position.z());
+    // X Y Z A B C (and U V W): every axis of the machine's kinematics, whether or not it has a joint.
+    std::vector<double> axes;
+    for (double v; axes.size() < 9 && pos >> v;) axes.push_back(v);
+    status_.position_known = axes.size() >= 3;
+    if (status_.position_known) status_.position = Vec3(axes[0], axes[1], axes[2]);
+    status_.rotary_known = axes.size() >= 6;
+    if (status_.rotary_known) status_.a = axes[3], status_.c = axes[5];
     const std::string err = get("error");
     // A line outside the program (a stale or garbled reply) says nothing about it: it must not move the
     // acknowledged line past the program's end, where a resume would start.

@@ -199,6 +199,7 @@ void Interpreter::motion() {
   }
   m.to = state_.position;
   m.known_to = static_cast<uint8_t>(state_.known[0] | state_.known[1] << 1 | state_.known[2] << 2);
+  rotary(m);
   m.rapid = state_.motion == 0;
   m.feed = m.rapid ? 0.0f : static_cast<float>(state_.feed);
   m.source = static_cast<uint32_t>(place_.line);
@@ -209,6 +210,30 @@ void Interpreter::motion() {
     arc(m);
   }
   moved_ = true;
+}
+
+// The rotary axes A and C: degrees whatever the length units, absolute or incremental as the linear axes. A
+// move that turns them alongside linear axes is a simultaneous (5-axis) move the reader leaves to its consumers.
+void Interpreter::rotary(CanonMove& m) {
+  m.a_from = state_.a;
+  m.c_from = state_.c;
+  const auto turn = [&](char letter, double& at, bool& known) {
+    if (!block_.has(letter)) return;
+    if (state_.motion == 2 || state_.motion == 3)
+      throw Error(where(), std::string(1, letter) + " on an arc: the reader follows arcs of the linear axes only");
+    const double v = block_.get(letter);
+    if (state_.absolute) {
+      at = v;
+      known = true;
+    } else {
+      at += v;
+    }
+  };
+  turn('A', state_.a, state_.known_a);
+  turn('C', state_.c, state_.known_c);
+  m.a_to = state_.a;
+  m.c_to = state_.c;
+  m.known_rotary = static_cast<uint8_t>(state_.known_a | state_.known_c << 1);
 }
 
 void Interpreter::arc(CanonMove& m) const {

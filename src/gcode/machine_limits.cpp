@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "rosmill/error.hpp"
@@ -45,6 +46,55 @@ std::string fmt(double v) {
   s.precision(10);
   s << v;
   return s.str();
+}
+
+machine::RotaryAxis rotary_axis(const YAML::Node& node, const std::string& name, const std::string& path) {
+  const std::string where = path + " rotary." + name;
+  if (!node || !node.IsMap()) throw Error(where, "missing: {range: [min, max], velocity: deg/s, acceleration: deg/s^2}");
+  machine::RotaryAxis a;
+  const YAML::Node r = node["range"];
+  if (!r || !r.IsSequence() || r.size() != 2) throw Error(where, "range must be [min, max] (degrees)");
+  a.min = number(r[0], "rotary." + name + ".range min", path);
+  a.max = number(r[1], "rotary." + name + ".range max", path);
+  if (!(a.min < a.max)) throw Error(where, "range: min must be below max");
+  a.velocity = positive(node, "velocity", where);
+  a.acceleration = positive(node, "acceleration", where);
+  return a;
+}
+
+Vec3 point3(const YAML::Node& node, const std::string& what, const std::string& path) {
+  if (!node || !node.IsSequence() || node.size() != 3) throw Error(path, "field '" + what + "' must be [x, y, z]");
+  return Vec3(number(node[0], what, path), number(node[1], what, path), number(node[2], what, path));
+}
+
+// `rotary:` of a trunnion table (XYZAC): A about machine X carrying C about the table's Z.
+machine::Trunnion trunnion(const YAML::Node& r, const MachineLimits& m, const std::string& path) {
+  if (!r.IsMap()) throw Error(path, "field 'rotary' must be a map");
+  static const std::set<std::string> known = {"kinematics", "a", "c", "c_centre", "a_pivot", "mode", "safe_z",
+                                             "max_tool_length"};
+  for (const auto& kv : r)
+    if (!known.count(kv.first.Scalar())) throw Error(path, "unknown field 'rotary." + kv.first.Scalar() + "'");
+  if (!r["kinematics"] || r["kinematics"].Scalar() != "trunnion-ac")
+    throw Error(path, "rotary.kinematics must be trunnion-ac (A about X carrying C about Z: LinuxCNC's xyzac-trt)");
+  machine::Trunnion t;
+  t.a = rotary_axis(r["a"], "a", path);
+  t.c = rotary_axis(r["c"], "c", path);
+  t.centre = point3(r["c_centre"], "rotary.c_centre", path);
+  t.pivot = point3(r["a_pivot"], "rotary.a_pivot", path);
+  const std::string mode = r["mode"] ? r["mode"].Scalar() : "identity";
+  if (mode == "identity") t.mode = machine::KinematicsMode::Identity;
+  else if (mode == "tool-centre-point") t.mode = machine::KinematicsMode::ToolCentrePoint;
+  else throw Error(path, "rotary.mode must be identity or tool-centre-point, got '" + mode + "'");
+  if (!r["safe_z"]) throw Error(path, "field 'rotary.safe_z' is missing (machine Z the tool retracts to to index)");
+  t.safe_z = number(r["safe_z"], "rotary.safe_z", path);
+  if (t.safe_z < m.envelope.min.z() || t.safe_z > m.envelope.max.z())
+    throw Error(path, "rotary.safe_z lies outside the envelope's z range");
+  if (!r["max_tool_length"])
+    throw Error(path, "field 'rotary.max_tool_length' is missing (the longest tool's length offset, mm: its tip "
+                      "hangs that far below the safe Z while the part turns)");
+  t.max_tool_length = number(r["max_tool_length"], "rotary.max_tool_length", path);
+  if (!(t.max_tool_length >= 0)) throw Error(path, "rotary.max_tool_length must be 0 or more (mm)");
+  return t;
 }
 
 }  // namespace
@@ -99,6 +149,7 @@ MachineLimits parse_machine_limits(const std::string& yaml_text, const std::stri
     if (!acc.IsMap()) throw Error(path, "field 'max_acceleration' must be {x: A, y: A, z: A} (mm/s^2)");
     for (int a = 0; a < 3; ++a) m.max_acceleration[a] = positive(acc, axes[a], path + " max_acceleration");
   }
+  if (const YAML::Node r = root["rotary"]) m.trunnion = trunnion(r, m, path);
   return m;
 }
 
@@ -111,9 +162,11 @@ struct Step {
   size_t line;
   bool moved;
   CanonMove move;
+  bool machine_coordinates;  // a G53 move: `move.to` holds the machine position along the axes known_to names
   double feed, rpm;
   int spindle;
   WorkOffset offset;  // the active coordinate system's origin on the machine when the move ran
+  size_t run = 0;     // the runs of a 3+2 program between its indexings: each sees the part from another side
 };
 
 // The coordinate systems G54..G59 as far as the checker knows them: G54 from the machine file, each of them once the
@@ -141,6 +194,13 @@ std::optional<WorkOffset> followed_work_offset(const Interpreter& reader) {
   return w;
 }
 
+// A move in machine coordinates the checker follows: G53 with G0 or G1 and linear axes alone (the retract before a
+// trunnion turns the part).
+bool machine_move(const Interpreter& reader) {
+  const Block& b = reader.block();
+  return b.has_g(530) && b.has_linear() && !b.has_rotary() && (reader.state().motion == 0 || reader.state().motion == 1);
+}
+
 // What the checker cannot follow is refused rather than passed unchecked: moves to stored or machine positions,
 // offset changes other than coordinate system data it follows, and a coordinate system whose origin neither the
 // machine file nor the program gives. Feeds it cannot check and arcs outside the XY plane stop the check.
@@ -149,8 +209,9 @@ void refuse_unfollowed(const Interpreter& reader, int offset_before, const Known
   const Block& block = reader.block();
   for (int k = 0; k < block.g_count; ++k) {
     const int g = block.g[k];
-    if (g == 280 || g == 300 || g == 530)
-      add("unchecked move", g_name(g) + " goes to a stored or machine position the checker cannot follow");
+    if (g == 280 || g == 300 || (g == 530 && !machine_move(reader)))
+      add("unchecked move", g_name(g) + " goes to a stored or machine position the checker cannot follow" +
+                                (g == 530 ? std::string(" (G53 with G0 or G1 and X, Y, Z alone is followed)") : ""));
     if ((g == 100 && !followed_work_offset(reader)) || g == 920 || g == 921 || g == 922 || g == 923)
       add("unchecked move", g_name(g) + " changes an offset; later positions could not be checked" +
                                 (g == 100 ? " (G10 L2 P1..P6 with X, Y and Z, setting G54..G59's origin, is followed)"
@@ -165,6 +226,26 @@ void refuse_unfollowed(const Interpreter& reader, int offset_before, const Known
   if (s.feed_mode == 93) throw Error(reader.where(), "inverse-time feed (G93) is not followed");
   if (reader.moved() && reader.move().is_arc() && reader.move().plane != Plane::XY)
     throw Error(reader.where(), "arcs outside the XY plane (G17) are not followed");
+}
+
+// The rotary axes against the trunnion's ranges; any rotary word refused on a machine without one.
+template <class Add>
+void check_rotary(const MachineLimits& lim, const CanonMove& m, Add&& add) {
+  if (!m.known_rotary && !m.indexes()) return;
+  if (!lim.trunnion) {
+    add("rotary axes", "the machine '" + lim.name + "' has no A or C axis");
+    return;
+  }
+  const machine::Trunnion& t = *lim.trunnion;
+  // The table's check and the turning sweep assume the part stands still while the tool moves (3+2).
+  if (m.indexes() && (m.to - m.from).cwiseAbs().maxCoeff() > 0)
+    add("simultaneous move", "A or C turns while X, Y or Z move: a 3+2 program indexes with A and C alone");
+  if ((m.known_rotary & 1) && !t.a_in_range(m.a_to))
+    add(m.a_to < t.a.min ? "rotary a min" : "rotary a max",
+        "A " + fmt(m.a_to) + " outside its range [" + fmt(t.a.min) + ", " + fmt(t.a.max) + "]");
+  if ((m.known_rotary & 2) && !t.c_in_range(m.c_to))
+    add(m.c_to < t.c.min ? "rotary c min" : "rotary c max",
+        "C " + fmt(m.c_to) + " outside its range [" + fmt(t.c.min) + ", " + fmt(t.c.max) + "]");
 }
 
 // The extent of a move along each axis the controller knows: its end points, and for an arc the quadrant points
@@ -230,7 +311,7 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
   // First pass: the moves, and the stock top when it is not given.
   std::vector<Step> steps;
   Interpreter reader;
-  double top = -INFINITY;
+  std::vector<double> tops = {-INFINITY};  // per run: the highest cutting move across the part
   KnownOffsets known;
   known[0] = lim.work_offset;
   for (size_t i = 0; i < lines.size(); ++i) {
@@ -244,14 +325,30 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
     const int index = offset_index(s.work_offset);
     // A system the checker does not know was refused above; the moves are then checked as if in G54.
     const WorkOffset offset = index > 0 && known[index - 1] ? *known[index - 1] : *known[0];
-    steps.push_back({i, reader.moved(), reader.move(), s.feed, s.spindle_rpm, s.spindle, offset});
+    if (machine_move(reader)) {
+      // G53: the machine position along the axes given (the reader's program position there becomes unknown).
+      CanonMove m;
+      m.rapid = s.motion == 0;
+      const double unit = s.metric ? 1.0 : 25.4;
+      m.known_from = 0;
+      m.known_to = 0;
+      for (int a = 0; a < 3; ++a)
+        if (reader.block().has("XYZ"[a])) {
+          m.to[a] = reader.block().get("XYZ"[a]) * unit;
+          m.known_to |= uint8_t(1 << a);
+        }
+      steps.push_back({i, true, m, true, s.feed, s.spindle_rpm, s.spindle, offset, tops.size() - 1});
+      continue;
+    }
+    // An indexing turns the part: the stock's top is another side's from here on.
+    if (reader.moved() && reader.move().indexes()) tops.push_back(-INFINITY);
+    steps.push_back({i, reader.moved(), reader.move(), false, s.feed, s.spindle_rpm, s.spindle, offset,
+                     tops.size() - 1});
     // Cutting moves across the part (not plunges or feed retracts) run inside the stock.
     const CanonMove& m = reader.move();
     if (reader.moved() && !m.rapid && (m.known_to & 4) && (m.to.x() != m.from.x() || m.to.y() != m.from.y()))
-      top = std::max(top, m.to.z());
+      tops.back() = std::max(tops.back(), m.to.z());
   }
-  const double stock_top = std::isnan(o.stock_top) ? top : o.stock_top;
-  const double rapid_floor = stock_top + lim.clearance_over_stock;
   static const char* axis = "xyz";
   for (const Step& st : steps) {
     const CanonMove& m = st.move;
@@ -262,7 +359,8 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
       add(st.line, "max feed", "F" + fmt(st.feed) + " mm/min over " + fmt(lim.max_feed));
     double lo[3], hi[3];
     bool any[3];
-    machine_extent(m, st.offset, lo, hi, any);
+    machine_extent(m, st.machine_coordinates ? WorkOffset{} : st.offset, lo, hi, any);
+    check_rotary(lim, m, [&](std::string limit, std::string detail) { add(st.line, limit, detail); });
     for (int a = 0; a < 3; ++a) {
       if (!any[a]) continue;
       const double mlo = lo[a], mhi = hi[a];
@@ -273,9 +371,19 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
         add(st.line, std::string("envelope ") + axis[a] + " max",
             "machine " + std::string(1, axis[a]) + " " + fmt(mhi) + " above the soft limit " + fmt(lim.envelope.max[a]));
     }
-    if (any[2] && lo[2] < lim.table_z - 1e-9)
+    if (lim.trunnion && (m.known_to & 7) == 7 && !st.machine_coordinates) {
+      // On a trunnion the table turns: the tool tip is checked against its top in the table's own frame, below
+      // which it is inside the table (or behind it) at whatever turn.
+      const Vec3 tip = lim.trunnion->table_point(st.offset.to_machine(m.to), m.a_to, m.c_to);
+      if (tip.z() < lim.table_z - 1e-9)
+        add(st.line, "table", "tool tip " + fmt(lim.table_z - tip.z()) + " mm below the turned table's top (A " +
+                                  fmt(m.a_to) + ", C " + fmt(m.c_to) + ")");
+    } else if (!lim.trunnion && any[2] && lo[2] < lim.table_z - 1e-9) {
       add(st.line, "table", "tool tip at machine z " + fmt(lo[2]) + " below the table top " +
                                 fmt(lim.table_z));
+    }
+    const double stock_top = std::isnan(o.stock_top) ? tops[st.run] : o.stock_top;
+    const double rapid_floor = stock_top + lim.clearance_over_stock;
     if (m.rapid && !o.rapids_checked_by_stock && std::isfinite(stock_top) && (m.known_to & 4)) {
       // A rapid ends above the clearance; one that travels sideways must also start there.
       const bool sideways = m.to.x() != m.from.x() || m.to.y() != m.from.y();

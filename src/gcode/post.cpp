@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <fstream>
 
 #include "rosmill/error.hpp"
@@ -15,6 +16,7 @@ namespace {
 
 constexpr int kFeedDecimals = 1;
 constexpr int kSpeedDecimals = 0;
+constexpr int kAngleDecimals = 4;  // degrees: 1e-4 degrees moves a point 0.2 m away by 0.35 um
 
 // Writes blocks and remembers the modal state the controller is in, so that only changed words are written.
 class Writer {
@@ -126,6 +128,19 @@ class Writer {
     line(b, origin);
   }
 
+  // X and Y alone with Z where a machine-coordinate move (G53) left it: Z stays unknown, so the next rapid_z is
+  // written whatever it is.
+  void rapid_xy_at_unknown_z(double x, double y, const LineOrigin& origin) {
+    std::string b = "G0 X";
+    append_fixed(b, to_fixed(x, opt_.decimals), opt_.decimals);
+    b += " Y";
+    append_fixed(b, to_fixed(y, opt_.decimals), opt_.decimals);
+    line(b, origin);
+    known_ = false;
+    motion_ = 0;
+    z_only_ = std::numeric_limits<int64_t>::min();
+  }
+
   // After a tool change the tool's length (and so the program Z of the tip) changed: write every axis again.
   void forget_position() {
     known_ = false;
@@ -186,6 +201,21 @@ void tool_change(Writer& w, const Dialect& d, const Toolpath& tp, int index, boo
   if (o.coolant == Coolant::Mist) w.line("M7", origin);
 }
 
+// The part turned for an indexed toolpath (3+2): the tool up to the machine's safe Z in machine coordinates (G53,
+// whatever the work offset), then A and C alone, the spindle clear above the turning part.
+void index_part(Writer& w, const Toolpath& tp, int index, const PostOptions& o) {
+  const LineOrigin origin{index};
+  if (!std::isfinite(o.index_safe_z))
+    throw Error("post", "an indexed toolpath needs the machine's safe Z to retract to (index_safe_z)");
+  if (!std::isfinite(tp.a) || !std::isfinite(tp.c)) throw Error("post", "an indexed toolpath's A or C is not finite");
+  w.comment("index the part: A " + fixed_text(tp.a, kAngleDecimals) + ", C " + fixed_text(tp.c, kAngleDecimals));
+  w.line("G53 G0 Z" + fixed_text(o.index_safe_z, o.decimals), origin);
+  w.forget_position();
+  w.line(index_block(tp.a, tp.c), origin);
+  // Over the toolpath's start before going down: below the old X Y the turned table may now stand.
+  w.rapid_xy_at_unknown_z(tp.start.x(), tp.start.y(), origin);
+}
+
 // A pass's moves, with runs of equal-feed linear moves handed to the arc fitter when arcs are on.
 void write_pass(Writer& w, const ToolpathPass& pass, int ti, int pi, const PostOptions& o) {
   const auto& moves = pass.moves;
@@ -244,6 +274,10 @@ PostOptions post_options_for(const std::string& dialect) {
   return o;
 }
 
+std::string index_block(double a, double c) {
+  return "G0 A" + fixed_text(a, kAngleDecimals) + " C" + fixed_text(c, kAngleDecimals);
+}
+
 Program post(const Job& job, const PostOptions& o) {
   const Dialect& d = find_dialect(o.dialect);
   decimal_scale(o.decimals);  // validates
@@ -268,6 +302,8 @@ Program post(const Job& job, const PostOptions& o) {
   for (size_t t = 0; t < job.size(); ++t) {
     const Toolpath& tp = job[t];
     const int ti = static_cast<int>(t);
+    if (tp.indexed && (t == 0 || !job[t - 1].indexed || job[t - 1].a != tp.a || job[t - 1].c != tp.c))
+      index_part(w, tp, ti, o);
     if (t == 0 || tp.tool.id != job[t - 1].tool.id) tool_change(w, d, tp, ti, t == 0, o);
     w.rapid_z(std::max(tp.clearance_z, tp.start.z()), LineOrigin{ti});
     w.rapid_xy(tp.start.x(), tp.start.y(), LineOrigin{ti});

@@ -54,6 +54,7 @@ nlohmann::json setup_json(const SetupReport& s) {
                         {"rotation_deg", s.work_offset->rotation_deg}};
   else
     j["work_offset"] = {{"code", "G54"}, {"origin", nullptr}};
+  if (s.index) j["index"] = {{"a_deg", s.index->a}, {"c_deg", s.index->c}, {"indexing_s", s.indexing_s}};
   if (!s.program.empty()) j["program"] = s.program;
   return j;
 }
@@ -67,6 +68,7 @@ nlohmann::json to_json(const JobReport& report) {
   nlohmann::json j = {{"operations", ops},
                       {"setups", setups},
                       {"stock_mm3", report.stock_mm3},
+                      {"stock_box", box(report.stock_box)},
                       {"left_mm3", report.left_mm3},
                       {"removed_mm3", report.removed_mm3},
                       {"air_cut_share", report.air_cut_share},
@@ -76,6 +78,15 @@ nlohmann::json to_json(const JobReport& report) {
                       {"gouge_mm", report.gouge_mm},
                       {"stock_bytes", report.stock_bytes},
                       {"cancelled", report.cancelled}};
+  j["indexed"] = report.indexed;
+  if (report.workpiece_on_table)
+    j["workpiece_on_table"] = {{"translation", vec(report.workpiece_on_table->pose.translation())}};
+  if (report.program_check.done) {
+    const JobReport::ProgramCheck& c = report.program_check;
+    j["program_check"] = {{"runs", c.runs},          {"gouge_mm", c.gouge_mm},       {"gouge_line", c.gouge_line},
+                          {"min_left_mm", c.min_left_mm}, {"max_left_mm", c.max_left_mm}, {"left_mm3", c.left_mm3},
+                          {"seconds", c.seconds}};
+  }
   if (report.part_area > 0) {
     nlohmann::json places = nlohmann::json::array();
     for (const setups::Unreached& u : report.unreachable)

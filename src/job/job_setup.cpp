@@ -7,6 +7,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/stock/design_height.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
 
 namespace rosmill::core::job {
 namespace {
@@ -118,18 +119,11 @@ void finished_faces(const setups::SetupChoice& c, int chosen, const SetupFrame& 
   }
 }
 
-}  // namespace
 
-JobSetup begin_setup(const SetupSpec& spec, size_t index, const stock::InProcessStock& stock,
-                     const SetupContext& c) {
-  const std::string where = c.job.source + (spec.line ? ":" + std::to_string(spec.line) : "") + " setups[" +
-                            std::to_string(index) + "] (" + spec.name + ")";
-  JobSetup s;
-  SetupReport& r = s.report;
-  r.name = spec.name;
-  r.direction = spec.direction;
-  r.datum = spec.datum;
-  r.face_down = face_down(spec.direction);
+// A setup on a 3-axis machine: the part turned over and clamped by the setup's fixture, the program's zero at the
+// datum on the stock as it now is.
+void clamp(SetupReport& r, const SetupSpec& spec, size_t index, const stock::InProcessStock& stock,
+           const SetupContext& c, const std::string& where) {
   SetupFrame turned = direction_setup(spec.direction, where);
   turned.name = spec.name;
   turned.placement.parent = "setup " + spec.name;
@@ -142,6 +136,86 @@ JobSetup begin_setup(const SetupSpec& spec, size_t index, const stock::InProcess
                                    Eigen::Isometry3d(Eigen::Translation3d(-datum))});
   r.fixture = fixture::place_fixture(spec.fixture, r.stock, where + " fixture");
   r.work_offset = work_offset_of(r, index, c.options);
+}
+
+// A box turned with a rigid placement: the bounds of its corners (more than the box where the turn is not by
+// quarter turns: the fixture's check then errs on the safe side).
+Box3 turned_box(const Box3& b, const Placement& p) { return placed(b, p); }
+
+// A setup on a trunnion: the part stays clamped as it stands on the table; A and C bring the setup's tool axis under
+// the spindle, and the setup's frame is the machine's (identity kinematics: the program's coordinates).
+void index_on_table(SetupReport& r, const SetupSpec& spec, const stock::InProcessStock& stock, TableSetting& table,
+                    const std::string& where) {
+  std::string why;
+  const std::optional<machine::Index> i = machine::index_for(*table.trunnion, spec.direction, table.last, &why);
+  if (!i) throw Error(where, "this machine cannot index the part for it: " + why);
+  r.index = *i;
+  const Placement table_in_machine = table.trunnion->table_in_machine(i->a, i->c);
+  r.frame.name = spec.name;
+  r.frame.tool_axis = spec.direction.normalized();
+  r.frame.placement = compose(table_in_machine, table.workpiece_on_table, where);
+  check_setup(r.frame, where);
+  r.datum = Datum::Workpiece;
+  r.datum_point = r.frame.placement.point_back(Vec3::Zero());  // the program's zero: machine zero at this turn
+  r.stock = stock.bounds_in(r.frame);
+  r.fixture = table.fixture;
+  for (fixture::FixtureBox& b : r.fixture.boxes) b.box = turned_box(b.box, table_in_machine);
+  r.fixture.table_z = NAN;
+  // The program's coordinates are the machine's: G54 at machine zero, set by the program itself.
+  r.work_offset = gcode::WorkOffset{};
+  r.face_down = "held on the table (A " + std::to_string(i->a) + ", C " + std::to_string(i->c) + ")";
+  table.last = *i;
+}
+
+}  // namespace
+
+double indexing_seconds(const machine::Trunnion& t, const machine::Index& from, const machine::Index& to,
+                        double from_z, double to_z, double rapid_feed, const Vec3& max_acceleration) {
+  const auto vertical = [&](double dz) {
+    return move_seconds(std::abs(dz), Vec3::UnitZ(), rapid_feed, max_acceleration);
+  };
+  const Vec3 turn(to.a - from.a, to.c - from.c, 0);
+  const double angle = turn.norm();
+  double seconds = vertical(t.safe_z - from_z) + vertical(t.safe_z - to_z);
+  if (angle > 0) {
+    // A rotary-only move: its "length" is in degrees, its feed the fastest both axes allow along it (degrees/min).
+    const Vec3 dir = turn / angle;
+    double feed = INFINITY;
+    if (std::abs(dir.x()) > 0) feed = std::min(feed, 60.0 * t.a.velocity / std::abs(dir.x()));
+    if (std::abs(dir.y()) > 0) feed = std::min(feed, 60.0 * t.c.velocity / std::abs(dir.y()));
+    seconds += move_seconds(angle, dir, feed, Vec3(t.a.acceleration, t.c.acceleration, 0));
+  }
+  return seconds;
+}
+
+TableSetting place_on_table(const machine::Trunnion& trunnion, const fixture::FixtureSpec& fixture,
+                            const stock::InProcessStock& stock, const JobOptions& o, const std::string& where) {
+  TableSetting t;
+  t.trunnion = &trunnion;
+  const Box3 raw = stock.bounds_in(SetupFrame{});
+  const fixture::Fixture held = fixture::place_fixture(fixture, raw, where + " fixture");
+  // The stock centred over the fixture position, on the fixture's seat over the table's top.
+  const Vec2 at = o.checks.machine->fixture_position;
+  const Vec3 shift(at.x() - 0.5 * (raw.min.x() + raw.max.x()), at.y() - 0.5 * (raw.min.y() + raw.max.y()),
+                   o.checks.machine->table_z - held.table_z);
+  t.workpiece_on_table = Placement{"table", kWorkpieceFrame, Eigen::Isometry3d(Eigen::Translation3d(shift))};
+  t.fixture = held;
+  for (fixture::FixtureBox& b : t.fixture.boxes) b.box = placed(b.box, t.workpiece_on_table);
+  return t;
+}
+
+JobSetup begin_setup(const SetupSpec& spec, size_t index, const stock::InProcessStock& stock,
+                     const SetupContext& c) {
+  const std::string where = c.job.source + (spec.line ? ":" + std::to_string(spec.line) : "") + " setups[" +
+                            std::to_string(index) + "] (" + spec.name + ")";
+  JobSetup s;
+  SetupReport& r = s.report;
+  r.name = spec.name;
+  r.direction = spec.direction;
+  r.datum = spec.datum;
+  r.face_down = face_down(spec.direction);
+  if (c.table) index_on_table(r, spec, stock, *c.table, where);
+  else clamp(r, spec, index, stock, c, where);
 
   s.part = placed(c.part, r.frame.placement);
   if (c.stock_mesh) s.stock_mesh = placed(*c.stock_mesh, r.frame.placement);

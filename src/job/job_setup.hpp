@@ -34,6 +34,15 @@ struct JobSetup {
   const Surface& surface() const { return checked ? static_cast<const Surface&>(*checked) : *part_surface; }
 };
 
+// The part on a trunnion table (3+2): clamped once, standing on the table centred over the machine's fixture
+// position, turned by A and C from setup to setup.
+struct TableSetting {
+  const machine::Trunnion* trunnion = nullptr;
+  Placement workpiece_on_table;        // "table" <- "workpiece"
+  fixture::Fixture fixture;            // in the table's frame
+  machine::Index last;                 // where A and C are when the next setup begins
+};
+
 struct SetupContext {
   const JobSpec& job;
   const JobOptions& options;
@@ -43,7 +52,26 @@ struct SetupContext {
   // setup finishes no face); null: the whole part.
   const setups::SetupChoice* faces = nullptr;
   int chosen = 0;
+  TableSetting* table = nullptr;  // a trunnion's (null: each setup clamped on a 3-axis machine)
 };
+
+// The part clamped on a trunnion's table by the first setup's fixture, as the raw stock stands at A = C = 0.
+TableSetting place_on_table(const machine::Trunnion& trunnion, const fixture::FixtureSpec& fixture,
+                            const stock::InProcessStock& stock, const JobOptions& options, const std::string& where);
+
+// Refuses (Error naming `where` and the indexing block) an indexing of the part from `from` to `to` that would turn
+// the stock or the fixture into the tool retracted to the trunnion's safe Z: the material's cells and the fixture's
+// boxes swept through A and C as the controller moves them (both at once, linearly), looked at every half degree
+// with the way a point can go between two looks added, must stay `clearance` below the longest tool's tip.
+void check_indexing(const stock::InProcessStock& stock, const TableSetting& table, const machine::Index& from,
+                    const machine::Index& to, double clearance, const std::string& where);
+
+// The time an indexing takes as LinuxCNC runs the post's blocks: the G53 rapid up from machine z `from_z` to the
+// safe Z, A and C turning together as one coordinated move (each axis held to its velocity and acceleration), and the
+// rapid down to `to_z`. The tool's length offset is not known here: the tip is taken to reach the safe Z, which
+// over-counts each way by the length over the rapid feed (s).
+double indexing_seconds(const machine::Trunnion& t, const machine::Index& from, const machine::Index& to,
+                        double from_z, double to_z, double rapid_feed, const Vec3& max_acceleration);
 
 // Begins the setup `index` of the job on the stock as the setups before left it. Throws Error naming the setup when
 // its fixture cannot hold the stock.

@@ -17,6 +17,8 @@
 #include "rosmill/segment/surface_patches.hpp"
 #include "rosmill/stock/fixture_collision.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
+#include "rosmill/verify/gcode_reader.hpp"
+#include "rosmill/verify/indexed.hpp"
 #include "rosmill/verify/verify.hpp"
 
 namespace rosmill::core::job {
@@ -90,6 +92,14 @@ std::pair<double, double> material_left(const JobSetup& s, const stock::HeightFi
 // The deepest cut below the design by the operation's program and the toolpath move that made it (0: none), from
 // the verifier, which sweeps the program over a fresh height field of the part in the setup's frame, apart from
 // the stock the operations carry: a second opinion on the gouge that the stock's material left gives.
+// Where the tool is after a job's last move.
+Vec3 last_position(const Job& toolpaths) {
+  for (auto t = toolpaths.rbegin(); t != toolpaths.rend(); ++t)
+    for (auto p = t->passes.rbegin(); p != t->passes.rend(); ++p)
+      if (!p->moves.empty()) return p->moves.back().to;
+  return toolpaths.empty() ? Vec3::Zero() : toolpaths.back().start;
+}
+
 std::pair<double, uint32_t> verified_gouge(const JobSetup& s, const stock::MachineProgram& program, double cell) {
   if (program.moves.empty()) return {0.0, 0};
   verify::VerifyOptions o;
@@ -150,6 +160,7 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
   request.params.stepdown = op.stepdown;
   request.params.allowance = op.allowance;
   if (!std::isnan(op.tolerance)) request.params.tolerance = op.tolerance;
+  if (!std::isnan(op.angle)) request.params.angle_deg = op.angle;
   if (job.stock.kind == StockSpec::Kind::Box) request.params.stock_margin = job.stock.margin;
   if (s.stock_mesh) request.params.stock_mesh = &*s.stock_mesh;
   request.params.link_clearance = options.link_clearance;
@@ -250,23 +261,67 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
     if (toolpaths.empty()) continue;  // its operations had nothing to cut
     const size_t index = report.operations[first].setup_index;
     SetupReport& setup = report.setups[index];
-    const std::string name = options.per_operation ? report.operations[first].name : "setup " + setup.name;
+    const std::string name = options.per_operation ? report.operations[first].name
+                             : report.indexed        ? "setups indexed 3+2"
+                                                     : "setup " + setup.name;
     const std::string path = program_path(options.out_dir, programs.size(), name);
     gcode::PostOptions post = gcode::post_options_for(options.dialect);
     post.title = "rosmill job " + job.source + ": " + name + ", " + setup.face_down + " down, " +
                  setup.fixture.description;
     post.work_offset = setup.work_offset;
     post.work_offset_note = setup_note(setup, index);
+    if (report.indexed) {
+      post.index_safe_z = options.checks.machine->trunnion->safe_z;
+      post.work_offset_note = "at machine zero: identity kinematics, the program's X Y Z are the machine's axes "
+                              "(the simulator starts in them, and LinuxCNC's rs274 reads the program as it runs)";
+      post.title = "rosmill job " + job.source + ": " + std::to_string(report.setups.size()) +
+                   " setups indexed on the trunnion (3+2), one clamping: " + setup.fixture.description;
+    }
     try {
       programs.emplace_back(path, gcode::prepare_program(toolpaths, post, checks).program);
     } catch (const Error& e) {
       throw Error("setup " + std::to_string(index + 1) + " (" + setup.name + ") program", e.what());
     }
-    for (size_t k = first; k < end; ++k) report.operations[k].program = path;
-    setup.program = path;
+    for (size_t k = first; k < end; ++k) {
+      report.operations[k].program = path;
+      report.setups[report.operations[k].setup_index].program = path;  // 3+2: every setup's
+    }
   }
   std::filesystem::create_directories(options.out_dir);
   for (const auto& [path, program] : programs) gcode::write_program(path, program);
+}
+
+// The written 3+2 program read back from its file (the tools as planned) and simulated through its rotary moves
+// from the raw stock: the final stock against the design in the workpiece frame, whatever A and C did.
+void check_indexed_program(const JobSpec& job, const machine::Trunnion& trunnion, const Mesh& part,
+                           const Mesh* stock_mesh, const Box3& raw_box, const std::vector<Job>& planned, JobReport& report) {
+  const std::string& path = report.setups.front().program;
+  if (path.empty()) return;
+  verify::ToolSetup tools;
+  tools.rotary = true;
+  for (const Job& j : planned)
+    for (const Toolpath& tp : j) tools.tools.emplace(tp.tool.id, tp.tool);
+  verify::StockSpec stock;
+  if (stock_mesh) {
+    stock.kind = verify::StockSpec::Kind::Mesh;
+    stock.mesh = stock_mesh;
+  } else {
+    stock.kind = verify::StockSpec::Kind::Box;
+    stock.box = raw_box;
+  }
+  verify::VerifyOptions o;
+  o.resolution = job.resolution;
+  const verify::IndexedVerifyResult v =
+      verify::verify_indexed(part, verify::read_gcode(path, tools), trunnion, *report.workpiece_on_table, stock, o);
+  JobReport::ProgramCheck& c = report.program_check;
+  c.done = true;
+  c.runs = v.runs.size();
+  c.gouge_mm = v.max_gouge_mm;
+  c.gouge_line = v.gouge_source;
+  c.min_left_mm = v.min_left_mm;
+  c.max_left_mm = v.max_left_mm;
+  c.left_mm3 = v.left_mm3;
+  c.seconds = v.seconds;
 }
 
 }  // namespace
@@ -276,6 +331,11 @@ Mesh read_part(const JobSpec& job) { return read_mesh(job.part, job.units); }
 std::vector<std::pair<size_t, size_t>> program_groups(const JobReport& report, bool per_operation) {
   std::vector<std::pair<size_t, size_t>> groups;
   const auto& ops = report.operations;
+  // A trunnion's setups are one program: the part is indexed between them, not re-clamped.
+  if (report.indexed && !per_operation) {
+    if (!ops.empty()) groups.emplace_back(0, ops.size());
+    return groups;
+  }
   for (size_t first = 0; first < ops.size();) {
     size_t end = first + 1;
     while (!per_operation && end < ops.size() && ops[end].setup_index == ops[first].setup_index) ++end;
@@ -290,8 +350,10 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   std::optional<Mesh> stock_mesh;
   if (job.stock.kind == StockSpec::Kind::Mesh) stock_mesh = read_mesh(job.stock.file, job.units);
   stock::InProcessStock stock = raw_stock(job, part, stock_mesh ? &*stock_mesh : nullptr);
+  const Box3 raw_box = stock.bounds_in(SetupFrame{});  // for the 3+2 program's check
   JobReport report;
   report.stock_mm3 = stock.volume();
+  report.stock_box = raw_box;
   const Setups setups = resolve_setups(job, part, stock, options);
   if (options.operations_known) options.operations_known(setups.operations);
   // A registration places the part as it sits: the setup whose datum is the part's own origin (the others' fixtures
@@ -311,9 +373,24 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     for (int& s : report.facet_setup)
       if (s >= 0) s = int(std::find(setups.chosen.begin(), setups.chosen.end(), s) - setups.chosen.begin());
   }
-  const SetupContext context{job, options, part, stock_mesh ? &*stock_mesh : nullptr,
-                             setups.faces ? &*setups.faces : nullptr, 0};
+  SetupContext context{job, options, part, stock_mesh ? &*stock_mesh : nullptr,
+                       setups.faces ? &*setups.faces : nullptr, 0};
+  // A trunnion table turns the part through the setups in one clamping (3+2): placed on its table once.
+  const machine::Trunnion* trunnion =
+      options.checks.machine && options.checks.machine->trunnion ? &*options.checks.machine->trunnion : nullptr;
+  std::optional<TableSetting> table;
+  if (trunnion) {
+    if (trunnion->mode != machine::KinematicsMode::Identity)
+      throw Error(job.source, "programs for tool-centre-point kinematics are not written: give the machine file "
+                              "rotary.mode identity");
+    table = place_on_table(*trunnion, setups.specs.front().fixture, stock, options, job.source + " setups[0]");
+    context.table = &*table;
+    report.indexed = true;
+    report.workpiece_on_table = table->workpiece_on_table;
+  }
   double feed_mm = 0, air_mm = 0;
+  std::optional<machine::Index> indexed_at;  // where the program last turned the table (none: not yet)
+  double tool_z = trunnion ? trunnion->safe_z : 0.0;  // machine z of the tool when the next indexing begins
   std::vector<Job> planned;  // each operation's toolpaths, for the programs
   std::optional<JobSetup> setup;
   const auto go_on = [&](size_t k, double fraction) { return !options.progress || options.progress(k, fraction); };
@@ -326,7 +403,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     if (!setup || op.setup_index != report.setups.size() - 1) {
       SetupContext c = context;
       c.chosen = setups.faces ? setups.chosen[op.setup_index] : -1;
+      const machine::Index before = table ? table->last : machine::Index{};
       setup = begin_setup(setups.specs[op.setup_index], op.setup_index, stock, c);
+      if (table) {
+        check_indexing(stock, *table, before, *setup->report.index, options.checks.machine->clearance_over_stock,
+                       job.source + " setups[" + std::to_string(op.setup_index) + "] (" + setup->report.name + ")");
+      }
       setup->report.source = job.auto_setups ? setups.faces->setups[size_t(setups.chosen[op.setup_index])].source : "given";
       report.setups.push_back(setup->report);
     }
@@ -351,6 +433,9 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     }
     r.plan_seconds = since(t0);
     const SetupReport& sr = report.setups.back();
+    // On a trunnion, each toolpath is in the machine's frame at its setup's A and C: the post indexes there.
+    if (sr.index)
+      for (Toolpath& tp : toolpaths) tp.indexed = true, tp.a = sr.index->a, tp.c = sr.index->c;
     const stock::MachineProgram program = stock::program_from_job(toolpaths);
     // The tool, its shank or its holder in the fixture is a crash: no program of this job is written.
     if (const auto hit = stock::first_fixture_collision(program, sr.fixture))
@@ -378,6 +463,20 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
       r.rapid_mm += s.rapid_length;
       r.time_s += s.estimated_seconds;
     }
+    if (sr.index && !toolpaths.empty()) {
+      // The post indexes before the program's first toolpath and wherever A or C change.
+      const machine::Index& to = *sr.index;
+      if (!indexed_at || indexed_at->a != to.a || indexed_at->c != to.c) {
+        const double s = indexing_seconds(*trunnion, indexed_at.value_or(machine::Index{}), to, tool_z,
+                                          std::max(toolpaths.front().clearance_z, toolpaths.front().start.z()),
+                                          job.rapid_feed, options.max_acceleration);
+        report.setups.back().indexing_s += s;
+        report.setups.back().time_s += s;
+        report.time_s += s;
+        indexed_at = to;
+      }
+      tool_z = last_position(toolpaths).z();
+    }
     planned.push_back(toolpaths);
     feed_mm += removal.feed_mm;
     air_mm += removal.air_feed_mm;
@@ -396,7 +495,11 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
       break;
     }
   }
-  if (!options.out_dir.empty()) write_programs(job, planned, options, report);
+  if (!options.out_dir.empty()) {
+    write_programs(job, planned, options, report);
+    if (trunnion && !options.per_operation)
+      check_indexed_program(job, *trunnion, part, stock_mesh ? &*stock_mesh : nullptr, raw_box, planned, report);
+  }
   report.left_mm3 = stock.volume();
   if (!report.operations.empty()) report.max_left_mm = report.operations.back().max_left_mm;
   report.air_cut_share = feed_mm > 0 ? air_mm / feed_mm : 0.0;

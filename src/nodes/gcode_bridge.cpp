@@ -4,7 +4,9 @@
 // program runs, with its view on `program_markers` and a diagnostic on /diagnostics. Services ~start, ~pause,
 // ~resume, ~abort (std_srvs/Trigger) and the `run_program` action (feedback: the status; cancel aborts). With
 // ~work_offset_frame (e.g. `workpiece`, published by scan_registrar) every program sets G54 to that frame's pose
-// in ~machine_frame (G10 L2 P1).
+// in ~machine_frame (G10 L2 P1). A 3+2 job (its toolpaths indexed) needs a trunnion machine file (~machine with
+// `rotary:`): the post retracts to its safe Z before each indexing, and while the program runs the workpiece frame
+// is published on tf in ~machine_frame as the controller turns A and C.
 #include <actionlib/server/simple_action_server.h>
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
@@ -27,7 +29,7 @@ class GcodeBridge {
  public:
   GcodeBridge(::ros::NodeHandle& nh, ::ros::NodeHandle& pnh)
       : settings_(runner_settings(pnh)),
-        board_(nh, string_param(pnh, "frame_id", "workpiece"), settings_.controller),
+        board_(nh, string_param(pnh, "frame_id", "workpiece"), settings_.controller, settings_.work_offset.machine_frame),
         tf_listener_(tf_),
         runner_(settings_, board_, &tf_),
         updater_(nh, pnh),

@@ -20,6 +20,10 @@ Eigen::Matrix4d to_mm_pose(const Eigen::Isometry3d& metres) {
   return t;
 }
 
+double to_radians(double degrees) { return degrees * M_PI / 180.0; }
+
+double to_degrees(double radians) { return radians * 180.0 / M_PI; }
+
 geometry_msgs::Point to_point_msg(const Vec3& mm) {
   geometry_msgs::Point p;
   p.x = to_metres(mm.x());
@@ -304,6 +308,9 @@ msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup)
   m.safe_z = to_metres(tp.safe_z);
   m.clearance_z = to_metres(tp.clearance_z);
   m.start = to_point_msg(tp.start);
+  m.indexed = tp.indexed;
+  m.a = to_radians(tp.a);
+  m.c = to_radians(tp.c);
   m.passes.resize(tp.passes.size());
   for (size_t p = 0; p < tp.passes.size(); ++p) {
     const core::ToolpathPass& pass = tp.passes[p];
@@ -346,6 +353,10 @@ core::Toolpath from_toolpath_msg(const msg::Toolpath& m, const std::string& wher
   if (!std::isfinite(tp.safe_z) || !std::isfinite(tp.clearance_z))
     throw Error(where, "safe_z and clearance_z must be finite");
   if (!tp.start.allFinite()) throw Error(where, "start is not finite");
+  tp.indexed = m.indexed;
+  if (m.indexed && !(std::isfinite(m.a) && std::isfinite(m.c))) throw Error(where, "an indexed toolpath's a or c is not finite");
+  tp.a = m.indexed ? to_degrees(m.a) : 0.0;
+  tp.c = m.indexed ? to_degrees(m.c) : 0.0;
   tp.passes.resize(m.passes.size());
   for (size_t p = 0; p < m.passes.size(); ++p) {
     tp.passes[p].name = m.passes[p].name;

@@ -3,6 +3,7 @@
 #include <ros/ros.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "rosmill/error.hpp"
@@ -62,6 +63,12 @@ msg::JobSetup to_setup_msg(const job::SetupReport& s, const std::string& frame_i
   m.finished_area = s.finished_area * kMetrePerMm * kMetrePerMm;
   m.time = s.time_s;
   m.program = s.program;
+  m.indexed = s.index.has_value();
+  if (s.index) {
+    m.a = to_radians(s.index->a);
+    m.c = to_radians(s.index->c);
+    m.indexing_time = s.indexing_s;
+  }
   return m;
 }
 
@@ -154,6 +161,13 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
       if (setup.work_offset) set_work_offset(program, *setup.work_offset);
       program.setup_note = "for setup " + std::to_string(index + 1) + " (" + setup.name + "), " + setup.face_down +
                            " down: " + setup.fixture.description;
+      if (report.workpiece_on_table) {
+        // 3+2: one program through every setup, the part indexed on the trunnion's table between them.
+        program.workpiece_on_table = to_point_msg(report.workpiece_on_table->pose.translation());
+        program.setup_note = "at machine zero: identity kinematics, the program's X Y Z are the machine's axes; " +
+                             std::to_string(report.setups.size()) + " setups indexed in one clamping: " +
+                             setup.fixture.description;
+      }
       result.programs.push_back(program);
     }
     if (!goal.output_dir.empty() && !report.setups.empty()) {

@@ -1,5 +1,7 @@
 #include "rosmill/ros/program_runner.hpp"
 
+#include <algorithm>
+
 #include <ros/ros.h>
 #include <sys/stat.h>
 
@@ -62,6 +64,14 @@ std::string ProgramRunner::write_program(const msg::ToolpathJob& msg, const Job&
   // A job's setup brings its own work offset (its datum on the machine); else the workpiece frame's on tf.
   options.work_offset = offset = msg.work_offset ? work_offset_of(msg) : settings_.work_offset.now(tf_);
   if (!msg.setup_note.empty()) options.work_offset_note = msg.setup_note;
+  const bool indexed = std::any_of(job.begin(), job.end(), [](const core::Toolpath& tp) { return tp.indexed; });
+  if (indexed) {
+    // A 3+2 job: the part turns between setups, so the tool must wait above it at the trunnion's safe Z.
+    if (!settings_.checks.machine || !settings_.checks.machine->trunnion)
+      throw Error("job", "is indexed for a trunnion table (3+2), but the bridge's machine file has no rotary axes: "
+                         "set ~machine to one with `rotary:` (config/machine_xyzac.yaml)");
+    options.index_safe_z = settings_.checks.machine->trunnion->safe_z;
+  }
   gcode::ProgramChecks checks = settings_.checks;
   checks.limits.rapids_checked_by_stock = msg.rapids_checked_by_stock;
   program = gcode::prepare_program(job, options, checks).program;
@@ -91,7 +101,8 @@ std::string ProgramRunner::start(const msg::ToolpathJob& job, const std::string&
     const gcode::MachineLimits* machine = settings_.checks.machine ? &*settings_.checks.machine : nullptr;
     const std::optional<gcode::WorkOffset> g54 = offset ? offset : machine ? std::optional(machine->work_offset)
                                                                              : std::nullopt;
-    board_.begin(url, path, program.lines.size(), program_placement(job, core_job, g54));
+    board_.begin(url, path, program.lines.size(),
+                 program_placement(job, core_job, g54, machine ? machine->trunnion : std::nullopt));
     run_ = std::make_unique<control::ProgramRun>(
         std::move(controller), program.lines, send, settings_.stall_timeout,
         [this](const control::ControllerStatus& s, control::RunVerdict v) { board_.update(s, v); });

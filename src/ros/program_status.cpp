@@ -59,9 +59,28 @@ msg::ProgramStatus to_status_msg(const control::ControllerStatus& s, uint8_t sta
   return m;
 }
 
+Eigen::Isometry3d workpiece_in_machine(const ProgramPlacement& place, const control::ControllerStatus& status) {
+  if (!place.trunnion || !status.rotary_known) return place.machine_to_workpiece.inverse();
+  return place.trunnion->table_in_machine(status.a, status.c).pose * place.workpiece_on_table;
+}
+
 ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
-                                   const std::optional<gcode::WorkOffset>& g54) {
+                                   const std::optional<gcode::WorkOffset>& g54,
+                                   const std::optional<machine::Trunnion>& trunnion) {
   ProgramPlacement p;
+  const bool indexed = std::any_of(job.begin(), job.end(), [](const core::Toolpath& tp) { return tp.indexed; });
+  if (indexed && trunnion) {
+    // 3+2: the program is in machine coordinates; the workpiece stands on the table and turns with it.
+    p.trunnion = trunnion;
+    p.workpiece_on_table = Eigen::Translation3d(from_point_msg(msg.workpiece_on_table));  // mm
+    p.machine_to_workpiece = (trunnion->table_in_machine(job.front().a, job.front().c).pose * p.workpiece_on_table)
+                                 .inverse();
+    Box3 box;
+    for (const core::Toolpath& tp : job) box.add(tp.bounds());
+    const Vec3 centre = 0.5 * (box.min + box.max);
+    p.anchor = to_point_msg(p.machine_to_workpiece * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
+    return p;
+  }
   // The program is in the setup frame (the part re-fixtured); the status shows the tool on the part as it sits.
   Eigen::Isometry3d workpiece_in_setup = Eigen::Isometry3d::Identity();
   if (!msg.toolpaths.empty()) {

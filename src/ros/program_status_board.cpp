@@ -1,9 +1,12 @@
 #include "rosmill/ros/program_status_board.hpp"
 
+#include "rosmill/ros/convert.hpp"
+
 namespace rosmill::edge {
 
 ProgramStatusBoard::ProgramStatusBoard(::ros::NodeHandle& nh, const std::string& frame_id,
-                                       const std::string& controller) {
+                                       const std::string& controller, const std::string& machine_frame)
+    : machine_frame_(machine_frame) {
   status_.state = msg::ProgramStatus::IDLE;
   status_.state_name = status_state_name(status_.state);
   status_.controller = controller;
@@ -23,6 +26,7 @@ void ProgramStatusBoard::begin(const std::string& controller, const std::string&
     m.total_lines = lines;
     status_ = m;
     placement_ = place;
+    if (!place.trunnion) turning_.reset();
   }
   set_state(msg::ProgramStatus::CONNECTING);
 }
@@ -56,7 +60,13 @@ void ProgramStatusBoard::update(const control::ControllerStatus& s, control::Run
   {
     std::lock_guard<std::mutex> lock(mutex_);
     before = status_.state;
-    msg::ProgramStatus m = to_status_msg(s, state, placement_.machine_to_workpiece);
+    const Eigen::Isometry3d workpiece = workpiece_in_machine(placement_, s);
+    msg::ProgramStatus m = to_status_msg(s, state, workpiece.inverse());
+    // A 3+2 program: the workpiece frame turns with the table, on tf for rviz (sent again with every publish, so
+    // that it stays on tf after the program ends).
+    if (placement_.trunnion && s.rotary_known)
+      turning_ = to_transform_msg(machine_frame_, status_.header.frame_id, Eigen::Quaterniond(workpiece.linear()),
+                                  to_metres(1.0) * workpiece.translation());
     m.header.frame_id = status_.header.frame_id;
     m.controller = status_.controller;
     m.program = status_.program;
@@ -90,6 +100,15 @@ void ProgramStatusBoard::publish() {
   }
   status_pub_.publish(m);
   marker_pub_.publish(status_markers(m, anchor));
+  std::optional<geometry_msgs::TransformStamped> turning;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    turning = turning_;
+  }
+  if (turning) {
+    turning->header.stamp = ::ros::Time::now();
+    tf_.sendTransform(*turning);
+  }
 }
 
 void ProgramStatusBoard::diagnose(diagnostic_updater::DiagnosticStatusWrapper& d) {

@@ -54,14 +54,23 @@ bool simulated_m(int m) {
          (m >= 100 && m <= 199);
 }
 
+constexpr uint32_t letters(std::string_view s) {
+  uint32_t bits = 0;
+  for (char c : s) bits |= 1u << (c - 'A');
+  return bits;
+}
+
+// The retract before a trunnion turns the part: G53 with G0 and linear axes alone (the position it leaves is
+// unknown to the reader, which is what the simulation needs: no sweep from or to it).
+bool rotary_retract(const Block& b, bool rotary) {
+  return rotary && b.has_g(530) && b.has_g(0) && !(b.present & letters("ABCIJKR")) && b.has_linear();
+}
+
 // What the simulation cannot follow is refused before the block runs, naming the line.
-void refuse_unsimulated(const Block& b, const gcode::Place& where) {
+void refuse_unsimulated(const Block& b, const gcode::Place& where, bool rotary) {
   if (b.block_delete) throw Error(where.str(), "block delete '/' is not supported");
-  static constexpr uint32_t kKnown = [] {
-    uint32_t bits = 0;
-    for (char c : std::string_view("FGHIJKMNPRSTXYZ")) bits |= 1u << (c - 'A');
-    return bits;
-  }();
+  const uint32_t kKnown = letters("FGHIJKMNPRSTXYZ") | (rotary ? letters("AC") : 0u);
+  const bool retract = rotary_retract(b, rotary);
   // G10 L2 P1..P6 sets the origin of G54..G59 on the machine (where the part was found, a setup's datum): the
   // program's coordinates, which the simulation follows in the part's frame, stay what they are. Other coordinate
   // system data is refused.
@@ -73,7 +82,7 @@ void refuse_unsimulated(const Block& b, const gcode::Place& where) {
     for (int k = 0; k < 26; ++k)
       if (other >> k & 1u) throw Error(where.str(), refused_letter(static_cast<char>('A' + k)));
   for (int k = 0; k < b.g_count; ++k)
-    if (!simulated_g(b.g[k]) && !(g54_data && b.g[k] == 100))
+    if (!simulated_g(b.g[k]) && !(g54_data && b.g[k] == 100) && !(retract && b.g[k] == 530))
       throw Error(where.str(),
                   gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
   for (int k = 0; k < b.m_count; ++k)
@@ -100,7 +109,7 @@ class Reader {
   bool line(std::string_view raw, uint32_t number) {
     const Block& b = reader_.lex(raw, number);
     if (!b.percent && !b.empty()) {
-      refuse_unsimulated(b, reader_.place());
+      refuse_unsimulated(b, reader_.place(), tools_.rotary);
       tool_words(b);
     }
     reader_.execute();

@@ -17,7 +17,7 @@ using namespace rosmill::core::gcode;
 
 namespace {
 
-MachineLimits machine() { return load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml"); }
+MachineLimits bundled_machine() { return load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml"); }
 
 std::vector<std::string> program(std::initializer_list<std::string> body) {
   std::vector<std::string> l = {"G17 G21 G90 G54", "G0 Z10", "X0 Y0", "S10000 M3"};
@@ -35,7 +35,7 @@ std::string write_yaml(const std::string& text) {
 }  // namespace
 
 TEST(MachineLimits, ReadsTheBundledMachine) {
-  const MachineLimits m = machine();
+  const MachineLimits m = bundled_machine();
   EXPECT_EQ(m.name, "linuxcnc-sim-mm");
   EXPECT_DOUBLE_EQ(m.envelope.min.x(), -254);
   EXPECT_DOUBLE_EQ(m.envelope.max.z(), 101.6);
@@ -64,7 +64,7 @@ TEST(MachineLimits, BadFilesNameTheField) {
 }
 
 TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
-  const MachineLimits m = machine();
+  const MachineLimits m = bundled_machine();
   for (const Toolpath& tp : {test::raster_toolpath(), test::cylinder_contours(), test::dome_contours()}) {
     PostOptions o;
     o.arcs = true;
@@ -131,7 +131,7 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
 }
 
 TEST(MachineLimits, WhatTheCheckCannotFollowIsRefusedWithTheLine) {
-  const MachineLimits m = machine();
+  const MachineLimits m = bundled_machine();
   auto error_of = [&](std::initializer_list<std::string> body) {
     try {
       check_limits(program(body), m);

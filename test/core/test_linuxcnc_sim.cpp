@@ -20,84 +20,18 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "linuxcnc_simulator.hpp"
 #include "test_post_jobs.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::control;
 
+using sim_test::Simulator;
+using sim_test::slurp;
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// One headless LinuxCNC for the test's lifetime.
-class Simulator {
- public:
-  Simulator() {
-    char tmpl[] = "/tmp/rosmill-linuxcnc-test-XXXXXX";
-    if (!::mkdtemp(tmpl)) throw std::runtime_error("mkdtemp failed");
-    root_ = tmpl;
-    ::chmod(root_.c_str(), 0755);  // the simulator runs as another user and reads the programs from here
-    programs_ = root_ + "/programs";
-    ::mkdir(programs_.c_str(), 0755);
-    const std::string out = root_ + "/start.out";
-    const std::string cmd = "ROSMILL_SIM_OWNER=" + std::to_string(::getpid()) + " " ROSMILL_SOURCE_DIR
-                            "/scripts/linuxcnc-sim start " + root_ + "/sim >" + out + " 2>&1";
-    const int rc = std::system(cmd.c_str());
-    std::istringstream reply(slurp(out));
-    if (rc != 0 || !(reply >> port_)) {
-      failure_ = "scripts/linuxcnc-sim start failed: " + slurp(out);
-      port_ = 0;
-    }
-  }
-  ~Simulator() {
-    // Whenever the script left a PID file (also when start failed half-way), the simulator is stopped by PID.
-    if (std::filesystem::exists(root_ + "/sim/sim.pid")) {
-      const std::string cmd = ROSMILL_SOURCE_DIR "/scripts/linuxcnc-sim stop " + root_ + "/sim >/dev/null 2>&1";
-      if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "linuxcnc-sim stop failed for %s\n", root_.c_str());
-    }
-    std::error_code ec;
-    std::filesystem::remove_all(root_, ec);
-  }
-  bool running() const { return port_ > 0; }
-  const std::string& failure() const { return failure_; }
-
-  std::unique_ptr<LinuxcncController> controller() const {
-    ControllerOptions o;
-    o.program_dir = programs_;
-    o.program_name = "test.ngc";
-    return std::make_unique<LinuxcncController>("127.0.0.1", port_, o);
-  }
-
-  // The tool length the simulator's tool table gives tool `id` (its Z column): G43 adds it to machine Z.
-  double tool_length(int id) const {
-    std::istringstream table(slurp(root_ + "/sim/sim_mm.tbl"));
-    std::string line;
-    while (std::getline(table, line)) {
-      std::istringstream words(line);
-      std::string w;
-      if (!(words >> w) || w != "T" + std::to_string(id)) continue;
-      while (words >> w)
-        if (w[0] == 'Z') return std::stod(w.substr(1));
-    }
-    throw std::runtime_error("tool " + std::to_string(id) + " not in the simulator's tool table");
-  }
-
- private:
-  std::string root_, programs_, failure_;
-  int port_ = 0;
-};
-
-#define REQUIRE_SIMULATOR(sim)                                                                   \
-  if (::access("/usr/bin/linuxcnc", X_OK) != 0) GTEST_SKIP() << "linuxcnc-uspace not installed"; \
-  Simulator sim;                                                                                 \
-  ASSERT_TRUE(sim.running()) << sim.failure()
 
 // A job sized for the simulator's speeds (30 mm/s: a few seconds): a zig-zag `width` wide and a circle that the
 // post writes as an arc, with tool 1 of the simulator's table.

@@ -7,6 +7,22 @@
 
 namespace rosmill::core::test {
 
+// A move and a pass written out in a test.
+inline Move move_to(MoveType type, const Vec3& to, double feed) {
+  Move m;
+  m.to = to;
+  m.type = type;
+  m.feed = feed;
+  return m;
+}
+
+inline ToolpathPass pass_of(std::initializer_list<Move> moves) {
+  ToolpathPass p;
+  p.name = "pass";
+  p.moves = moves;
+  return p;
+}
+
 inline Tool test_tool(int id, double d) {
   Tool t;
   t.id = id;

@@ -32,7 +32,7 @@ Eigen::Matrix4d pose(double rz_deg, double tilt_deg, const Vec3& at) {
   return t;
 }
 
-MachineLimits machine() { return load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml"); }
+MachineLimits bundled_machine() { return load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml"); }
 
 size_t line_of(const Program& p, const std::string& prefix) {
   for (size_t i = 0; i < p.lines.size(); ++i)
@@ -93,7 +93,7 @@ TEST(WorkOffset, ThePostSetsG54BeforeTheFirstMove) {
 }
 
 TEST(WorkOffset, TheLimitCheckFollowsItInMachineCoordinates) {
-  const MachineLimits m = machine();  // envelope x, y [-254, 254], z [-50.8, 101.6]; table z -50
+  const MachineLimits m = bundled_machine();  // envelope x, y [-254, 254], z [-50.8, 101.6]; table z -50
   const std::vector<std::string> body = {"G17 G21 G90 G54", "G0 Z10", "X0 Y0", "S10000 M3", "G1 Z-5 F100",
                                          "X200", "G0 Z10", "M30"};
   EXPECT_TRUE(check_limits(body, m).empty());
@@ -130,7 +130,7 @@ TEST(WorkOffset, TheLimitCheckFollowsItInMachineCoordinates) {
 // A job's setups each set and select their own system (G55..G59): the check follows the one selected, and refuses
 // one selected before the program gave its origin.
 TEST(WorkOffset, EachSetupsSystemIsFollowed) {
-  const MachineLimits m = machine();
+  const MachineLimits m = bundled_machine();
   const std::vector<std::string> cut = {"G0 Z10", "X0 Y0", "S10000 M3", "G1 Z-5 F100", "X200", "G0 Z10", "M30"};
   auto program = [&](std::vector<std::string> head) {
     head.insert(head.end(), cut.begin(), cut.end());
@@ -171,7 +171,7 @@ TEST(WorkOffset, ThePostSelectsTheSetupsSystem) {
   const Rs274Result r = run_rs274(p.lines);
   ASSERT_TRUE(r.ok) << r.error;
   EXPECT_TRUE(compare_with_job(p, job, r, o.arc_tolerance).ok);
-  EXPECT_TRUE(check_limits(p.lines, machine()).empty());
+  EXPECT_TRUE(check_limits(p.lines, bundled_machine()).empty());
   o.work_offset->index = 7;
   EXPECT_NE(error_of([&] { post(job, o); }).find("P7 is not one of P1..P6"), std::string::npos);
 }

@@ -32,7 +32,7 @@ void require_finite_move(const core::CanonMove& m) {
   if (m.is_arc()) fuzz::require(m.centre.allFinite(), "an arc centre that is not finite");
 }
 
-core::gcode::MachineLimits machine() {
+core::gcode::MachineLimits bundled_machine() {
   core::gcode::MachineLimits m;
   m.name = "fuzz";
   m.envelope.min = core::Vec3(-300, -200, -150);
@@ -62,7 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (const core::CanonMove& m : program.moves) require_finite_move(m);
   });
   fuzz::read_or_refuse([&] {
-    static const core::gcode::MachineLimits limits = machine();
+    static const core::gcode::MachineLimits limits = bundled_machine();
     core::gcode::check_limits(lines, limits);
   });
   return 0;

@@ -26,6 +26,9 @@ struct ControllerStatus {
   size_t acknowledged_line = 0;   // every program line up to this one was accepted by the controller
   Vec3 position = Vec3::Zero();   // machine position (mm)
   bool position_known = false;
+  // A trunnion's rotary axes A and C (degrees), when the controller reports them (LinuxCNC's XYZAC machines).
+  double a = 0, c = 0;
+  bool rotary_known = false;
   std::string error;              // the controller's error or alarm, with the program line when known
 };
 

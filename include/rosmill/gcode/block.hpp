@@ -33,7 +33,9 @@ struct Block {
 
   bool has(char letter) const { return present >> (letter - 'A') & 1u; }
   double get(char letter) const { return has(letter) ? value[letter - 'A'] : NAN; }  // NaN when absent
-  bool has_axis() const { return has('X') || has('Y') || has('Z'); }
+  bool has_axis() const { return has_linear() || has_rotary(); }
+  bool has_linear() const { return has('X') || has('Y') || has('Z'); }
+  bool has_rotary() const { return has('A') || has('C'); }  // the axes of a trunnion table (B is not followed)
   bool has_g(int g10) const;
   bool has_m(int number) const;
   bool empty() const { return g_count == 0 && m_count == 0 && present == 0; }

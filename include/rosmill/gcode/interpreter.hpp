@@ -33,6 +33,8 @@ struct ModalState {
   int length_offset = -1;     // H of G43, -1 when off (G49)
   Vec3 position = Vec3::Zero();  // mm, program coordinates
   bool known[3] = {false, false, false};
+  double a = 0, c = 0;        // degrees: the rotary axes of a trunnion table
+  bool known_a = false, known_c = false;
   bool ended = false;         // after M2 / M30 or the closing '%'
 };
 
@@ -65,6 +67,7 @@ class Interpreter {
   void non_modal_codes();
   void motion();
   void arc(CanonMove& m) const;
+  void rotary(CanonMove& m);
   void program_end();
 
   std::string file_, code_;

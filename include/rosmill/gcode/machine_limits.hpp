@@ -4,8 +4,11 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/types.hpp"
+#include "rosmill/machine/trunnion.hpp"
 
 namespace rosmill::core::gcode {
 
@@ -25,6 +28,9 @@ struct MachineLimits {
   // Machine X and Y over which a job's setups centre the stock in its fixture (where the vise sits on the table):
   // each setup's work offset (G54..G59) is its datum there. The work offset's X and Y unless the file gives it.
   Vec2 fixture_position = Vec2::Zero();
+  // A trunnion table (machine/trunnion.hpp) when the file has `rotary:`: its A and C ranges are limits like the
+  // envelope, and a job's setups become A/C indexing in one program (3+2).
+  std::optional<machine::Trunnion> trunnion;
 };
 
 // Reads and validates the YAML file; throws Error naming the file and the field.

@@ -30,6 +30,8 @@ struct PostOptions {
   // the part was found on the table, or a setup's datum. Without it the controller's G54 is used as it stands.
   std::optional<WorkOffset> work_offset;
   std::string work_offset_note = "from the workpiece's pose on the table";  // the comment above the G10 block
+  // Indexed toolpaths (a trunnion table): the machine Z (G53) the tool retracts to before the part turns.
+  double index_safe_z = NAN;
 };
 
 // Where a program line came from: toolpath index, pass index and the moves [first_move, last_move] it carries
@@ -55,6 +57,9 @@ struct Program {
 PostOptions post_options_for(const std::string& dialect);
 
 Program post(const Job& job, const PostOptions& options = {});
+
+// The block that turns a trunnion's table to A and C (degrees) as the post writes it: "G0 A-90 C180".
+std::string index_block(double a, double c);
 
 void write_program(const std::string& path, const Program& program);
 // Writes lines, each ended by '\n'; throws Error naming the file.

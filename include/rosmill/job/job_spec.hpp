@@ -50,6 +50,9 @@ struct OperationSpec {
   std::string strategy;  // a strategy or preset of the planner
   std::string tool;      // a tool id of the tool table, or ball:D, flat:D, bull:D:r
   double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = NAN;
+  // The direction of the raster's and the roughing's lines in the setup's frame (degrees from its X; NaN: the
+  // strategy's own). Lines across a slot reach its walls' feet exactly; lines along it leave up to a stepover there.
+  double angle = NAN;
   std::string setup = "+Z";  // the name of its setup
   size_t setup_index = 0;    // into JobSpec::setups
   // Rest machining: only where the stock the operations before left stands above the design by more than the

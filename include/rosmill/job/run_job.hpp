@@ -18,6 +18,7 @@
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/job/job_spec.hpp"
+#include "rosmill/machine/trunnion.hpp"
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/setups/setup_choice.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
@@ -92,6 +93,11 @@ struct SetupReport {
   // The work offset the setup's program sets (G10 L2 Pn, G54..G59: the datum on the machine); none: G54 as the
   // controller has it (the workpiece datum without a registration).
   std::optional<gcode::WorkOffset> work_offset;
+  // On a trunnion table: the A and C the part is turned to for this setup (3+2); the frame is then the machine's.
+  std::optional<machine::Index> index;
+  // The indexing before the setup (the G53 retract, A and C turning, the way down to its clearance), included in
+  // time_s (s).
+  double indexing_s = 0;
   std::vector<size_t> operations;   // indices into JobReport::operations
   double finished_area = 0;         // mm^2 of the part's faces this setup finishes (0: not bound to faces)
   double time_s = 0;
@@ -101,6 +107,18 @@ struct SetupReport {
 struct JobReport {
   std::vector<OperationReport> operations;
   std::vector<SetupReport> setups;
+  bool indexed = false;       // on a trunnion: the setups are A/C indexing in one program
+  // On a trunnion: where the part stands on the table at A = C = 0 ("table" <- "workpiece").
+  std::optional<Placement> workpiece_on_table;
+  // On a trunnion, the written 3+2 program read back from its file and simulated through its rotary moves
+  // (verify/indexed.hpp): the same check `rosmill verify --machine` makes, from the G-code, not the toolpaths.
+  struct ProgramCheck {
+    bool done = false;
+    size_t runs = 0;                      // the runs of moves between indexings
+    double gouge_mm = 0;                  // the deepest cut below the design (0: none)
+    uint32_t gouge_line = 0;
+    double min_left_mm = 0, max_left_mm = 0, left_mm3 = 0, seconds = 0;
+  } program_check;
   // With `setups: auto`, what setup selection found: the surface no setup machines, and why.
   bool setups_chosen = false;
   double part_area = 0, unreachable_area = 0;
@@ -109,6 +127,7 @@ struct JobReport {
   // job's operations work over the whole part (the older form).
   std::vector<int> facet_setup;
   double stock_mm3 = 0;       // the raw stock
+  Box3 stock_box;             // its bounds, workpiece frame (rosmill verify --stock)
   double left_mm3 = 0;        // the stock after the job
   double removed_mm3 = 0, air_cut_share = 0, time_s = 0;
   // After the job: the least material left on the part over every operation's view (negative: a gouge, the

@@ -45,6 +45,8 @@ Vec3 from_vector_msg(const geometry_msgs::Vector3& m);  // -> mm
 Vec3 from_direction_msg(const geometry_msgs::Vector3& v);
 double to_metres(double mm);
 double to_mm(double metres);
+double to_radians(double degrees);  // rotary axes: degrees in the core, radians in messages
+double to_degrees(double radians);
 // A rigid transform from tf (metres) as the core's 4x4 pose in millimetres.
 Eigen::Matrix4d to_mm_pose(const Eigen::Isometry3d& metres);
 

@@ -33,11 +33,19 @@ msg::ProgramStatus to_status_msg(const control::ControllerStatus& status, uint8_
 struct ProgramPlacement {
   Eigen::Isometry3d machine_to_workpiece = Eigen::Isometry3d::Identity();
   geometry_msgs::Point anchor;
+  // A 3+2 job on a trunnion: the table turns the workpiece with A and C, so the transform follows them
+  // (machine_to_workpiece_at) and the workpiece frame moves on tf.
+  std::optional<machine::Trunnion> trunnion;
+  Eigen::Isometry3d workpiece_on_table = Eigen::Isometry3d::Identity();  // mm
 };
+// The workpiece frame in the machine frame (mm) with the table where the controller says A and C are; the fixed
+// placement without a trunnion or before A and C are known.
+Eigen::Isometry3d workpiece_in_machine(const ProgramPlacement& place, const control::ControllerStatus& status);
 // `msg` gives the setup the job was planned in, `job` (the same job, converted) its extent, `g54` where the
 // program's origin is on the machine (none: the machine's origin).
 ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
-                                   const std::optional<gcode::WorkOffset>& g54);
+                                   const std::optional<gcode::WorkOffset>& g54,
+                                   const std::optional<machine::Trunnion>& trunnion = std::nullopt);
 
 // Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") above `anchor` (m) and, when the
 // position is known, a SPHERE at the tool tip.

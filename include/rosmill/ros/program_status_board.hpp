@@ -4,8 +4,11 @@
 #pragma once
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
 
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "rosmill/ros/namespaces.hpp"
@@ -17,7 +20,9 @@ namespace rosmill::edge {
 
 class ProgramStatusBoard {
  public:
-  ProgramStatusBoard(::ros::NodeHandle& nh, const std::string& frame_id, const std::string& controller);
+  // `machine_frame`: where a 3+2 program's turning workpiece frame (`frame_id`) is published on tf as A and C move.
+  ProgramStatusBoard(::ros::NodeHandle& nh, const std::string& frame_id, const std::string& controller,
+                     const std::string& machine_frame = "machine");
 
   // A new program: its controller, file, length and where it sits; the state becomes CONNECTING.
   void begin(const std::string& controller, const std::string& program, size_t lines, const ProgramPlacement& place);
@@ -38,6 +43,9 @@ class ProgramStatusBoard {
   msg::ProgramStatus status_;
   ProgramPlacement placement_;
   ::ros::Publisher status_pub_, marker_pub_;
+  std::string machine_frame_;
+  tf2_ros::TransformBroadcaster tf_;
+  std::optional<geometry_msgs::TransformStamped> turning_;  // the workpiece on a turning table, when known
 };
 
 }  // namespace rosmill::edge

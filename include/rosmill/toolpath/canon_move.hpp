@@ -33,11 +33,16 @@ struct CanonMove {
   uint16_t tool = 0;           // the verifier's index of the tool in the spindle
   float feed = 0;              // mm/min in force for feeds and arcs (0 for rapids)
   uint32_t source = 0;         // the G-code line (1-based), a toolpath move number, or a line of rs274's output
+  // The rotary axes A and C (degrees) at the move's start and end: the same for a cut of a 3+2 program, different
+  // for an indexing move (which then moves no linear axis). `known_rotary`: bit 0 A, bit 1 C given absolutely.
+  double a_from = 0, c_from = 0, a_to = 0, c_to = 0;
+  uint8_t known_rotary = 0;
 
   bool is_arc() const { return shape != MoveShape::Line; }
   bool clockwise() const { return shape == MoveShape::ArcCW; }
   bool from_known() const { return known_from == 7; }
   bool to_known() const { return known_to == 7; }
+  bool indexes() const { return a_from != a_to || c_from != c_to; }
 };
 
 }  // namespace rosmill::core

@@ -34,6 +34,11 @@ struct Toolpath {
   double clearance_z = 0.0;  // height above which rapids are free everywhere (mm)
   Vec3 start = Vec3::Zero(); // where the tool is before the first move (above the part at clearance_z)
   std::vector<ToolpathPass> passes;
+  // On a trunnion table (3+2 machining): the rotary axes A and C (degrees) the part is turned to for this toolpath,
+  // whose positions are then machine coordinates at that turn; the post indexes the part (a retract in machine
+  // coordinates, then G0 A C) where they change.
+  bool indexed = false;
+  double a = 0, c = 0;
 
   size_t move_count() const;
   Box3 bounds() const;

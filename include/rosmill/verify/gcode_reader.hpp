@@ -5,7 +5,10 @@
 // coolant, G54, G40, G49, G43, G64, G61, G93-G97, G98/G99, G4 dwell, pauses, user M-codes) are accepted and
 // ignored. Anything else that would change the motion (G18/G19, cutter radius compensation, canned cycles,
 // G28/G30/G53, G92, other work offsets, block delete, subroutines, parameters and expressions, P turns on arcs,
-// rotary axes A/B/C, M70-M73) or a word the verifier does not know throws Error naming the file and line.
+// rotary axes A/B/C, M70-M73) or a word the verifier does not know throws Error naming the file and line. On a
+// trunnion table (ToolSetup::rotary) A and C are read too, each move carrying them (verify/indexed.hpp follows them),
+// as is the G53 G0 retract before an indexing: the position it leaves is unknown, and the next move is swept from
+// its own target.
 #pragma once
 #include <map>
 #include <optional>
@@ -22,6 +25,7 @@ namespace rosmill::core::verify {
 struct ToolSetup {
   std::map<int, Tool> tools;
   std::optional<Tool> loaded;
+  bool rotary = false;  // the machine turns the part with A and C (a trunnion): their words are read
 };
 
 // The tool table's tools (when given) and the command line's --tool specs on top of them:

@@ -1,0 +1,93 @@
+#include "rosmill/machine/trunnion.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <Eigen/Geometry>
+
+namespace rosmill::core::machine {
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+Eigen::Matrix3d turn(double a, double c) {
+  return (Eigen::AngleAxisd(a * kDegree, Vec3::UnitX()) * Eigen::AngleAxisd(c * kDegree, Vec3::UnitZ()))
+      .toRotationMatrix();
+}
+
+Vec3 pivot_of(const Trunnion& t) { return Vec3(0, t.pivot.y(), t.pivot.z()); }
+
+// The turn of C by whole turns nearest `near` (the axis can go round many times; the least motion wins).
+double nearest_turn(double c, double near) { return c + 360.0 * std::round((near - c) / 360.0); }
+
+std::string degrees(double v) {
+  char s[32];
+  std::snprintf(s, sizeof s, "%.4g", v);
+  return s;
+}
+
+}  // namespace
+
+const char* mode_name(KinematicsMode mode) {
+  return mode == KinematicsMode::Identity ? "identity" : "tool-centre-point";
+}
+
+Vec3 Trunnion::machine_point(const Vec3& p, double a, double c) const {
+  const Eigen::AngleAxisd ra(a * kDegree, Vec3::UnitX()), rc(c * kDegree, Vec3::UnitZ());
+  const Vec3 pv = pivot_of(*this);
+  return ra * (rc * (p - centre) - pv) + pv + centre;
+}
+
+Vec3 Trunnion::table_point(const Vec3& m, double a, double c) const {
+  const Eigen::AngleAxisd ra(-a * kDegree, Vec3::UnitX()), rc(-c * kDegree, Vec3::UnitZ());
+  const Vec3 pv = pivot_of(*this);
+  return rc * (ra * (m - pv - centre) + pv) + centre;
+}
+
+Placement Trunnion::table_in_machine(double a, double c) const {
+  Placement p{"machine", "table", Eigen::Isometry3d::Identity()};
+  p.pose.linear() = turn(a, c);
+  p.pose.translation() = machine_point(Vec3::Zero(), a, c);
+  return p;
+}
+
+std::optional<Index> index_for(const Trunnion& t, const Vec3& direction, const Index& from, std::string* why) {
+  const Vec3 d = direction.normalized();
+  const double a0 = std::acos(std::clamp(d.z(), -1.0, 1.0)) / kDegree;
+  std::vector<Index> candidates;
+  if (d.head<2>().norm() < 1e-12) {
+    // Along the table's axis: A alone (0 or 180), C where it is.
+    candidates.push_back({a0, from.c});
+  } else {
+    const double phi = std::atan2(d.y(), d.x()) / kDegree;
+    for (const double a : {a0, -a0}) candidates.push_back({a, nearest_turn((a > 0 ? 90.0 : -90.0) - phi, from.c)});
+  }
+  std::optional<Index> best;
+  double best_time = INFINITY, best_travel = INFINITY;
+  for (Index i : candidates) {
+    if (!t.a_in_range(i.a)) continue;
+    // The nearest turn may lie beyond the range where another does not.
+    if (!t.c_in_range(i.c)) {
+      const double lo = i.c + 360.0 * std::ceil((t.c.min - i.c) / 360.0);
+      if (!t.c_in_range(lo)) continue;
+      i.c = lo;
+    }
+    const double da = std::abs(i.a - from.a), dc = std::abs(i.c - from.c);
+    const double time = std::max(t.a.velocity > 0 ? da / t.a.velocity : da, t.c.velocity > 0 ? dc / t.c.velocity : dc);
+    if (time < best_time - 1e-12 || (std::abs(time - best_time) <= 1e-12 && da + dc < best_travel)) {
+      best = i;
+      best_time = time;
+      best_travel = da + dc;
+    }
+  }
+  if (!best && why) {
+    std::string needs;
+    for (const Index& i : candidates) needs += (needs.empty() ? "A = " : " or A = ") + degrees(i.a);
+    *why = "the tool axis needs " + needs + " degrees, outside A's range [" + degrees(t.a.min) + ", " +
+           degrees(t.a.max) + "]";
+  }
+  return best;
+}
+
+}  // namespace rosmill::core::machine

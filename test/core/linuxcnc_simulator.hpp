@@ -1,0 +1,95 @@
+// A headless LinuxCNC simulator for a test (scripts/linuxcnc-sim), stopped by its PID whatever the test does.
+#pragma once
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "rosmill/control/linuxcnc.hpp"
+
+namespace sim_test {
+
+using rosmill::core::control::ControllerOptions;
+using rosmill::core::control::LinuxcncController;
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// One headless LinuxCNC for the test's lifetime: the stock sim/axis_mm machine, or with `machine` "xyzac" the
+// five-axis trunnion table (scripts/linuxcnc-sim).
+class Simulator {
+ public:
+  explicit Simulator(const std::string& machine = "") : table_(machine == "xyzac" ? "xyzac-trt.tbl" : "sim_mm.tbl") {
+    char tmpl[] = "/tmp/rosmill-linuxcnc-test-XXXXXX";
+    if (!::mkdtemp(tmpl)) throw std::runtime_error("mkdtemp failed");
+    root_ = tmpl;
+    ::chmod(root_.c_str(), 0755);  // the simulator runs as another user and reads the programs from here
+    programs_ = root_ + "/programs";
+    ::mkdir(programs_.c_str(), 0755);
+    const std::string out = root_ + "/start.out";
+    const std::string cmd = "ROSMILL_SIM_MACHINE=" + machine + " ROSMILL_SIM_OWNER=" + std::to_string(::getpid()) +
+                            " " ROSMILL_SOURCE_DIR
+                            "/scripts/linuxcnc-sim start " + root_ + "/sim >" + out + " 2>&1";
+    const int rc = std::system(cmd.c_str());
+    std::istringstream reply(slurp(out));
+    if (rc != 0 || !(reply >> port_)) {
+      failure_ = "scripts/linuxcnc-sim start failed: " + slurp(out);
+      port_ = 0;
+    }
+  }
+  ~Simulator() {
+    // Whenever the script left a PID file (also when start failed half-way), the simulator is stopped by PID.
+    if (std::filesystem::exists(root_ + "/sim/sim.pid")) {
+      const std::string cmd = ROSMILL_SOURCE_DIR "/scripts/linuxcnc-sim stop " + root_ + "/sim >/dev/null 2>&1";
+      if (std::system(cmd.c_str()) != 0) std::fprintf(stderr, "linuxcnc-sim stop failed for %s\n", root_.c_str());
+    }
+    std::error_code ec;
+    std::filesystem::remove_all(root_, ec);
+  }
+  bool running() const { return port_ > 0; }
+  const std::string& failure() const { return failure_; }
+
+  std::unique_ptr<LinuxcncController> controller() const {
+    ControllerOptions o;
+    o.program_dir = programs_;
+    o.program_name = "test.ngc";
+    return std::make_unique<LinuxcncController>("127.0.0.1", port_, o);
+  }
+
+  // The tool length the simulator's tool table gives tool `id` (its Z column): G43 adds it to machine Z.
+  double tool_length(int id) const {
+    std::istringstream table(slurp(root_ + "/sim/" + table_));
+    std::string line;
+    while (std::getline(table, line)) {
+      std::istringstream words(line);
+      std::string w;
+      if (!(words >> w) || w != "T" + std::to_string(id)) continue;
+      while (words >> w)
+        if (w[0] == 'Z') return std::stod(w.substr(1));
+    }
+    throw std::runtime_error("tool " + std::to_string(id) + " not in the simulator's tool table");
+  }
+
+ private:
+  std::string table_, root_, programs_, failure_;
+  int port_ = 0;
+};
+
+#define REQUIRE_MACHINE_SIMULATOR(sim, machine)                                                  \
+  if (::access("/usr/bin/linuxcnc", X_OK) != 0) GTEST_SKIP() << "linuxcnc-uspace not installed"; \
+  sim_test::Simulator sim(machine);                                                               \
+  ASSERT_TRUE(sim.running()) << sim.failure()
+#define REQUIRE_SIMULATOR(sim) REQUIRE_MACHINE_SIMULATOR(sim, "")
+
+}  // namespace sim_test

@@ -1,0 +1,168 @@
+// The trunnion's indexing checked against LinuxCNC's own xyzac-trt kinematics: for each setup direction the table is
+// turned to the A and C rosmill solves, the tool is sent (identity kinematics, machine coordinates) to where rosmill's
+// chain puts a point of the table, and the simulator, switched to tool-centre-point kinematics (M428), reports where
+// the tip is on the table: the point itself, and 10 mm up the spindle the point 10 mm along the setup's tool axis.
+// Then a 3+2 program (three setups, G53 retracts and G0 A C indexing) runs to its end and stops at its last point.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <sstream>
+#include <thread>
+
+#include "linuxcnc_simulator.hpp"
+#include "rosmill/control/program_run.hpp"
+#include "rosmill/gcode/interpreter.hpp"
+#include "rosmill/gcode/machine_limits.hpp"
+#include "rosmill/gcode/post.hpp"
+#include "rosmill/gcode/rs274_check.hpp"
+#include "rosmill/machine/trunnion.hpp"
+#include "test_post_jobs.hpp"
+
+using namespace rosmill::core;
+using namespace rosmill::core::control;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const machine::Trunnion& trunnion() {
+  static const gcode::MachineLimits m =
+      gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/machine_xyzac.yaml");
+  return *m.trunnion;
+}
+
+// X Y Z A C as the controller reports them (abs_act_pos: X Y Z A B C ..., the kinematics' world coordinates).
+std::vector<double> axes(LinuxcncController& c) {
+  const std::string reply = c.get("abs_act_pos");
+  std::istringstream in(reply);
+  std::vector<double> v;
+  for (double x; v.size() < 6 && in >> x;) v.push_back(x);
+  if (v.size() < 6) {
+    ADD_FAILURE() << "abs_act_pos gave fewer than 6 axes: " << reply;
+    return std::vector<double>(5, NAN);
+  }
+  return {v[0], v[1], v[2], v[3], v[5]};
+}
+
+// The axes once the machine has come to rest (two reads 0.2 s apart agree), waiting at most `seconds`.
+std::vector<double> at_rest(LinuxcncController& c, double seconds = 30.0) {
+  std::vector<double> before = axes(c);
+  const auto end = Clock::now() + std::chrono::duration<double>(seconds);
+  while (Clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const std::vector<double> now = axes(c);
+    double moved = 0;
+    for (int k = 0; k < 5; ++k) moved = std::max(moved, std::abs(now[k] - before[k]));
+    if (moved < 1e-6) return now;
+    before = now;
+  }
+  ADD_FAILURE() << "the machine did not come to rest within " << seconds << " s";
+  return before;
+}
+
+void mdi(LinuxcncController& c, const std::string& block) {
+  c.set("mode mdi");
+  c.set("mdi " + block);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the block is queued; at_rest waits for its end
+}
+
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << std::fixed << v;
+  return s.str();
+}
+
+Vec3 xyz(const std::vector<double>& v) { return Vec3(v[0], v[1], v[2]); }
+
+}  // namespace
+
+TEST(LinuxcncXyzac, IndexingAgreesWithTheSimulatorsKinematics) {
+  REQUIRE_MACHINE_SIMULATOR(sim, "xyzac");
+  auto c = sim.controller();
+  c->connect();
+  const machine::Trunnion& t = trunnion();
+  const Vec3 p(6, -9, 24);  // a point of the table (mm, its frame at A = C = 0)
+  machine::Index last;
+  for (const Vec3& d : {Vec3(Vec3::UnitZ()), Vec3(Vec3::UnitX()), Vec3(-Vec3::UnitX()), Vec3(Vec3::UnitY()),
+                        Vec3(-Vec3::UnitY())}) {
+    SCOPED_TRACE("tool axis " + num(d.x()) + " " + num(d.y()) + " " + num(d.z()));
+    const auto i = machine::index_for(t, d, last);
+    ASSERT_TRUE(i);
+    last = *i;
+    mdi(*c, "M429");  // identity: the program's X Y Z are the joints
+    mdi(*c, "G53 G0 Z110");
+    mdi(*c, "G0 A" + num(i->a) + " C" + num(i->c));
+    std::vector<double> v = at_rest(*c);
+    EXPECT_NEAR(v[3], i->a, 1e-4);
+    EXPECT_NEAR(v[4], i->c, 1e-4);
+    const Vec3 m = t.machine_point(p, i->a, i->c);
+    mdi(*c, "G0 X" + num(m.x()) + " Y" + num(m.y()) + " Z" + num(m.z()));
+    EXPECT_LT((xyz(at_rest(*c)) - m).cwiseAbs().maxCoeff(), 1e-4);
+    mdi(*c, "M428");  // tool-centre-point: the controller reports the tip on the table
+    v = at_rest(*c);
+    EXPECT_LT((xyz(v) - p).cwiseAbs().maxCoeff(), 2e-3) << "the tip on the table at " << xyz(v).transpose();
+    // 10 mm up the spindle is 10 mm along the setup's tool axis on the table.
+    mdi(*c, "M429");
+    mdi(*c, "G0 Z" + num(m.z() + 10));
+    at_rest(*c);
+    mdi(*c, "M428");
+    v = at_rest(*c);
+    EXPECT_LT((xyz(v) - (p + 10 * d)).cwiseAbs().maxCoeff(), 2e-3) << "10 mm up: " << xyz(v).transpose();
+  }
+  mdi(*c, "M429");
+  at_rest(*c);
+  c->disconnect();
+}
+
+TEST(LinuxcncXyzac, A32ProgramRunsToItsEndAtItsLastPoint) {
+  // Three setups of short passes with tool 5 (30 mm long in the simulator's table): the top, then -Y and +X.
+  Toolpath top;
+  top.strategy = "top";
+  top.tool.id = 5;
+  top.tool.cutter = Cutter::flat(6);
+  top.tool.feed = 1000;
+  top.indexed = true;
+  top.clearance_z = 50;
+  top.start = Vec3(0, 0, 50);
+  top.passes.push_back(test::pass_of({test::move_to(MoveType::Feed, Vec3(0, 0, 42), 600), test::move_to(MoveType::Feed, Vec3(20, 0, 42), 1000),
+                         test::move_to(MoveType::Rapid, Vec3(20, 0, 50), 0)}));
+  Toolpath side = top, end = top;
+  side.strategy = "side";
+  side.a = -90, side.c = 0;
+  side.start = Vec3(0, 30, 60);
+  side.clearance_z = 60;
+  side.passes = {test::pass_of({test::move_to(MoveType::Feed, Vec3(0, 30, 52), 600), test::move_to(MoveType::Feed, Vec3(-15, 30, 52), 1000),
+                   test::move_to(MoveType::Rapid, Vec3(-15, 30, 60), 0)})};
+  end.strategy = "end";
+  end.a = -90, end.c = -90;
+  end.start = Vec3(5, 25, 60);
+  end.clearance_z = 60;
+  end.passes = {test::pass_of({test::move_to(MoveType::Feed, Vec3(5, 25, 54), 600), test::move_to(MoveType::Feed, Vec3(5, 40, 54), 1000),
+                  test::move_to(MoveType::Rapid, Vec3(5, 40, 60), 0)})};
+  gcode::PostOptions o;
+  o.index_safe_z = trunnion().safe_z;
+  o.work_offset = gcode::WorkOffset{};
+  o.work_offset_note = "machine zero";
+  const std::vector<std::string> program = gcode::post({top, side, end}, o).lines;
+  const gcode::MachineLimits limits =
+      gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/machine_xyzac.yaml");
+  for (const gcode::LimitViolation& v : gcode::check_limits(program, limits))
+    ADD_FAILURE() << "line " << v.line << " " << v.limit << ": " << v.detail << "\n" << program[v.line - 1];
+  const gcode::Rs274Result rs = gcode::run_rs274(program);
+  EXPECT_TRUE(rs.ok) << "line " << rs.error_line << ": " << rs.error;
+
+  REQUIRE_MACHINE_SIMULATOR(sim, "xyzac");
+  auto c = sim.controller();
+  c->connect();
+  const ControllerStatus s = run_to_end(*c, program, SendOptions{}, {}, 120.0);
+  EXPECT_EQ(s.state, RunState::Finished);
+  EXPECT_EQ(s.acknowledged_line, program.size());
+  const std::vector<double> v = at_rest(*c);
+  // Identity kinematics: the machine's X Y Z are the program's, with G43 adding the tool's length to Z.
+  const Vec3 last = gcode::state_before(program, program.size()).position + Vec3(0, 0, sim.tool_length(5));
+  EXPECT_LT((xyz(v) - last).cwiseAbs().maxCoeff(), 2e-3) << xyz(v).transpose() << " vs " << last.transpose();
+  EXPECT_NEAR(v[3], -90, 1e-4);
+  EXPECT_NEAR(v[4], -90, 1e-4);
+  c->disconnect();
+}
