@@ -418,8 +418,9 @@ TEST(SetupPicture, EmptySceneIsWhite) {
 
 TEST(SetupPicture, RefusesSizesOutside16To4096) {
   const Mesh cube = make_primitive("cube");
-  for (const auto& [w, h] : std::vector<std::pair<int, int>>{{15, 100}, {100, 15}, {4097, 100}, {100, 4097},
-                                                              {0, 0}, {-20, 100}}) {
+  for (const auto& size : std::vector<std::pair<int, int>>{{15, 100}, {100, 15}, {4097, 100}, {100, 4097},
+                                                           {0, 0}, {-20, 100}}) {
+    const int w = size.first, h = size.second;  // a lambda may not capture a structured binding (C++17)
     const std::string e = error_of([&] { setup_picture_png(cube, fixture::Fixture{}, {}, w, h); });
     EXPECT_NE(e.find("setup picture"), std::string::npos) << w << " x " << h << ": " << e;
     EXPECT_NE(e.find(w < 16 || w > 4096 ? "width" : "height"), std::string::npos) << e;
