@@ -4,6 +4,7 @@
 #include <std_srvs/Trigger.h>
 
 #include <atomic>
+#include <memory>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -204,8 +205,9 @@ TEST_F(Bridge, StreamsToTheLinuxcncSimulator) {
   RunProgramGoal goal;
   goal.job = square_job();
   goal.controller = uri;
-  std::atomic<size_t> feedback{0};
-  client.sendGoal(goal, {}, {}, [&](const RunProgramFeedbackConstPtr&) { ++feedback; });
+  // Held by the callback itself: the fixture's client may call it back after this test has returned.
+  const auto feedback = std::make_shared<std::atomic<size_t>>(0);
+  client.sendGoal(goal, {}, {}, [feedback](const RunProgramFeedbackConstPtr&) { ++*feedback; });
   ASSERT_TRUE(client.waitForResult(ros::Duration(90.0)));
   ASSERT_EQ(client.getState(), State::SUCCEEDED) << client.getResult()->message;
   auto result = client.getResult();
@@ -238,7 +240,7 @@ TEST_F(Bridge, StreamsToTheLinuxcncSimulator) {
   for (size_t i = 1; i < running.size(); ++i) gap = std::max(gap, running[i] - running[i - 1]);
   EXPECT_LE(gap, 0.4) << "a status gap of " << gap << " s";
   EXPECT_GE(lines_seen, 3u) << "the current line hardly moved";
-  EXPECT_GE(feedback.load(), size_t(5 * 4));
+  EXPECT_GE(feedback->load(), size_t(5 * 4));
 }
 
 // On the simulator: pause holds the tool still, resume goes on, abort stops the program; a cancelled goal aborts it.

@@ -52,10 +52,12 @@ std::string yaml_job(const std::string& part, const std::string& operations) {
 // nothing cut below the design.
 TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
   Latest<visualization_msgs::MarkerArray> stock(nh, "stock_markers"), paths(nh, "job_markers");
-  Client client("plan_job", true);
-  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  // What the feedback callback touches outlives the client: the client's own thread may deliver a feedback message
+  // after the result (another topic), until the client is destroyed and joins that thread.
   std::mutex m;
   std::set<std::string> done;
+  Client client("plan_job", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   PlanJobGoal goal;
   goal.job_file = kJobs + "box_cube.yaml";
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
@@ -244,6 +246,7 @@ TEST_F(PlanJob, BadGoalsAreRefusedWithTheirReason) {
 
 // Cancelled once the first operation is done: the goal ends PREEMPTED with the finished operations, not all.
 TEST_F(PlanJob, CancelKeepsTheFinishedOperations) {
+  std::atomic<bool> cancel_sent{false};  // before the client, which calls back until it is destroyed
   Client client("plan_job", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   std::string ops;
@@ -251,7 +254,6 @@ TEST_F(PlanJob, CancelKeepsTheFinishedOperations) {
     ops += "  - {name: pass" + std::to_string(k) + ", strategy: raster, tool: ball:6, stepover: 1}\n";
   PlanJobGoal goal;
   goal.job_yaml = yaml_job("primitive:dome", ops);
-  std::atomic<bool> cancel_sent{false};
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
                   [&](const PlanJobFeedbackConstPtr& fb) {
                     if (fb->stage == "done" && !cancel_sent.exchange(true)) client.cancelGoal();

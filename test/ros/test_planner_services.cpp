@@ -323,10 +323,11 @@ TEST_F(PlannerServices, ActionAbortsAnInvalidGoalWithItsReason) {
 TEST_F(PlannerServices, ActionReportsEachItem) {
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
   publish_and_wait(pub, edge::to_mesh_msg(make_primitive("cone")));
-  actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
-  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
+  // What the feedback callback touches outlives the client, whose thread calls back until it is destroyed.
   std::vector<uint32_t> feedback_items;
   std::mutex m;
+  actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   PlanToolpathGoal goal;
   goal.items = {item("+Z", "raster", 2), item("+Z", "raster", 42), item("-X", "raster", 2)};
   goal.proceed_on_failure = true;
@@ -371,6 +372,7 @@ TEST_F(PlannerServices, ActionReportsEachItem) {
 TEST_F(PlannerServices, ActionCancelKeepsFinishedItems) {
   ros::Publisher pub = nh.advertise<shape_msgs::Mesh>("/mesh", 1, true);
   publish_and_wait(pub, edge::to_mesh_msg(make_primitive("dome")));
+  std::atomic<bool> second_started{false};  // before the client, which calls back until it is destroyed
   actionlib::SimpleActionClient<PlanToolpathAction> client("plan_toolpath", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   PlanToolpathGoal goal;
@@ -381,7 +383,6 @@ TEST_F(PlannerServices, ActionCancelKeepsFinishedItems) {
   slow.parameters.stepover = 0.00005;
   goal.items.push_back(slow);
   goal.items.push_back(item("-X", "raster", 2));
-  std::atomic<bool> second_started{false};
   client.sendGoal(goal, {}, {}, [&](const PlanToolpathFeedbackConstPtr& fb) {
     if (fb->item == 1) second_started = true;
   });
