@@ -12,23 +12,6 @@ namespace {
 
 constexpr double kStepDeg = 0.5;  // the turn is looked at every half degree
 
-// The corners of every cell's material prism (its lowest and highest material), workpiece frame: the highest point
-// of the material turned any way is one of them.
-std::vector<Vec3> material_corners(const stock::InProcessStock& stock) {
-  const stock::Dexels& d = stock.material();
-  const stock::GridSpec& g = d.grid;
-  std::vector<Vec3> out;
-  for (int j = 0; j < g.ny; ++j)
-    for (int i = 0; i < g.nx; ++i) {
-      const size_t c = g.index(i, j);
-      if (d.begin(c) == d.end(c)) continue;
-      const double lo = d.begin(c)->lo, hi = (d.end(c) - 1)->hi;
-      for (int k = 0; k < 8; ++k)
-        out.emplace_back(g.x0 + (i + (k & 1)) * g.cell, g.y0 + (j + (k >> 1 & 1)) * g.cell, k & 4 ? hi : lo);
-    }
-  return out;
-}
-
 std::string number(double v) {
   char s[32];
   std::snprintf(s, sizeof s, "%.3f", v);
@@ -41,7 +24,7 @@ void check_indexing(const stock::InProcessStock& stock, const TableSetting& tabl
                     const machine::Index& to, double clearance, const std::string& where) {
   const machine::Trunnion& t = *table.trunnion;
   // Everything that turns, in the table's frame: the material and the fixture.
-  std::vector<Vec3> points = material_corners(stock);
+  std::vector<Vec3> points = stock.material_corners();
   for (Vec3& p : points) p = table.workpiece_on_table.point(p);
   for (const fixture::FixtureBox& b : table.fixture.boxes)
     for (int k = 0; k < 8; ++k)

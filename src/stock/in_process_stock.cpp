@@ -261,18 +261,23 @@ std::vector<float> InProcessStock::material_above(const Mesh& design, const Setu
   return above;
 }
 
-Box3 InProcessStock::bounds_in(const SetupFrame& setup) const {
+std::vector<Vec3> InProcessStock::material_corners() const {
   const GridSpec& g = material_.grid;
-  Box3 b;
+  std::vector<Vec3> out;
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
       const size_t c = g.index(i, j);
       if (material_.begin(c) == material_.end(c)) continue;
       const double lo = material_.begin(c)->lo, hi = (material_.end(c) - 1)->hi;
       for (int k = 0; k < 8; ++k)
-        b.add(setup.to_setup_frame(Vec3(g.x0 + (i + (k & 1)) * g.cell, g.y0 + (j + (k >> 1 & 1)) * g.cell,
-                                        k & 4 ? hi : lo)));
+        out.emplace_back(g.x0 + (i + (k & 1)) * g.cell, g.y0 + (j + (k >> 1 & 1)) * g.cell, k & 4 ? hi : lo);
     }
+  return out;
+}
+
+Box3 InProcessStock::bounds_in(const SetupFrame& setup) const {
+  Box3 b;
+  for (const Vec3& p : material_corners()) b.add(setup.to_setup_frame(p));
   return b;
 }
 

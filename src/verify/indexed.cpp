@@ -8,6 +8,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/mesh_report.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
+#include "rosmill/stock/design_height.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
 
 namespace rosmill::core::verify {
@@ -81,10 +82,18 @@ IndexedVerifyResult verify_indexed(const Mesh& design, const stock::MachineProgr
   r.stock_mm3 = stock.volume();
   r.design_mm3 = report(design).volume;
   r.left_mm3 = r.stock_mm3 - r.design_mm3;
+  // Over the design only: where it does not stand (beside it, in the fixture's grip) the stock is not "left on the
+  // part".
   double lo = std::numeric_limits<double>::infinity(), hi = 0;
-  for (const SetupFrame& f : frames)
-    for (const float v : stock.material_above(design, f))
-      if (std::isfinite(v)) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
+  for (const SetupFrame& f : frames) {
+    const stock::HeightField view = stock.view(f);
+    const std::vector<float> h = stock::design_heights(placed(design, f.placement), view.grid, view.bottom);
+    for (size_t c = 0; c < h.size(); ++c) {
+      if (view.top[c] == stock::kNoMaterial || !(h[c] > view.bottom + 1e-6)) continue;
+      const double left = double(view.top[c]) - h[c];
+      lo = std::min(lo, left), hi = std::max(hi, left);
+    }
+  }
   r.min_left_mm = std::isfinite(lo) ? lo : 0.0;
   r.max_left_mm = hi;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -93,7 +93,8 @@ TEST(MachineLimits, PostedJobsPassAndEachBrokenLimitIsNamed) {
       // What the checker cannot follow is refused, not passed: stored and machine positions, offset changes,
       // other work offsets.
       {program({"G1 Z-1 F100", "G28"}), 6, "unchecked move"},
-      {program({"G53 G0 Z-60"}), 5, "unchecked move"},
+      {program({"G53 G2 X0 Y0 I1"}), 5, "unchecked move"},  // G53 is followed with G0 or G1 and X, Y, Z alone
+      {program({"G53 G0 Z-60"}), 5, "envelope z min"},       // ... in machine coordinates
       {program({"G92 X0 Y0", "G1 Z-1 F100"}), 5, "unchecked move"},
       {program({"G10 L2 P1 Z-500", "G1 Z-1 F100"}), 5, "unchecked move"},
       {program({"G55", "G1 Z-1 F100"}), 5, "work offset"},

@@ -68,6 +68,9 @@ class InProcessStock {
   // The bounds of the material left, in the setup's frame (each cell's square prism from its lowest to its highest
   // material turned); empty when nothing is left. What a fixture holds and a datum is found on.
   Box3 bounds_in(const SetupFrame& setup) const;
+  // The corners of every cell's material prism (its lowest and highest material), workpiece frame: the material
+  // turned any way reaches no farther than one of them.
+  std::vector<Vec3> material_corners() const;
   // True when some material stands at or above z over the XY box [lo, hi] (the setup's frame).
   bool material_in(const Vec2& lo, const Vec2& hi, double z, const SetupFrame& setup = {}) const;
 
