@@ -15,6 +15,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/job/run_job.hpp"
@@ -218,6 +219,11 @@ TEST(Trunnion, PostIndexesWithAG53RetractThenAAndC) {
   b.strategy = "side";
   b.a = -90;
   b.c = 180;
+  // Over the tilted table: 20 mm above its top at A -90 (machine Y 30 is table Z 20 there).
+  b.start = Vec3(0, 30, 60);
+  b.clearance_z = 60;
+  b.passes = {test::pass_of({test::move_to(MoveType::Feed, Vec3(0, 30, 52), 500),
+                             test::move_to(MoveType::Feed, Vec3(10, 30, 52), 500)})};
   gcode::PostOptions o;
   o.index_safe_z = 110;
   const gcode::Program p = gcode::post({a, b}, o);
@@ -231,6 +237,12 @@ TEST(Trunnion, PostIndexesWithAG53RetractThenAAndC) {
   for (int k = 0; k < 2; ++k) EXPECT_EQ(indexes[k], retracts[k] + 1);
   EXPECT_NE(p.lines[indexes[0]].find("G0 A0 C0"), std::string::npos) << p.lines[indexes[0]];
   EXPECT_NE(p.lines[indexes[1]].find("G0 A-90 C180"), std::string::npos) << p.lines[indexes[1]];
+  // Through the whole program pipeline: the machine's limits (A, C, the turned table) and LinuxCNC's rs274 reading
+  // the program back move by move against the toolpaths (the G53 retract is rs274's own traverse).
+  gcode::ProgramChecks checks;
+  checks.machine = xyzac();
+  checks.rs274 = true;
+  EXPECT_EQ(error_of([&] { gcode::prepare_program({a, b}, o, checks); }), "");
   // The same toolpaths without a safe Z are refused, not posted without their retract.
   EXPECT_NE(error_of([&] { gcode::post({a, b}, gcode::PostOptions{}); }).find("index_safe_z"), std::string::npos);
 }
