@@ -180,13 +180,13 @@ std::string tool_text(const Tool& t) {
   return s;
 }
 
-void tool_change(Writer& w, const Dialect& d, const Toolpath& tp, int index, bool first, const PostOptions& o) {
-  const LineOrigin origin{index};
-  if (!first) {
-    w.line("M5", origin);
-    if (o.coolant != Coolant::Off) w.line("M9", origin);
-  }
-  w.rapid_z(tp.clearance_z, origin);
+void spindle_stop(Writer& w, const LineOrigin& origin, const PostOptions& o) {
+  w.line("M5", origin);
+  if (o.coolant != Coolant::Off) w.line("M9", origin);
+}
+
+// The toolpath's tool into the spindle and its length offset on: the program Z of the tip is no longer known.
+void load_tool(Writer& w, const Dialect& d, const Toolpath& tp, const LineOrigin& origin) {
   if (d.tool_change_m6) {
     w.line("T" + std::to_string(tp.tool.id) + " M6", origin);
     if (d.tool_length_offset) w.line("G43 H" + std::to_string(tp.tool.id), origin);
@@ -195,25 +195,41 @@ void tool_change(Writer& w, const Dialect& d, const Toolpath& tp, int index, boo
     w.line("M0", origin);
   }
   w.forget_position();
-  w.rapid_z(tp.clearance_z, origin);  // first move after the length offset: straight up to the clearance
+}
+
+void spindle_start(Writer& w, const Toolpath& tp, const LineOrigin& origin, const PostOptions& o) {
   w.line("S" + fixed_text(tp.tool.spindle_rpm, kSpeedDecimals) + " M3", origin);
   if (o.coolant == Coolant::Flood) w.line("M8", origin);
   if (o.coolant == Coolant::Mist) w.line("M7", origin);
 }
 
+void tool_change(Writer& w, const Dialect& d, const Toolpath& tp, int index, bool first, const PostOptions& o) {
+  const LineOrigin origin{index};
+  if (!first) spindle_stop(w, origin, o);
+  w.rapid_z(tp.clearance_z, origin);
+  load_tool(w, d, tp, origin);
+  w.rapid_z(tp.clearance_z, origin);  // first move after the length offset: straight up to the clearance
+  spindle_start(w, tp, origin, o);
+}
+
 // The part turned for an indexed toolpath (3+2): the tool up to the machine's safe Z in machine coordinates (G53,
-// whatever the work offset), then A and C alone, the spindle clear above the turning part.
-void index_part(Writer& w, const Toolpath& tp, int index, const PostOptions& o) {
+// whatever the work offset), the toolpath's tool loaded there when it changes, then A and C alone, and the tool over
+// the toolpath's start before it goes down (the turned table may stand under the old X Y). No move in between uses
+// the new setup's heights while the part still stands as the old one had it.
+void index_part(Writer& w, const Dialect& d, const Toolpath& tp, int index, bool change, bool first,
+                const PostOptions& o) {
   const LineOrigin origin{index};
   if (!std::isfinite(o.index_safe_z))
     throw Error("post", "an indexed toolpath needs the machine's safe Z to retract to (index_safe_z)");
   if (!std::isfinite(tp.a) || !std::isfinite(tp.c)) throw Error("post", "an indexed toolpath's A or C is not finite");
   w.comment("index the part: A " + fixed_text(tp.a, kAngleDecimals) + ", C " + fixed_text(tp.c, kAngleDecimals));
+  if (change && !first) spindle_stop(w, origin, o);
   w.line("G53 G0 Z" + fixed_text(o.index_safe_z, o.decimals), origin);
   w.forget_position();
+  if (change) load_tool(w, d, tp, origin);
   w.line(index_block(tp.a, tp.c), origin);
-  // Over the toolpath's start before going down: below the old X Y the turned table may now stand.
   w.rapid_xy_at_unknown_z(tp.start.x(), tp.start.y(), origin);
+  if (change) spindle_start(w, tp, origin, o);
 }
 
 // A pass's moves, with runs of equal-feed linear moves handed to the arc fitter when arcs are on.
@@ -302,9 +318,11 @@ Program post(const Job& job, const PostOptions& o) {
   for (size_t t = 0; t < job.size(); ++t) {
     const Toolpath& tp = job[t];
     const int ti = static_cast<int>(t);
+    const bool change = t == 0 || tp.tool.id != job[t - 1].tool.id;
     if (tp.indexed && (t == 0 || !job[t - 1].indexed || job[t - 1].a != tp.a || job[t - 1].c != tp.c))
-      index_part(w, tp, ti, o);
-    if (t == 0 || tp.tool.id != job[t - 1].tool.id) tool_change(w, d, tp, ti, t == 0, o);
+      index_part(w, d, tp, ti, change, t == 0, o);
+    else if (change)
+      tool_change(w, d, tp, ti, t == 0, o);
     w.rapid_z(std::max(tp.clearance_z, tp.start.z()), LineOrigin{ti});
     w.rapid_xy(tp.start.x(), tp.start.y(), LineOrigin{ti});
     w.rapid_z(tp.start.z(), LineOrigin{ti});

@@ -234,7 +234,15 @@ TEST(Trunnion, PostIndexesWithAG53RetractThenAAndC) {
   }
   ASSERT_EQ(retracts.size(), 2u);
   ASSERT_EQ(indexes.size(), 2u);
-  for (int k = 0; k < 2; ++k) EXPECT_EQ(indexes[k], retracts[k] + 1);
+  // Between the retract and the turn only the tool change (the first toolpath's tool is loaded up there), and
+  // right after the turn the way over the toolpath's start at that height.
+  for (int k = 0; k < 2; ++k) {
+    ASSERT_GT(indexes[k], retracts[k]);
+    for (size_t l = retracts[k] + 1; l < indexes[k]; ++l)
+      EXPECT_TRUE(p.lines[l].rfind("T", 0) == 0 || p.lines[l].rfind("G43", 0) == 0 || p.lines[l].rfind("M", 0) == 0)
+          << p.lines[l];
+    EXPECT_EQ(p.lines[indexes[k] + 1].rfind("G0 X", 0), 0u) << p.lines[indexes[k] + 1];
+  }
   EXPECT_NE(p.lines[indexes[0]].find("G0 A0 C0"), std::string::npos) << p.lines[indexes[0]];
   EXPECT_NE(p.lines[indexes[1]].find("G0 A-90 C180"), std::string::npos) << p.lines[indexes[1]];
   // Through the whole program pipeline: the machine's limits (A, C, the turned table) and LinuxCNC's rs274 reading
