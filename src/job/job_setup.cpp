@@ -163,7 +163,7 @@ void index_on_table(SetupReport& r, const SetupSpec& spec, const stock::InProces
   r.fixture.table_z = NAN;
   // The program's coordinates are the machine's: G54 at machine zero, set by the program itself.
   r.work_offset = gcode::WorkOffset{};
-  r.face_down = "held on the table (A " + std::to_string(i->a) + ", C " + std::to_string(i->c) + ")";
+  r.face_down = face_down(Vec3::UnitZ());  // the part stands on the table as the workpiece frame has it
   table.last = *i;
 }
 
