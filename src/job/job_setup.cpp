@@ -138,10 +138,6 @@ void clamp(SetupReport& r, const SetupSpec& spec, size_t index, const stock::InP
   r.work_offset = work_offset_of(r, index, c.options);
 }
 
-// A box turned with a rigid placement: the bounds of its corners (more than the box where the turn is not by
-// quarter turns: the fixture's check then errs on the safe side).
-Box3 turned_box(const Box3& b, const Placement& p) { return placed(b, p); }
-
 // A setup on a trunnion: the part stays clamped as it stands on the table; A and C bring the setup's tool axis under
 // the spindle, and the setup's frame is the machine's (identity kinematics: the program's coordinates).
 void index_on_table(SetupReport& r, const SetupSpec& spec, const stock::InProcessStock& stock, TableSetting& table,
@@ -159,7 +155,8 @@ void index_on_table(SetupReport& r, const SetupSpec& spec, const stock::InProces
   r.datum_point = r.frame.placement.point_back(Vec3::Zero());  // the program's zero: machine zero at this turn
   r.stock = stock.bounds_in(r.frame);
   r.fixture = table.fixture;
-  for (fixture::FixtureBox& b : r.fixture.boxes) b.box = turned_box(b.box, table_in_machine);
+  // Each box's turned bounds (larger than the box where the turn is not by quarter turns: the check errs safe).
+  for (fixture::FixtureBox& b : r.fixture.boxes) b.box = placed(b.box, table_in_machine);
   r.fixture.table_z = NAN;
   // The program's coordinates are the machine's: G54 at machine zero, set by the program itself.
   r.work_offset = gcode::WorkOffset{};

@@ -19,34 +19,15 @@
 #include "rosmill/segment/surface_patches.hpp"
 #include "rosmill/setups/reach.hpp"
 #include "rosmill/testing/sanitized.hpp"
+#include "job_test_options.hpp"
 #include "swept_check.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::job;
+using job_test::options;
+using job_test::package_tools;
 
 namespace {
-
-const ToolTable& tools() {
-  static const ToolTable t = read_tool_table(std::string(ROSMILL_SOURCE_DIR) + "/config/tools.yaml");
-  return t;
-}
-
-// With the package's tools and the default machine (LinuxCNC's simulator): the programs checked against it.
-JobOptions options(const std::string& out = "") {
-  JobOptions o;
-  o.tools = &tools();
-  o.out_dir = out;
-  o.checks.machine = gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/machine.yaml");
-  o.max_acceleration = o.checks.machine->max_acceleration;
-  return o;
-}
-
-std::string scratch(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "rosmill_job_setups_" + name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
 
 void expect_rs274_accepts(const std::string& program) {
   const gcode::Rs274Result r = gcode::run_rs274(gcode::read_program_lines(program));
@@ -61,7 +42,7 @@ void expect_rs274_accepts(const std::string& program) {
 // nothing left to cut and plans no move. Each setup's program sets its own work offset, which the default machine
 // accepts (with one offset for both, the -X roughing would reach 10 mm below the table).
 TEST(JobSetups, CubeFromTheTopThenTheSideCutsOnlyWhatIsLeft) {
-  const std::string dir = scratch("cube");
+  const std::string dir = job_test::scratch("job_setups_cube");
   const JobSpec spec = parse_job(
       "part: primitive:cube\nstock: {box: {margin: 5}}\noperations:\n"
       "  - {name: top, strategy: rough, tool: 1, stepover: 4, stepdown: 2.5, allowance: 0.5}\n"
@@ -134,7 +115,7 @@ TEST(JobSetups, AJawInTheHoldersWayIsRefusedAndLowerJawsRun) {
 
 // The example job: the pocket part from its casting, top and four sides, each in a vise, the bottom held.
 TEST(JobSetups, PocketCastingMachinedTopAndSides) {
-  const std::string dir = scratch("pocket");
+  const std::string dir = job_test::scratch("job_setups_pocket");
   const std::string file = std::string(ROSMILL_SOURCE_DIR) + "/config/jobs/pocket_sides.yaml";
   const JobSpec spec = read_job(file);
   swept_check::SweptJob swept;

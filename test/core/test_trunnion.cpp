@@ -23,6 +23,7 @@
 #include "test_post_jobs.hpp"
 #include "rosmill/setups/reach.hpp"
 #include "rosmill/testing/sanitized.hpp"
+#include "job_test_options.hpp"
 #include "swept_check.hpp"
 
 using namespace rosmill::core;
@@ -39,11 +40,6 @@ const gcode::MachineLimits& xyzac() {
 
 const machine::Trunnion& trunnion() { return *xyzac().trunnion; }
 
-const ToolTable& tools() {
-  static const ToolTable t = read_tool_table(std::string(ROSMILL_SOURCE_DIR) + "/config/tools.yaml");
-  return t;
-}
-
 // The turn of the table at (a, c) written out from the chain, not from machine/trunnion.cpp: C about the table's Z,
 // then A about machine X.
 Eigen::Matrix3d turn(double a, double c) {
@@ -52,22 +48,6 @@ Eigen::Matrix3d turn(double a, double c) {
   rx << 1, 0, 0, 0, std::cos(ra), -std::sin(ra), 0, std::sin(ra), std::cos(ra);
   rz << std::cos(rc), -std::sin(rc), 0, std::sin(rc), std::cos(rc), 0, 0, 0, 1;
   return rx * rz;
-}
-
-JobOptions options(const std::string& out = "", const std::string& machine = kMachine) {
-  JobOptions o;
-  o.tools = &tools();
-  o.out_dir = out;
-  o.checks.machine = gcode::load_machine_limits(machine);
-  o.max_acceleration = o.checks.machine->max_acceleration;
-  return o;
-}
-
-std::string scratch(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "rosmill_trunnion_" + name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
 }
 
 std::vector<std::string> check(const std::string& program) {
@@ -210,7 +190,7 @@ TEST(Trunnion, CheckerRefusesRotaryRangesAndSimultaneousMovesWithTheirLine) {
 TEST(Trunnion, PostIndexesWithAG53RetractThenAAndC) {
   Toolpath a;
   a.strategy = "top";
-  a.tool = tools().get(5);
+  a.tool = job_test::package_tools().get(5);
   a.clearance_z = 50;
   a.start = Vec3(0, 0, 50);
   a.indexed = true;
@@ -257,11 +237,11 @@ TEST(Trunnion, PostIndexesWithAG53RetractThenAAndC) {
 
 // The example job: the slotted block, its top at A 0 and its -Y side at A -90, one program, one vise.
 TEST(Trunnion, TwoSidedJobOneProgramNoGougeAndFacesMachined) {
-  const std::string dir = scratch("slotted");
+  const std::string dir = job_test::scratch("trunnion_slotted");
   const JobSpec spec = read_job(std::string(ROSMILL_SOURCE_DIR) + "/config/jobs/slotted_block_xyzac.yaml");
   swept_check::SweptJob swept;
   std::optional<Placement> on_table;
-  JobOptions o = options(dir);
+  JobOptions o = job_test::options(dir, "machine_xyzac.yaml");
   o.operation_done = [&](const OperationView& v) {
     // The setup's frame built here from the chain and the A and C the job chose (the job's own frame unused).
     ASSERT_TRUE(v.setup.index);
@@ -276,7 +256,7 @@ TEST(Trunnion, TwoSidedJobOneProgramNoGougeAndFacesMachined) {
   };
   // Where the job stands the workpiece on the table (centred over the machine's fixture position, on the vise):
   // from a run without programs.
-  const JobReport probe = run_job(spec, options());
+  const JobReport probe = run_job(spec, job_test::options("", "machine_xyzac.yaml"));
   ASSERT_TRUE(probe.workpiece_on_table);
   on_table = probe.workpiece_on_table;
   EXPECT_TRUE(probe.indexed);
@@ -361,7 +341,7 @@ TEST(Trunnion, TwoSidedJobOneProgramNoGougeAndFacesMachined) {
 // A part that stands too tall for the table to turn under the retracted tool: the indexing is refused, naming the
 // indexing block and the setup, and no program is written.
 TEST(Trunnion, PartTurningIntoTheSpindleIsRefusedNamingTheBlock) {
-  const std::string dir = scratch("tall");
+  const std::string dir = job_test::scratch("trunnion_tall");
   // The cube (60 mm) in a 70 x 70 x 65 mm stock on a vise floor 5 mm up: its top (70 mm) clears the tool's tip at
   // A 0 (110 - 30 - 2 = 78 mm), but its corner 35 mm in front of the A axis comes up to 91 mm as the table tilts.
   const JobSpec spec = parse_job(
@@ -370,7 +350,7 @@ TEST(Trunnion, PartTurningIntoTheSpindleIsRefusedNamingTheBlock) {
       "  - {direction: +Z, operations: [{strategy: rough, tool: 5, stepover: 5, stepdown: 20}]}\n"
       "  - {direction: -Y, operations: [{strategy: rough, tool: 5, stepover: 5, stepdown: 20}]}\n",
       "tall.yaml", dir);
-  const std::string e = error_of([&] { run_job(spec, options(dir + "/out")); });
+  const std::string e = error_of([&] { run_job(spec, job_test::options(dir + "/out", "machine_xyzac.yaml")); });
   EXPECT_NE(e.find("the indexing block G0 A-90 C0"), std::string::npos) << e;
   EXPECT_NE(e.find("setups[1]"), std::string::npos) << e;
   EXPECT_NE(e.find("spindle"), std::string::npos) << e;
@@ -379,7 +359,7 @@ TEST(Trunnion, PartTurningIntoTheSpindleIsRefusedNamingTheBlock) {
   const JobSpec under = parse_job(
       "part: primitive:cube\nsetups:\n  - {direction: -Z, operations: [{strategy: rough, tool: 5}]}\n", "under.yaml",
       dir);
-  const std::string z = error_of([&] { run_job(under, options()); });
+  const std::string z = error_of([&] { run_job(under, job_test::options("", "machine_xyzac.yaml")); });
   EXPECT_NE(z.find("this machine cannot index the part for it"), std::string::npos) << z;
   EXPECT_NE(z.find("A = 180"), std::string::npos) << z;
   std::filesystem::remove_all(dir);
