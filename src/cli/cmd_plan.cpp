@@ -41,7 +41,8 @@ struct Options {
   std::string setup = "+Z";
   std::string place;  // a registration JSON: the part is planned where the scan found it
   bool no_limits = false;
-  double stepover = NAN, stepdown = NAN, allowance = 0.0, tolerance = PlanParams{}.tolerance, angle = 0.0;
+  double stepover = NAN, stepdown = NAN, engagement = NAN, stock_margin = PlanParams{}.stock_margin;
+  double allowance = 0.0, tolerance = PlanParams{}.tolerance, angle = 0.0;
   bool json = false, list = false;
   CloudInputOptions cloud;  // --orient, --origin, --voxel, --outliers, --holes
   bool tool_given = false, tolerance_given = false;
@@ -110,6 +111,8 @@ void run(const Options& o) {
   params.tool = pick_tool(o);
   params.stepover = o.stepover;
   params.stepdown = o.stepdown;
+  params.engagement_deg = o.engagement;
+  params.stock_margin = o.stock_margin;
   params.allowance = o.allowance;
   params.tolerance = o.tolerance;
   params.angle_deg = o.angle;
@@ -149,7 +152,8 @@ void run(const Options& o) {
   input.setup = setup;
   Mesh stock;
   if (!o.stock.empty()) {
-    if (o.strategy != "rough") throw Error("--stock", "a stock mesh is used by --strategy rough only");
+    if (o.strategy != "rough" && o.strategy != "adaptive")
+      throw Error("--stock", "a stock mesh is used by --strategy rough and adaptive only");
     StlReadOptions ro;
     if (!o.units.empty()) ro.units = parse_units(o.units, "--units");
     try {
@@ -165,6 +169,8 @@ void run(const Options& o) {
   request.strategy = o.strategy;
   request.params = params;
   request.presets = &presets;
+  std::vector<PlanReport> reports;
+  request.reports = &reports;
   const Job job = plan(request);
   const std::string tool_name = preset ? job_tools(job) : params.tool.name;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -195,6 +201,17 @@ void run(const Options& o) {
                         {"estimated_seconds", total.estimated_seconds},
                         {"seconds", seconds}};
     if (!o.out.empty()) j["output"] = o.out;
+    for (const PlanReport& r : reports)
+      if (r.engagement_limit_deg > 0)
+        j["adaptive"] = {{"engagement_limit_deg", r.engagement_limit_deg},
+                         {"max_engagement_deg", r.max_engagement_deg},
+                         {"min_turn_radius", r.min_turn_radius},
+                         {"levels", r.levels},
+                         {"rings", r.rings},
+                         {"helices", r.helices},
+                         {"ramps", r.ramps},
+                         {"lifts", r.lifts},
+                         {"left_area_mm2", r.left_area_mm2}};
     const Vec3& axis = setup.tool_axis;
     j["setup"] = {{"name", setup.name}, {"tool_axis", {axis.x(), axis.y(), axis.z()}}};
     std::printf("%s\n", j.dump().c_str());
@@ -218,6 +235,10 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--tools", o->tools, "tool table (default config/tools.yaml here, else the package's)");
   cmd->add_option("--stepover", o->stepover, "mm (default: the tool's)");
   cmd->add_option("--stepdown", o->stepdown, "mm (default: the tool's)");
+  cmd->add_option("--engagement", o->engagement,
+                  "adaptive: largest radial engagement of the cutter, degrees (default: a side cut one stepover wide)");
+  cmd->add_option("--stock-margin", o->stock_margin, "box stock: the part's bounds grown by this, mm")
+      ->capture_default_str();
   cmd->add_option("--allowance", o->allowance, "stock to leave, mm");
   auto* tolerance = cmd->add_option("--tolerance", o->tolerance, "chord and gouge tolerance, mm");
   cmd->add_option("--angle", o->angle, "raster direction, degrees");
@@ -250,7 +271,8 @@ CommandRegistration reg([](CLI::App& app) {
     if (o->file.empty()) throw Error("plan", "FILE is required (or --list)");
     if (o->strategy.empty()) throw Error("--strategy", "is required (rosmill plan --list names the strategies)");
     // NaN means "the default" inside PlanParams: a NaN typed on the command line must not pass as that.
-    for (const char* name : {"--stepover", "--stepdown", "--allowance", "--tolerance", "--angle"})
+    for (const char* name : {"--stepover", "--stepdown", "--engagement", "--stock-margin", "--allowance", "--tolerance",
+                             "--angle"})
       if (cmd->count(name) && !std::isfinite(cmd->get_option(name)->as<double>()))
         throw Error(name, "must be a finite number");
     o->tool_given = tool->count() > 0;

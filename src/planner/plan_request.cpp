@@ -57,7 +57,7 @@ Job run(const StrategyEntry& entry, const std::string& name, const PlanningReque
   const StrategyCall call{entry.needs_mesh ? nullptr : &surface.get(), r.input.mesh, params, progress, &report};
   Job job = entry.function(call);
   // Rest machining: whatever the strategy, only where an earlier tool left rest material.
-  if (params.material && params.material->keeps()) {
+  if (params.material && params.material->keeps() && !entry.follows_material) {
     KeepOptions rest;
     rest.link_clearance = params.link_clearance;
     rest.approach = params.approach;

@@ -1,5 +1,6 @@
 #include "rosmill/planner/strategy_table.hpp"
 
+#include "rosmill/plan/adaptive.hpp"
 #include "rosmill/plan/grid_rough.hpp"
 #include "rosmill/plan/raster.hpp"
 #include "rosmill/plan/rough.hpp"
@@ -22,6 +23,11 @@ Job rough_entry(const StrategyCall& c) {
   return rough_strategy(*c.surface, c.params, c.progress);
 }
 
+Job adaptive_entry(const StrategyCall& c) {
+  if (c.params.stock_mesh) check_stock_mesh(*c.params.stock_mesh, c.mesh);
+  return adaptive_strategy(*c.surface, c.params, c.progress, c.report);
+}
+
 }  // namespace
 
 // Every strategy, one line each. A strategy's own header declares its function.
@@ -32,6 +38,8 @@ const std::vector<StrategyEntry>& strategies() {
       {"waterline", "closed z-level finishing loops every step-down", false,
        [](const StrategyCall& c) { return waterline_strategy(*c.surface, c.params, c.progress); }},
       {"rough", "z-level zigzag area clearing with ramp entry", false, rough_entry, true},
+      {"adaptive", "z-level clearing at a bounded radial engagement (--engagement), helix or ramp entry", false,
+       adaptive_entry, true, true},
       {"grid-rough", "grid-method roughing (Muslimin et al.): levels of the step-down, staircase over the drops",
        false, [](const StrategyCall& c) { return grid_rough_on(*c.surface, c.params, c.progress, c.report); }, true},
       {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true,

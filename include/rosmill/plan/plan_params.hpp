@@ -42,6 +42,9 @@ struct PlanParams {
   double approach = 0.5;
   double air_gap = NAN;        // longest feed through air roughing bridges between two cuts (mm); NaN: the diameter
   Sampling sampling = Sampling::Chord;
+  // Adaptive clearing: the largest radial engagement of the cutter, degrees (0, 180]; NaN: the engagement of a
+  // straight side cut one stepover wide, acos(1 - stepover / R).
+  double engagement_deg = NAN;
 };
 
 // Throws Error naming the field ("parameter allowance") and its accepted range when a value is NaN where NaN does

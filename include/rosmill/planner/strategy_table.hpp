@@ -30,6 +30,8 @@ struct StrategyEntry {
   bool needs_mesh = false;  // works on the mesh itself (slices), not through a Surface
   std::function<Job(const StrategyCall&)> function;
   bool roughing = false;    // clears stock in levels down to the allowance, rather than following the surface
+  // Cuts only the material a job's stock has left, by itself (its moves are not kept to rest cells afterwards).
+  bool follows_material = false;
 };
 
 const std::vector<StrategyEntry>& strategies();

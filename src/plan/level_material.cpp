@@ -1,0 +1,94 @@
+#include "level_material.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rosmill/plan/material_top.hpp"
+
+namespace rosmill::core {
+namespace {
+
+// Samples of the leading half-circle: a sample per 2 degrees, each counting for its 2 degrees.
+constexpr int kArcSamples = 90;
+
+}  // namespace
+
+LevelMaterial::LevelMaterial(const Vec2& lo, const Vec2& hi, double cell)
+    : x0_(lo.x()), y0_(lo.y()), cell_(cell),
+      nx_(std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)))),
+      ny_(std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cell)))),
+      bits_(size_t(nx_) * size_t(ny_), 0) {}
+
+void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
+  // Scan lines through the cell centres; the crossings of every loop edge, sorted, bound the inside runs.
+  std::vector<double> xs;
+  for (long j = 0; j < ny_; ++j) {
+    const double y = y0_ + (j + 0.5) * cell_;
+    xs.clear();
+    for (const clip::Path& path : region)
+      for (size_t k = 0; k < path.size(); ++k) {
+        const Vec2 a = clip::from_point(path[k]), b = clip::from_point(path[(k + 1) % path.size()]);
+        if ((a.y() <= y) == (b.y() <= y)) continue;
+        xs.push_back(a.x() + (y - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
+      }
+    std::sort(xs.begin(), xs.end());
+    for (size_t k = 0; k + 1 < xs.size(); k += 2) {
+      const long i0 = std::max(0L, static_cast<long>(std::ceil((xs[k] - x0_) / cell_ - 0.5)));
+      const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor((xs[k + 1] - x0_) / cell_ - 0.5)));
+      for (long i = i0; i <= i1; ++i) bits_[size_t(j) * nx_ + i] = value;
+    }
+  }
+}
+
+double LevelMaterial::engagement(const Vec2& p, const Vec2& dir, double r) const {
+  const double heading = std::atan2(dir.y(), dir.x());
+  int in = 0;
+  for (int k = 0; k < kArcSamples; ++k) {
+    const double a = heading - 0.5 * M_PI + (k + 0.5) * M_PI / kArcSamples;
+    if (material(p + r * Vec2(std::cos(a), std::sin(a)))) ++in;
+  }
+  return 180.0 * in / kArcSamples;
+}
+
+bool LevelMaterial::disc_clear(const Vec2& p, double r) const { return capsule_clear(p, p, r); }
+
+template <class F>
+bool LevelMaterial::each_within(const Vec2& a, const Vec2& b, double r, const F& f) const {
+  const long i0 = std::max(0L, static_cast<long>(std::floor((std::min(a.x(), b.x()) - r - x0_) / cell_)));
+  const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor((std::max(a.x(), b.x()) + r - x0_) / cell_)));
+  const long j0 = std::max(0L, static_cast<long>(std::floor((std::min(a.y(), b.y()) - r - y0_) / cell_)));
+  const long j1 = std::min(ny_ - 1, static_cast<long>(std::floor((std::max(a.y(), b.y()) + r - y0_) / cell_)));
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i) {
+      const size_t c = size_t(j) * nx_ + i;
+      if (bits_[c] && segment_distance(Vec2(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_), a, b) <= r &&
+          !f(c))
+        return false;
+    }
+  return true;
+}
+
+bool LevelMaterial::capsule_clear(const Vec2& a, const Vec2& b, double r) const {
+  const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / std::max(r, cell_))));
+  for (int k = 0; k < n; ++k)
+    if (!each_within(a + (b - a) * (double(k) / n), a + (b - a) * (double(k + 1) / n), r,
+                     [](size_t) { return false; }))
+      return false;
+  return true;
+}
+
+void LevelMaterial::cut_along(const Vec2& a, const Vec2& b, double r) {
+  // In pieces no longer than r: the cells visited are those of each piece's box, about the swept area.
+  const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / std::max(r, cell_))));
+  for (int k = 0; k < n; ++k)
+    each_within(a + (b - a) * (double(k) / n), a + (b - a) * (double(k + 1) / n), r, [&](size_t c) {
+      bits_[c] = 0;
+      return true;
+    });
+}
+
+double LevelMaterial::material_area() const {
+  return double(std::count(bits_.begin(), bits_.end(), uint8_t(1))) * cell_ * cell_;
+}
+
+}  // namespace rosmill::core
