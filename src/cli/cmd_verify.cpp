@@ -25,6 +25,7 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/verify/deviation_image.hpp"
+#include "rosmill/verify/engagement_json.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/indexed.hpp"
 #include "rosmill/verify/verify.hpp"
@@ -59,24 +60,6 @@ MachineProgram read_program(const VerifyArgs& a, bool rotary) {
   return read_gcode(a.program, tools);
 }
 
-nlohmann::ordered_json engagement_json(const EngagementReport& e) {
-  nlohmann::ordered_json j;
-  j["max_deg"] = e.max_deg;
-  j["p95_deg"] = e.p95_deg;
-  j["mrr_mm3_per_min"] = e.mrr_mm3_per_min;
-  j["histogram"] = e.histogram_mm;
-  j["histogram_bin_deg"] = kEngagementBinDeg;
-  j["radial_mm"] = e.radial_mm;
-  j["plunges"] = e.plunges;
-  j["plunge_mm"] = e.plunge_mm;
-  j["removed_mm3"] = e.removed_mm3;
-  j["feed_min"] = e.feed_minutes;
-  j["cell_mm"] = e.cell_mm;
-  j["tolerance_deg"] = e.tolerance_deg;
-  j["seconds"] = e.seconds;
-  return j;
-}
-
 nlohmann::ordered_json to_json(const DeviationReport& r, const EngagementReport& e, double seconds) {
   using nlohmann::ordered_json;
   ordered_json j;
@@ -88,7 +71,7 @@ nlohmann::ordered_json to_json(const DeviationReport& r, const EngagementReport&
   j["scallop_mm"] = r.scallop_mm;
   j["unreached_area_mm2"] = r.unreached_area_mm2;
   j["cells"] = r.cells;
-  j["engagement"] = engagement_json(e);
+  j["engagement"] = engagement_json<nlohmann::ordered_json>(e);
   j["seconds"] = seconds;
   return j;
 }

@@ -223,7 +223,7 @@ stock::GridSpec engagement_grid(const stock::MachineProgram& program, const Box3
                                 const EngagementOptions& options) {
   check_options(options);
   if (stock_bounds.empty()) throw Error("engagement grid", "the stock is empty");
-  double cell = options.cell > 0 ? options.cell : engagement_cell(program);
+  const double cell = options.cell > 0 ? options.cell : engagement_cell(program);
   Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
   for (const CanonMove& m : program.moves) {
     if (m.rapid || m.tool >= program.tools.size()) continue;
@@ -237,12 +237,17 @@ stock::GridSpec engagement_grid(const stock::MachineProgram& program, const Box3
   hi = hi.cwiseMin(stock_bounds.max.head<2>());
   // No feed over the stock: one cell at its corner, which no cutter's circle reaches.
   if (!(lo.array() <= hi.array()).all()) lo = hi = stock_bounds.min.head<2>();
+  return engagement_grid_over(lo, hi, cell, options.max_cells);
+}
+
+stock::GridSpec engagement_grid_over(const Vec2& lo, const Vec2& hi, double cell, size_t max_cells) {
+  if (!(cell > 0) || max_cells < 1) throw Error("engagement grid", "needs a cell > 0 mm and at least one cell");
   // Coarsened until the grid's whole cells (each side rounded up, at least one) fit the limit.
   const auto cells = [&](double c) {
     return std::max(1.0, std::ceil((hi.x() - lo.x()) / c)) * std::max(1.0, std::ceil((hi.y() - lo.y()) / c));
   };
-  while (cells(cell) > double(options.max_cells)) cell *= 1.02;
-  return stock::GridSpec::covering(lo, hi, cell, options.max_cells, "engagement grid");
+  while (cells(cell) > double(max_cells)) cell *= 1.02;
+  return stock::GridSpec::covering(lo, hi, cell, max_cells, "engagement grid");
 }
 
 EngagementReport measure_engagement(const stock::MachineProgram& program, stock::HeightField& stock,

@@ -76,6 +76,9 @@ double engagement_grazing_deg(double radius, double cell);
 stock::GridSpec engagement_grid(const stock::MachineProgram& program, const Box3& stock_bounds,
                                 const EngagementOptions& options = {});
 
+// A grid over [lo, hi] (XY, mm) at `cell`, coarsened until its cells fit `max_cells`.
+stock::GridSpec engagement_grid_over(const Vec2& lo, const Vec2& hi, double cell, size_t max_cells);
+
 // Sweeps `program` through `stock` (left as the program leaves it) and measures the engagement of every feed move
 // before it cuts. Throws Error naming the move for a move with a tool the program lacks, a position that is not
 // finite, an arc outside the XY plane, or a feed move without a positive feed; and for options out of range.
