@@ -22,7 +22,7 @@ namespace {
 
 struct JobArgs {
   std::string file, out, tools, presets, dialect = "linuxcnc", machine;
-  bool json = false, no_limits = false, per_operation = false;
+  bool json = false, no_limits = false, per_operation = false, table_feeds = false;
   WorkOffsetArgs work_offset;
 };
 
@@ -39,6 +39,7 @@ void run(const JobArgs& a) {
   o.out_dir = a.out;
   o.per_operation = a.per_operation;
   o.dialect = a.dialect;
+  o.feeds_from_engagement = !a.table_feeds;
   o.work_offset = work_offset_of(a.work_offset);
   // The machine checks the programs and places each setup's fixture and datum on its table (its work offset).
   if (!a.out.empty() || (!a.no_limits && (!a.machine.empty() || std::filesystem::exists(default_config("machine.yaml")))))
@@ -94,6 +95,10 @@ void run(const JobArgs& a) {
     if (op.collision_line)
       std::printf("    rapid into material at toolpath move %u\n", op.collision_line);
     if (op.nothing_to_cut) std::printf("    nothing left to cut: not planned\n");
+    if (op.engagement_measured)
+      std::printf("    engagement max %.1f deg, p95 %.1f deg, %.0f mm3/min while feeding%s\n", op.engagement.max_deg,
+                  op.engagement.p95_deg, op.engagement.mrr_mm3_per_min,
+                  op.feeds_from_engagement ? "; feeds from engagement" : "");
     if (op.gouge_mm > 0)
       std::printf("    cuts %.3f mm below the design at toolpath move %u (the verifier)\n", op.gouge_mm, op.gouge_move);
   }
@@ -118,6 +123,8 @@ CommandRegistration reg([](CLI::App& app) {
                   "NN_setup_S.ngc");
   cmd->add_flag("--per-operation", a->per_operation, "with -o: one program per operation, NN_NAME.ngc");
   cmd->add_flag("--json", a->json, "print one JSON object");
+  cmd->add_flag("--table-feeds", a->table_feeds,
+                "roughing at the tool table's feeds, not at feeds from the measured engagement (chip thinning)");
   cmd->add_option("--tools", a->tools, "tool table (default config/tools.yaml here, else the package's)");
   cmd->add_option("--presets", a->presets, "preset table (default config/presets.yaml here, else the package's)");
   cmd->add_option("--dialect", a->dialect, "linuxcnc or grbl")->capture_default_str();

@@ -1,8 +1,10 @@
 // rosmill verify DESIGN (PROGRAM.ngc|toolpath.json) [--stock box|x0,y0,z0,x1,y1,z1|STOCK.stl] [--resolution MM]
-//   [--tool SPEC]... [--tools FILE] [--units U] [--tolerance MM] [--stepover MM] [--json] [--image deviation.png]
+//   [--tool SPEC]... [--tools FILE] [--units U] [--tolerance MM] [--stepover MM] [--engagement-cell MM] [--json]
+//   [--image deviation.png]
 //   [--machine MACHINE.yaml --on-table X,Y,Z]
 // Simulates the program on the stock and compares the result with the design (an STL or a cloud): the deepest
-// gouge and the line that made it, the material left, the scallop, the area never reached. With a trunnion machine
+// gouge and the line that made it, the material left, the scallop, the area never reached; and the cutter's radial
+// engagement along the program with the material removal rate (verify/engagement.hpp). With a trunnion machine
 // (a machine file with `rotary:`), a 3+2 program is followed through its A/C indexing (verify/indexed.hpp): the
 // design stands on the table at --on-table (where `rosmill job --json` says, workpiece_on_table).
 #include <chrono>
@@ -23,6 +25,7 @@
 #include "rosmill/io/stl.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/verify/deviation_image.hpp"
+#include "rosmill/verify/engagement_json.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/indexed.hpp"
 #include "rosmill/verify/verify.hpp"
@@ -36,7 +39,7 @@ using namespace rosmill::core::stock;
 struct VerifyArgs {
   std::string design, program, stock = "box", tools, units, image, machine, on_table;
   std::vector<std::string> tool;
-  double resolution = 0.5, tolerance = 0.01, stepover = 0;
+  double resolution = 0.5, tolerance = 0.01, stepover = 0, engagement_cell = 0;
   bool json = false;
 };
 
@@ -57,7 +60,7 @@ MachineProgram read_program(const VerifyArgs& a, bool rotary) {
   return read_gcode(a.program, tools);
 }
 
-nlohmann::ordered_json to_json(const DeviationReport& r, double seconds) {
+nlohmann::ordered_json to_json(const DeviationReport& r, const EngagementReport& e, double seconds) {
   using nlohmann::ordered_json;
   ordered_json j;
   j["max_gouge_mm"] = r.max_gouge_mm;
@@ -68,6 +71,7 @@ nlohmann::ordered_json to_json(const DeviationReport& r, double seconds) {
   j["scallop_mm"] = r.scallop_mm;
   j["unreached_area_mm2"] = r.unreached_area_mm2;
   j["cells"] = r.cells;
+  j["engagement"] = engagement_json<nlohmann::ordered_json>(e);
   j["seconds"] = seconds;
   return j;
 }
@@ -90,6 +94,9 @@ void print_text(const VerifyArgs& a, const MachineProgram& p, const VerifyResult
   else
     std::printf("scallop    %.4f mm (stepover unknown: --stepover gives the theory)\n", r.scallop_mm);
   std::printf("unreached  %.3f mm2\n", r.unreached_area_mm2);
+  const EngagementReport& e = v.engagement;
+  std::printf("engagement max %.1f deg, p95 %.1f deg, %.0f mm3/min removed while feeding (cell %g mm, within %.1f "
+              "deg)\n", e.max_deg, e.p95_deg, e.mrr_mm3_per_min, e.cell_mm, e.tolerance_deg);
   if (r.rapid_cut_cells)
     std::printf("RAPID INTO MATERIAL: %zu cells, first at %s %u\n", r.rapid_cut_cells, where, r.first_rapid_cut_source);
   std::printf("seconds    %.3f (simulation %.3f)\n", seconds, v.simulation_seconds);
@@ -145,6 +152,8 @@ void run(const VerifyArgs& a) {
   o.resolution = a.resolution;
   o.compare.tolerance = a.tolerance;
   o.compare.stepover = a.stepover;
+  o.measure_engagement = true;
+  o.engagement.cell = a.engagement_cell;
   if (!(a.tolerance >= 0)) throw Error("--tolerance", "must be zero or more mm");
   if (!(a.stepover >= 0)) throw Error("--stepover", "must be zero or more mm");
   std::optional<machine::Trunnion> trunnion;
@@ -193,7 +202,7 @@ void run(const VerifyArgs& a) {
   }
   if (!a.image.empty()) write_deviation_png(a.image, v.grid, v.report);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (a.json) std::printf("%s\n", to_json(v.report, seconds).dump().c_str());
+  if (a.json) std::printf("%s\n", to_json(v.report, v.engagement, seconds).dump().c_str());
   else print_text(a, program, v, seconds);
 }
 
@@ -215,6 +224,8 @@ CommandRegistration reg([](CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--stepover", a->stepover, "stepover of the finishing passes for the scallop theory, mm "
                                              "(toolpath files carry theirs)");
+  cmd->add_option("--engagement-cell", a->engagement_cell,
+                  "cell of the engagement measurement, mm (default 0.1, or R/40 of the smallest cutter if finer)");
   cmd->add_flag("--json", a->json, "print one JSON object");
   cmd->add_option("--image", a->image, "write the deviation map as a PNG picture");
   cmd->add_option("--machine", a->machine,

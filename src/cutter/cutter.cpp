@@ -44,6 +44,8 @@ void check_tool(const Tool& t, const std::string& where) {
   check_range(t.spindle_rpm, 0, 1e5, where + " spindle_rpm", "rpm");
   check_range(t.stepover, 0, 500, where + " stepover", "mm", Bound::Open);
   check_range(t.stepdown, 0, 500, where + " stepdown", "mm", Bound::Open);
+  if (!std::isnan(t.feed_engagement))
+    check_range(t.feed_engagement, 0, 180, where + " feed_engagement", "degrees", Bound::Open);
   if (!std::isnan(t.stick_out))
     check_range(t.stick_out, c.flute_length, 1000, where + " stick_out", "mm (the flute length to 1000)");
   if (!std::isnan(t.holder_diameter))

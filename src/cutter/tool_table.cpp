@@ -17,7 +17,7 @@ namespace {
 
 const std::set<std::string> kFields = {"id", "name", "type", "diameter", "corner_radius", "flute_length",
                                        "shank_diameter", "spindle_rpm", "feed", "plunge_feed", "stepover",
-                                       "stepdown", "stick_out", "holder_diameter"};
+                                       "stepdown", "stick_out", "holder_diameter", "feed_engagement"};
 
 // Reads the fields of one tool entry; `where` is "file: tool N" so that every message names both.
 class EntryReader {
@@ -109,6 +109,9 @@ Tool read_tool(const YAML::Node& node, const std::string& source, size_t index) 
   if (t.stepover > t.cutter.diameter) e.fail("stepover", "is larger than the diameter");
   t.stepdown = e.positive("stepdown");
   if (t.stepdown > t.cutter.flute_length) e.fail("stepdown", "is larger than the flute length");
+  t.feed_engagement = e.number("feed_engagement", false, NAN);
+  if (!std::isnan(t.feed_engagement) && !(t.feed_engagement > 0 && t.feed_engagement <= 180))
+    e.fail("feed_engagement", "must lie in (0, 180] degrees, got " + e.text("feed_engagement", true, ""));
   t.stick_out = e.number("stick_out", false, NAN);
   if (!std::isnan(t.stick_out) && t.stick_out < t.cutter.flute_length)
     e.fail("stick_out", "is shorter than the flute length");

@@ -1,5 +1,6 @@
 // The job's report as `rosmill job --json` prints it (millimetres, mm^3, seconds).
 #include "rosmill/job/run_job.hpp"
+#include "rosmill/verify/engagement_json.hpp"
 
 namespace rosmill::core::job {
 namespace {
@@ -31,6 +32,11 @@ nlohmann::json operation_json(const OperationReport& r) {
                       {"rest_cells", r.rest_cells},
                       {"nothing_to_cut", r.nothing_to_cut}};
   if (!r.program.empty()) o["program"] = r.program;
+  o["roughing"] = r.roughing;
+  if (r.engagement_measured) {
+    o["engagement"] = verify::engagement_json<nlohmann::json>(r.engagement);
+    o["feeds_from_engagement"] = r.feeds_from_engagement;
+  }
   return o;
 }
 

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "job_setup.hpp"
+#include "operation_engagement.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/cloud_io.hpp"
@@ -167,6 +168,7 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
   request.progress = progress;
   r.tool = request.params.tool.name;
   r.tool_used = request.params.tool;
+  r.roughing = kind.roughing;
   if (!options.plan_on_stock) return plan(request);
   MaterialTop material;
   const size_t work = material_for(s, stock.view(s.report.frame), op, kind.roughing, material, r.rest_cells);
@@ -179,6 +181,22 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
     return {};
   }
   return plan(request);
+}
+
+// The operation's engagement against the stock before it; a roughing operation's feeds set from it (toolpaths and
+// program both), and its removal rate then timed by those feeds.
+void measure_operation(stock::MachineProgram& program, Job& toolpaths, EngagementStock& engagement,
+                       const stock::InProcessStock& stock, const SetupFrame& frame, const JobOptions& options,
+                       OperationReport& r) {
+  r.engagement = engagement.measure(program, stock, frame, r.setup_index);
+  r.engagement_measured = true;
+  if (r.roughing && options.feeds_from_engagement) {
+    const double max_feed = options.checks.machine ? options.checks.machine->max_feed : 0.0;
+    r.feeds_from_engagement = set_feeds_from_engagement(toolpaths, r.engagement.move_deg, max_feed);
+    program = stock::program_from_job(toolpaths);
+    verify::retime_engagement(r.engagement, program);
+  }
+  r.engagement.move_deg = {};
 }
 
 // The job's setups: as the job names them, or chosen from the segmentation; and who finishes which faces.
@@ -393,6 +411,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   double tool_z = trunnion ? trunnion->safe_z : 0.0;  // machine z of the tool when the next indexing begins
   std::vector<Job> planned;  // each operation's toolpaths, for the programs
   std::optional<JobSetup> setup;
+  EngagementStock engagement;
   const auto go_on = [&](size_t k, double fraction) { return !options.progress || options.progress(k, fraction); };
   for (size_t k = 0; k < setups.operations.size(); ++k) {
     if (!go_on(k, 0.0)) {
@@ -436,11 +455,13 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     // On a trunnion, each toolpath is in the machine's frame at its setup's A and C: the post indexes there.
     if (sr.index)
       for (Toolpath& tp : toolpaths) tp.indexed = true, tp.a = sr.index->a, tp.c = sr.index->c;
-    const stock::MachineProgram program = stock::program_from_job(toolpaths);
+    stock::MachineProgram program = stock::program_from_job(toolpaths);
     // The tool, its shank or its holder in the fixture is a crash: no program of this job is written.
     if (const auto hit = stock::first_fixture_collision(program, sr.fixture))
       throw Error(where + " (" + op.name + ", setup " + sr.name + ")",
                   hit->message() + " of its toolpaths: move the fixture, grip lower, or leave that area to another setup");
+    if (options.measure_engagement && !program.moves.empty())
+      measure_operation(program, toolpaths, engagement, stock, sr.frame, options, r);
     const stock::RemovalReport removal = stock.remove(program, sr.frame);
     // A rapid through material is a crash: no program of this job is written.
     if (removal.collided())

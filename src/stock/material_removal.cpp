@@ -9,7 +9,9 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
 
+#include "rosmill/error.hpp"
 #include "sweep_kernels.hpp"
 
 // How a chain of moves is swept without visiting each move's whole footprint.
@@ -391,6 +393,50 @@ SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const 
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+// The sweeper runs a band of every row over a program of one move, the move it is given: no pruning (the move
+// is linked to nothing), no trace, no threads.
+struct MoveSweeper::State {
+  MachineProgram one;
+  std::vector<CutterProfile> profiles;
+  SimulationOptions options;
+  HeightField& stock;
+  BandSweep band;
+  State(const MachineProgram& program, HeightField& field, double arc_tolerance)
+      : one{program.tools, {CanonMove{}}, program.from_gcode, 0.0}, profiles(cutter_profiles(program)),
+        options(sweep_options(arc_tolerance)), stock(with_marks(field)),
+        band(one, profiles, options, field, nullptr, kInf, 0, std::max(0, field.grid.ny - 1)) {}
+  static std::vector<CutterProfile> cutter_profiles(const MachineProgram& program) {
+    std::vector<CutterProfile> out;
+    for (const Tool& tool : program.tools) out.emplace_back(tool.cutter);
+    return out;
+  }
+  static HeightField& with_marks(HeightField& field) {
+    if (field.cut_by.size() != field.top.size()) field.cut_by.assign(field.top.size(), HeightField::kNoMove);
+    return field;
+  }
+  static SimulationOptions sweep_options(double arc_tolerance) {
+    SimulationOptions o;
+    o.arc_tolerance = arc_tolerance;
+    o.parallel = false;
+    o.prune = false;
+    o.trace_finishing = false;
+    return o;
+  }
+};
+
+MoveSweeper::MoveSweeper(const MachineProgram& program, HeightField& stock, double arc_tolerance)
+    : state_(std::make_unique<State>(program, stock, arc_tolerance)) {}
+
+MoveSweeper::~MoveSweeper() = default;
+
+size_t MoveSweeper::sweep(const CanonMove& move) {
+  if (state_->stock.grid.cells() == 0) return 0;
+  if (move.tool >= state_->profiles.size())
+    throw Error("program move " + std::to_string(move.source), "names a tool the program does not have");
+  state_->one.moves[0] = move;
+  return state_->band.move(0, false, false, false);
 }
 
 double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, double x, double y, int samples) {

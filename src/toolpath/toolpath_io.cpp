@@ -60,7 +60,8 @@ json tool_to_json(const Tool& t) {
               {"feed", t.feed},
               {"plunge_feed", t.plunge_feed},
               {"stepover", t.stepover},
-              {"stepdown", t.stepdown}};
+              {"stepdown", t.stepdown},
+              {"feed_engagement", t.feed_engagement_deg()}};
 }
 
 Tool tool_from_json(const json& j, const std::string& where) {
@@ -80,6 +81,8 @@ Tool tool_from_json(const json& j, const std::string& where) {
   t.plunge_feed = number(j, "plunge_feed", where);
   t.stepover = number(j, "stepover", where);
   t.stepdown = number(j, "stepdown", where);
+  // Toolpath files written before tools stated their feed's engagement have none: the stepover's then.
+  if (j.contains("feed_engagement")) t.feed_engagement = number(j, "feed_engagement", where);
   check_tool(t, where);
   return t;
 }

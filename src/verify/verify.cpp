@@ -15,7 +15,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-stock::HeightField make_stock(const StockSpec& spec, const Box3& design_bounds, double resolution, size_t max_cells) {
+// The stock's bounds: the explicit box, the stock mesh's, or the design's; the design must stand within them in XY.
+Box3 stock_bounds(const StockSpec& spec, const Box3& design_bounds) {
   const Box3 b = spec.kind == StockSpec::Kind::Box    ? spec.box
                  : spec.kind == StockSpec::Kind::Mesh ? spec.mesh->bbox
                                                       : design_bounds;
@@ -30,17 +31,30 @@ stock::HeightField make_stock(const StockSpec& spec, const Box3& design_bounds, 
                   design_bounds.min.y(), design_bounds.max.y());
     throw Error("--stock", what);
   }
-  const stock::GridSpec grid = stock::GridSpec::covering(b.min.head<2>(), b.max.head<2>(), resolution, max_cells);
+  return b;
+}
+
+// The stock before the program on `grid`: a box, or the stock mesh's top (cells it misses hold no material).
+stock::HeightField stock_on(const StockSpec& spec, const Box3& b, const stock::GridSpec& grid) {
   stock::HeightField stock = stock::HeightField::box(grid, b.min.z(), b.max.z());
   if (spec.kind == StockSpec::Kind::Mesh) stock.top = stock::design_heights(*spec.mesh, grid, b.min.z());
   return stock;
+}
+
+// The engagement along the program, on a grid of the same stock as fine as the measurement asks.
+EngagementReport engagement_on(const StockSpec& spec, const Box3& b, const stock::MachineProgram& program,
+                               const EngagementOptions& options) {
+  stock::HeightField field = stock_on(spec, b, engagement_grid(program, b, options));
+  return measure_engagement(program, field, options);
 }
 
 template <class Design>
 VerifyResult run(const Design& design, const Box3& bounds, const stock::MachineProgram& program, const StockSpec& spec,
                  const VerifyOptions& options, double floor) {
   const auto start = Clock::now();
-  stock::HeightField stock = make_stock(spec, bounds, options.resolution, options.max_cells);
+  const Box3 b = stock_bounds(spec, bounds);
+  stock::HeightField stock =
+      stock_on(spec, b, stock::GridSpec::covering(b.min.head<2>(), b.max.head<2>(), options.resolution, options.max_cells));
   std::vector<float> heights;
   if constexpr (std::is_same_v<Design, rosmill::core::Mesh>) heights = stock::design_heights(design, stock.grid, floor);
   else heights = stock::design_heights(design, stock.grid);
@@ -49,6 +63,7 @@ VerifyResult run(const Design& design, const Box3& bounds, const stock::MachineP
   const stock::SimulationResult sim = stock::simulate(program, stock, so);
   VerifyResult result;
   result.report = compare(stock, heights, program, sim, options.compare, &result.grid);
+  if (options.measure_engagement) result.engagement = engagement_on(spec, b, program, options.engagement);
   result.simulation_seconds = sim.seconds;
   result.cells_visited = sim.cells_visited;
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

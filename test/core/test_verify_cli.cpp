@@ -104,7 +104,7 @@ TEST(VerifyCli, JsonOfAGougingProgramHasTheIssuesKeysDepthPlaceAndLine) {
   std::vector<std::string> keys;
   for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
   EXPECT_EQ(keys, (std::vector<std::string>{"max_gouge_mm", "gouge_at", "gouge_line", "max_rest_mm", "mean_rest_mm",
-                                            "scallop_mm", "unreached_area_mm2", "cells", "seconds"}));
+                                            "scallop_mm", "unreached_area_mm2", "cells", "engagement", "seconds"}));
   EXPECT_NEAR(j["max_gouge_mm"].get<double>(), 1.5, 0.01);
   ASSERT_EQ(j["gouge_at"].size(), 3u);
   EXPECT_NEAR(j["gouge_at"][0].get<double>(), 30.1, 0.2);
@@ -115,6 +115,33 @@ TEST(VerifyCli, JsonOfAGougingProgramHasTheIssuesKeysDepthPlaceAndLine) {
   EXPECT_EQ(j["unreached_area_mm2"].get<double>(), 0.0);
   EXPECT_EQ(j["cells"].get<int>(), 300 * 300);
   EXPECT_GT(j["seconds"].get<double>(), 0.0);
+}
+
+TEST(VerifyCli, EngagementOfASlotAcrossTheCube) {
+  // A 10 mm slot 5 deep across the cube's top (stock: the cube itself), plunged outside it at F500: 180 degrees
+  // over the cube's 60 mm, removed 10 x 5 x 60 mm3 in the feed time of the 15 mm plunge and the 72 mm line.
+  const std::string program = write_text("slot.ngc", "G21 G90 G17\nT1 M6\nG0 X-6 Y30 Z70\nG1 Z55 F500\nG1 X66\n"
+                                                      "G0 Z70\nM30\n");
+  const CliRun run = run_rosmill("verify " + cube_stl() + " " + program + " " + kTools + " --json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const ordered_json e = ordered_json::parse(run.out)["engagement"];
+  EXPECT_NEAR(e["max_deg"].get<double>(), 180.0, kEngagementToleranceDeg);
+  EXPECT_NEAR(e["p95_deg"].get<double>(), 180.0, kEngagementToleranceDeg);
+  EXPECT_NEAR(e["removed_mm3"].get<double>(), 10.0 * 5 * 60, 0.005 * 3000);
+  EXPECT_NEAR(e["feed_min"].get<double>(), (15.0 + 72) / 500, 1e-9);
+  EXPECT_NEAR(e["mrr_mm3_per_min"].get<double>(), 3000 / ((15.0 + 72) / 500), 0.005 * 3000 / (87.0 / 500));
+  ASSERT_EQ(e["histogram"].size(), 18u);
+  EXPECT_EQ(e["histogram_bin_deg"].get<double>(), 10.0);
+  // In the last bin: the 55 mm where the whole leading half is in the cube, and the few tenths where 170 degrees
+  // or more of it are, entering (R cos 85) and leaving (R (1 - cos 5)).
+  EXPECT_NEAR(e["histogram"][17].get<double>(), 55 + 5 * std::cos(85 * M_PI / 180) + 5 * (1 - std::cos(5 * M_PI / 180)),
+              0.25);
+  EXPECT_NEAR(e["radial_mm"].get<double>(), 72.0, 1e-9);
+  EXPECT_EQ(e["plunges"].get<int>(), 1);
+  // The text output says it in a line.
+  const CliRun text = run_rosmill("verify " + cube_stl() + " " + program + " " + kTools);
+  ASSERT_EQ(text.status, 0) << text.err;
+  EXPECT_NE(text.out.find("engagement max 180.0 deg, p95 180.0 deg"), std::string::npos) << text.out;
 }
 
 TEST(VerifyCli, JsonOfAToolpathFileGivesTheScallopAndNoGouge) {

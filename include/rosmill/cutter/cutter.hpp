@@ -32,6 +32,10 @@ struct Tool {
   double plunge_feed = 300.0;   // mm/min
   double stepover = 1.0;        // mm
   double stepdown = 1.0;        // mm
+  // The radial engagement (degrees of the cutter's circumference in the material) at which `feed` holds; NaN: the
+  // engagement of the tool's own stepover (feed_engagement_deg()). Feeds for other engagements follow by radial
+  // chip thinning (chip_thinning.hpp).
+  double feed_engagement = NAN;
   // How the tool sits in its holder: the length out of the holder (from the holder's face to the tip: the flutes and
   // the exposed shank) and the holder's largest diameter near the tool (a collet nut). NaN: the rule of thumb below.
   double stick_out = NAN;       // mm, at least the flute length
@@ -39,6 +43,13 @@ struct Tool {
 
   // The flute length plus one shank diameter of exposed shank, when the table gives none.
   double stick_out_mm() const { return std::isnan(stick_out) ? cutter.flute_length + cutter.shank_diameter : stick_out; }
+  // The engagement `feed` is for: the table's, else that of a side cut one stepover wide, acos(1 - stepover / R)
+  // (at most 180 degrees: a stepover of the whole diameter is a slot).
+  double feed_engagement_deg() const {
+    if (!std::isnan(feed_engagement)) return feed_engagement;
+    const double c = 1.0 - stepover / cutter.radius();
+    return std::acos(c < -1.0 ? -1.0 : c > 1.0 ? 1.0 : c) * 180.0 / M_PI;
+  }
   // An ER collet nut's diameter for the shank (ER16: 32 mm for a 10 mm shank), when the table gives none.
   double holder_mm() const { return std::isnan(holder_diameter) ? cutter.shank_diameter + 22.0 : holder_diameter; }
 };

@@ -22,6 +22,7 @@
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/setups/setup_choice.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
+#include "rosmill/verify/engagement.hpp"
 
 namespace rosmill::core::job {
 
@@ -57,6 +58,11 @@ struct JobOptions {
   double link_clearance = 2.0;
   // The machine's axes' accelerations for the time estimate (mm/s^2, toolpath_stats.hpp; zero: feeds alone).
   Vec3 max_acceleration = Vec3::Zero();
+  // Measure every operation's radial engagement against the stock before it (verify/engagement.hpp), and set a
+  // roughing operation's feeds from it by radial chip thinning (cutter/chip_thinning.hpp), capped by the tool and
+  // the machine's max_feed: its program and the time estimate then follow the cut's real engagement.
+  bool measure_engagement = true;
+  bool feeds_from_engagement = true;
 };
 
 struct OperationReport {
@@ -77,6 +83,12 @@ struct OperationReport {
   double gouge_mm = 0;
   uint32_t gouge_move = 0;
   std::string program;          // the written program (with an output folder)
+  bool roughing = false;        // its strategy clears stock in levels (the strategy table's `roughing`)
+  // The cutter's radial engagement against the stock before the operation (JobOptions::measure_engagement;
+  // move_deg left empty), and the feed moves whose feed was set from it (roughing, feeds_from_engagement).
+  bool engagement_measured = false;
+  verify::EngagementReport engagement;
+  size_t feeds_from_engagement = 0;
 };
 
 // A setup as the job ran it: what the operator clamps and where the program's zero is.

@@ -11,6 +11,7 @@
 // and which move cut each cell) is deterministic.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "rosmill/stock/height_field.hpp"
@@ -45,6 +46,25 @@ struct SimulationResult {
 // index in program.moves of the first move that cut it to its final height).
 SimulationResult simulate(const MachineProgram& program, HeightField& stock,
                           const SimulationOptions& options = {});
+
+// Sweeps moves one at a time, in the order the caller gives them, on the calling thread: for a caller that reads
+// the stock between moves (the engagement measurement) without simulate()'s per-call setup of bands and threads.
+// Each move is swept whole over its footprint, as SimulationOptions::prune = false does; no finishing trace.
+// `program` gives the tools (a move's `tool` indexes program.tools); `stock` must outlive the sweeper and keep its
+// size. Its cut_by marks the cells a move lowered with 0 (the sweeper knows no move numbers).
+class MoveSweeper {
+ public:
+  MoveSweeper(const MachineProgram& program, HeightField& stock, double arc_tolerance = 0.001);
+  ~MoveSweeper();
+  MoveSweeper(const MoveSweeper&) = delete;
+  MoveSweeper& operator=(const MoveSweeper&) = delete;
+  // Lowers the stock under `move` (a move of the program or a piece of one); returns the cells it lowered.
+  size_t sweep(const CanonMove& move);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // The lowest cutter bottom (tip height + profile) the move passes over the point (x, y); +infinity when the
 // cutter never covers it. The slow, obvious reference of what simulate() computes (tests compare the two).

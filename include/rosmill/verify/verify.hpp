@@ -6,6 +6,7 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/verify/deviation.hpp"
+#include "rosmill/verify/engagement.hpp"
 #include "rosmill/stock/material_removal.hpp"
 #include "rosmill/stock/program.hpp"
 
@@ -27,6 +28,9 @@ struct VerifyOptions {
   size_t max_cells = stock::kMaxGridCells;
   CompareOptions compare;
   stock::SimulationOptions simulation;
+  // Also measure the radial engagement along the program (engagement.hpp) on a finer grid of the same stock.
+  bool measure_engagement = false;
+  EngagementOptions engagement;
 };
 
 struct VerifyResult {
@@ -34,6 +38,7 @@ struct VerifyResult {
   DeviationGrid grid;
   double simulation_seconds = 0.0;
   size_t cells_visited = 0;  // cell evaluations of the simulation
+  EngagementReport engagement;  // with VerifyOptions::measure_engagement
   double seconds = 0.0;  // the whole verification (grid, design heights, simulation, comparison)
 };
 
