@@ -165,6 +165,8 @@ void run(const Options& o) {
     params.stock_mesh = &stock;
   }
 
+  // Feeds raised for a thin engagement stop at the machine's (the one a program is checked against).
+  if (const auto machine = machine_to_check(o.machine, o.no_limits)) params.max_feed = machine->max_feed;
   const auto t0 = std::chrono::steady_clock::now();
   request.strategy = o.strategy;
   request.params = params;

@@ -49,8 +49,8 @@ StockSpec read_stock(const YAML::Node& node, const std::string& file, const std:
 OperationSpec read_operation(const YAML::Node& node, const std::string& file, const std::string& place,
                              bool first_on_box, bool setup_field) {
   const Fields f(node, file, place,
-                 {"name", "strategy", "tool", "stepover", "stepdown", "allowance", "tolerance", "angle", "setup", "rest",
-                  "rest_threshold"});
+                 {"name", "strategy", "tool", "stepover", "stepdown", "allowance", "tolerance", "angle", "engagement",
+                  "setup", "rest", "rest_threshold"});
   OperationSpec op;
   op.line = node.Mark().line + 1;
   op.strategy = f.text("strategy", "", true);
@@ -61,6 +61,7 @@ OperationSpec read_operation(const YAML::Node& node, const std::string& file, co
   op.allowance = f.number("allowance", 0.0, 0, 100);
   op.tolerance = f.number("tolerance", NAN, 1e-6, 10);
   op.angle = f.number("angle", NAN, -360, 360);
+  op.engagement = f.number("engagement", NAN, 1e-3, 180);
   if (f.has("setup") && !setup_field)
     throw Error(f.where("setup"), "an operation of a job with setups runs in its setup (give it there)");
   op.setup = f.text("setup", "+Z");

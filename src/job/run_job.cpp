@@ -158,6 +158,8 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
     throw Error(where + ".tool", e.what());
   }
   request.params.stepover = op.stepover;
+  request.params.engagement_deg = op.engagement;
+  if (options.checks.machine) request.params.max_feed = options.checks.machine->max_feed;
   request.params.stepdown = op.stepdown;
   request.params.allowance = op.allowance;
   if (!std::isnan(op.tolerance)) request.params.tolerance = op.tolerance;

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <chrono>
 
 #include "adaptive_regions.hpp"
 #include "level_material.hpp"
+#include "rosmill/cutter/chip_thinning.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/plan/drop_grid.hpp"
@@ -94,7 +94,6 @@ class AdaptivePlanner {
       check_cancel(progress, 0.2 + 0.8 * double(i + 1) / levels.size());
     }
     w.retract();
-    if (getenv("ADBG")) fprintf(stderr, "offset %.3f smooth %.3f unite %.3f cut %.3f\n", T_[0], T_[1], T_[2], T_[3]);
     report_.levels = levels.size();
     return {tp_};
   }
@@ -137,9 +136,7 @@ class AdaptivePlanner {
   void level(double z, const std::vector<Loop>& loops, double loop_tolerance) {
     PlanFrame fl = f_;
     fl.tolerance = loop_tolerance;
-    auto t0 = std::chrono::steady_clock::now();
-    const LevelRegions r = level_regions(params_, fl, z, loops, lo_, hi_, arc_);
-    if (getenv("ADBG")) { size_t na = 0, nt = 0, nl = 0; for (auto& x : r.allowed) na += x.size(); for (auto& x : r.target) nt += x.size(); for (auto& x : loops) nl += x.size(); fprintf(stderr, "level %.2f regions %.3f s allowed %zu target %zu loops %zu\n", z, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), na, nt, nl); }
+    const LevelRegions r = level_regions(params_, fl, z, loops, lo_, hi_, arc_, 0.0);
     if (clip::area(r.target) < 1e-3 * R_ * R_) return;
     z_ = z;
     allowed_ = r.allowed;
@@ -160,24 +157,20 @@ class AdaptivePlanner {
       std::vector<Sampled> loops_k;
       std::vector<Piece> pieces;
       clip::Paths q;
-      s = std::min(s_max_, 1.5 * s);
+      s = std::min(s_max_, 1.25 * s);
       const bool cuts = next_ring(s, q, loops_k, pieces);
       skipped_ = false;
       if (cuts) {
         ++report_.rings;
-        auto tr = std::chrono::steady_clock::now();
         cut_ring(loops_k, pieces);
-        T_[3] += std::chrono::duration<double>(std::chrono::steady_clock::now() - tr).count();
       }
       // The cleared area grows by the ring's whole region swept by the cutter (what its boundary did not cut was
       // cleared before); by what the cutter swept when a piece could not be entered.
-      auto tu = std::chrono::steady_clock::now();
-      cleared_ = clip::unite(cleared_, cuts && !skipped_ ? clip::offset(q, R_ - arc_, arc_)
-                                                         : clip::sweep(swept_, R_ - arc_, arc_));
+      cleared_ = clip::simplify(clip::unite(cleared_, cuts && !skipped_ ? clip::offset(q, R_ - arc_, arc_)
+                                                                        : clip::sweep(swept_, R_ - arc_, arc_)),
+                                0.25 * arc_);
       swept_.clear();
-      if (getenv("ADBG")) { size_t nc = 0, nq = 0; for (auto& x : cleared_) nc += x.size(); for (auto& x : q) nq += x.size(); fprintf(stderr, "   vertices cleared %zu q %zu\n", nc, nq); }
-      if (getenv("ADBG")) fprintf(stderr, "z %.3f ring %zu s %.3f cuts %d pieces %zu area %.1f -> %.1f\n", z, ring, s, int(cuts), pieces.size(), before, material_->material_area());
-      const bool progress = material_->material_area() <= before - 1e-3 * R_ * R_;
+      const bool progress = material_->material_area() <= before - 2 * cell_ * cell_;
       stalled = progress ? 0 : stalled + 1;
       if (!cuts || !progress)
         if (!seed()) break;
@@ -189,13 +182,8 @@ class AdaptivePlanner {
   // stretches of its boundary that meet material. False when no stretch does.
   bool next_ring(double& s, clip::Paths& q, std::vector<Sampled>& loops, std::vector<Piece>& pieces) {
     for (int attempt = 0; attempt < kStepTries; ++attempt) {
-      auto ta = std::chrono::steady_clock::now();
       q = clip::intersect(clip::offset(cleared_, s - R_, arc_), allowed_);
-      auto tb = std::chrono::steady_clock::now();
-      if (getenv("ADBG")) { size_t nq = 0; for (auto& x : q) nq += x.size(); fprintf(stderr, "   pre-open q %zu paths %zu\n", nq, q.size()); }
       q = clip::open(q, r_min_, arc_);
-      auto tc = std::chrono::steady_clock::now();
-      T_[0] += std::chrono::duration<double>(tb - ta).count(); T_[1] += std::chrono::duration<double>(tc - tb).count();
       clip::cl::CleanPolygons(q, 0.002 * clip::kScale);
       loops.clear();
       pieces.clear();
@@ -206,7 +194,6 @@ class AdaptivePlanner {
       }
       if (pieces.empty()) return false;
       ring_step_ = s;
-      if (getenv("ADBG")) fprintf(stderr, "   attempt %d s %.3f worst %.1f loops %zu\n", attempt, s, worst, loops.size());
       if (worst <= limit_ + kMeasureDeg || attempt + 1 == kStepTries) return true;
       s *= 0.6;
     }
@@ -222,7 +209,9 @@ class AdaptivePlanner {
     double worst = 0;
     for (size_t k = 0; k < n; ++k) {
       const double e = material_->engagement(loop.p[k], loop.dir[k], R_);
-      cuts[k] = e > kAirDeg;
+      // A cut, by the half-circle a cell inside the cutter's: the skin of cells a pass along a wall leaves at the
+      // cutter's radius (its chords) is no cut, the material of a front is.
+      cuts[k] = e > kAirDeg && material_->engagement(loop.p[k], loop.dir[k], R_ - cell_) > kAirDeg;
       worst = std::max(worst, e);
     }
     const size_t pad = static_cast<size_t>(std::ceil(R_ / cell_));
@@ -234,6 +223,7 @@ class AdaptivePlanner {
       pieces.push_back({index, 0, n + pad});  // the whole loop, closed with an overlap
       return worst;
     }
+    if (std::none_of(keep.begin(), keep.end(), [](uint8_t b) { return b; })) return worst;
     // Runs of kept samples, starting after a dropped one so that no run is split at the wrap.
     size_t start = 0;
     while (keep[start]) ++start;
@@ -247,21 +237,54 @@ class AdaptivePlanner {
 
   // ---- cutting
 
+  // The pieces one after another: the next along the same loop when the loop's stretch between them is cleared
+  // air (followed at the level instead of a lift), else the nearest.
   void cut_ring(const std::vector<Sampled>& loops, std::vector<Piece>& pieces) {
     std::vector<bool> done(pieces.size(), false);
+    size_t last = pieces.size();
     for (size_t n = 0; n < pieces.size(); ++n) {
-      size_t best = 0;
-      double best_d = INFINITY;
-      for (size_t i = 0; i < pieces.size(); ++i) {
-        if (done[i]) continue;
-        const double d = (loops[pieces[i].loop].p[pieces[i].first] - w_->position().head<2>()).squaredNorm();
-        if (d < best_d) best_d = d, best = i;
+      size_t best = pieces.size();
+      if (last < pieces.size())
+        for (size_t i = 0; i < pieces.size(); ++i)
+          if (!done[i] && pieces[i].loop == pieces[last].loop && pieces[i].count <= loops[pieces[i].loop].p.size() &&
+              follow_loop(loops[pieces[i].loop], end_of(pieces[last], loops), pieces[i].first)) {
+            best = i;
+            break;
+          }
+      if (best == pieces.size()) {
+        double best_d = INFINITY;
+        for (size_t i = 0; i < pieces.size(); ++i) {
+          if (done[i]) continue;
+          const double d = (loops[pieces[i].loop].p[pieces[i].first] - w_->position().head<2>()).squaredNorm();
+          if (d < best_d) best_d = d, best = i;
+        }
       }
       done[best] = true;
       Piece piece = pieces[best];
       if (piece.count > loops[piece.loop].p.size()) rotate_closed(loops[piece.loop], piece);
       cut_piece(loops[piece.loop], piece);
+      pieces[best] = piece;
+      last = best;
     }
+  }
+
+  static size_t end_of(const Piece& piece, const std::vector<Sampled>& loops) {
+    return (piece.first + piece.count) % loops[piece.loop].p.size();
+  }
+
+  // Follows the loop at the level from sample `from` (where the cutter is) to sample `to` when every step of the
+  // way is clear of material; false (and no move) otherwise.
+  bool follow_loop(const Sampled& loop, size_t from, size_t to) {
+    const size_t n = loop.p.size();
+    if (!at_level() || (loop.p[from] - w_->position().head<2>()).norm() > 1e-6) return false;
+    const size_t steps = (to + n - from) % n;
+    if (steps * cell_ > 40 * R_) return false;  // farther round than a lift and back costs
+    for (size_t k = 0; k < steps; ++k)
+      if (!material_->capsule_clear(loop.p[(from + k) % n], loop.p[(from + k + 1) % n], R_)) return false;
+    phase_ = 4;
+    for (size_t k = 1; k <= steps; ++k)
+      if (loop.vertex[(from + k) % n] || k == steps) cut_to(loop.p[(from + k) % n]);
+    return true;
   }
 
   // A whole loop starts where it is nearest to the cutter.
@@ -278,6 +301,7 @@ class AdaptivePlanner {
     size_t k = 1;
     const Vec2 start = loop.p[piece.first], t = loop.dir[piece.first];
     if (material_->disc_clear(start, R_)) {
+      phase_ = 5;
       reach_air(start);
     } else if (!spiral_in(loop, piece, k) && !enter(start, t)) {
       skipped_ = true;
@@ -285,6 +309,7 @@ class AdaptivePlanner {
     }
     // A whole loop goes on round past where the spiral joined it: that stretch was cut short of the ring.
     const size_t end = piece.count > n ? piece.count + k : piece.count;
+    phase_ = 3;
     for (; k <= end; ++k)
       if (loop.vertex[(piece.first + k) % n] || k == end) cut_to(loop.p[(piece.first + k) % n]);
   }
@@ -302,7 +327,7 @@ class AdaptivePlanner {
   // ring is not in air there or the curve leaves the part's clearance.
   bool spiral_in(const Sampled& loop, const Piece& piece, size_t& k) {
     const size_t n = loop.p.size();
-    const double rate = 1.0 / (R_ * std::max(0.2, std::sin(limit_ * M_PI / 180)));
+    const double rate = 0.5 / (R_ * std::max(0.2, std::sin(limit_ * M_PI / 180)));
     std::vector<Vec2> curve;
     double x = 0;
     size_t i = 0;
@@ -314,7 +339,9 @@ class AdaptivePlanner {
     }
     if (curve.empty() || !material_->disc_clear(curve.front(), R_)) return false;
     if (!std::all_of(curve.begin(), curve.end(), [&](const Vec2& p) { return in_part_clearance(p); })) return false;
+    phase_ = 5;
     reach_air(curve.front());
+    phase_ = 1;
     for (size_t j = 1; j < curve.size(); j += 2) cut_to(curve[j]);
     k = i;
     return true;
@@ -339,19 +366,13 @@ class AdaptivePlanner {
       if (!material_->disc_clear(arc.front(), R_)) continue;
       if (at_level() && free_way(w_->position().head<2>(), arc.front())) cut_to(arc.front());
       else descend(arc.front());
+      phase_ = 2;
       for (size_t k = 1; k < arc.size(); ++k) cut_to(arc[k]);
       return true;
     }
     if (material_->disc_clear(start, R_)) {
       descend(start);
       return true;
-    }
-    if (getenv("ADBG")) {
-      const Vec2 left2(-t.y(), t.x());
-      for (double rho : {std::max(r_min_, 0.5 * R_), R_, 1.5 * R_}) {
-        const Vec2 q = start + rho * left2 - rho * t;
-        fprintf(stderr, "  enter fail at (%.3f %.3f) t (%.2f %.2f) rho %.2f q (%.3f %.3f) clear %d inside %d contains %d\n", start.x(), start.y(), t.x(), t.y(), rho, q.x(), q.y(), int(material_->disc_clear(q, R_)), int(inside_->material(q)), int(clip::contains(allowed_, start)));
-      }
     }
     return false;
   }
@@ -375,11 +396,17 @@ class AdaptivePlanner {
   // Up over what stands on the way, across, down to just above the material under the cutter, and into the air
   // cleared at the level.
   void descend(const Vec2& p) {
-    const Vec2 from = w_->position().head<2>();
-    const double over = std::max(top_.highest_along(from, p, R_) + params_.link_clearance, z_);
-    const double under = top_.clear_height(p, R_, [&](double d) { return profile_.height(d); });
     if (!w_->at_safe()) ++report_.lifts;
-    w_->link_to(Vec3(p.x(), p.y(), z_), std::max(over, w_->position().z()), std::max(under, z_) + params_.approach);
+    if (!params_.material) {
+      // No stock model checks the rapids: down from the safe height at the feed, through air cleared before.
+      w_->enter(Vec3(p.x(), p.y(), z_), z_ + params_.approach);
+    } else {
+      const Vec2 from = w_->position().head<2>();
+      const double over = std::max(top_.highest_along(from, p, R_) + params_.link_clearance, z_);
+      const double under = top_.clear_height(p, R_, [&](double d) { return profile_.height(d); });
+      w_->link_to(Vec3(p.x(), p.y(), z_), std::max(over, w_->position().z()),
+                  std::max(under, z_) + params_.approach);
+    }
     swept_.push_back({p});
   }
 
@@ -408,12 +435,12 @@ class AdaptivePlanner {
   }
 
   void engagement_of_move(double e) {
-    if (getenv("ADBG") && e > limit_ + 2) fprintf(stderr, "  high %.1f at (%.3f %.3f) z %.3f ring %zu\n", e, w_->position().x(), w_->position().y(), z_, report_.rings);
     report_.max_engagement_deg = std::max(report_.max_engagement_deg, e);
     tp_.passes.back().moves.back().feed = feed_for(e);
   }
 
-  double feed_for(double) const { return params_.tool.feed; }
+  // Radial chip thinning (cutter/chip_thinning.hpp), capped by the machine.
+  double feed_for(double e) const { return feed_for_engagement(params_.tool, e, params_.max_feed); }
 
   // ---- entries where no cleared air is in reach
 
@@ -426,7 +453,7 @@ class AdaptivePlanner {
     const clip::Paths reach = clip::intersect(allowed_, clip::offset(left, 0.9 * R_, arc_));
     double depth = 0;
     const clip::Paths deep = deepest(reach, depth);
-    if (deep.empty()) {
+    if (std::none_of(deep.begin(), deep.end(), [](const clip::Path& p) { return !p.empty(); })) {
       given_up_ = clip::unite(given_up_, left);
       return false;
     }
@@ -456,20 +483,31 @@ class AdaptivePlanner {
     return cur;
   }
 
+  // A point inside the region: the centroid of its largest loop when inside, else a corner of it.
   static Vec2 point_in(const clip::Paths& region) {
-    const clip::Path* biggest = &region.front();
+    const clip::Path* biggest = nullptr;
     for (const clip::Path& p : region)
-      if (std::abs(clip::cl::Area(p)) > std::abs(clip::cl::Area(*biggest))) biggest = &p;
-    Vec2 mean = Vec2::Zero();
-    for (const auto& q : *biggest) mean += clip::from_point(q);
-    mean /= double(biggest->size());
-    return clip::contains(region, mean) ? mean : clip::from_point(biggest->front());
+      if (!p.empty() && (!biggest || std::abs(clip::cl::Area(p)) > std::abs(clip::cl::Area(*biggest)))) biggest = &p;
+    const size_t n = biggest->size();
+    const Vec2 o = clip::from_point(biggest->front());
+    Vec2 sum = Vec2::Zero();
+    double twice_area = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const Vec2 a = clip::from_point((*biggest)[k]) - o, b = clip::from_point((*biggest)[(k + 1) % n]) - o;
+      const double cross = a.x() * b.y() - a.y() * b.x();
+      twice_area += cross;
+      sum += cross * (a + b);
+    }
+    const Vec2 centroid = std::abs(twice_area) > 1e-12 ? Vec2(o + sum / (3 * twice_area)) : o;
+    return clip::contains(region, centroid) ? centroid : o;
   }
 
   void helix(const Vec2& c, double r) {
     ++report_.helices;
     constexpr int kPerTurn = 36;
-    const auto at = [&](int k) { return c + r * Vec2(std::cos(2 * M_PI * k / kPerTurn), std::sin(2 * M_PI * k / kPerTurn)); };
+    const auto at = [&](int k) -> Vec2 {
+      return c + r * Vec2(std::cos(2 * M_PI * k / kPerTurn), std::sin(2 * M_PI * k / kPerTurn));
+    };
     const double top = std::max(top_.highest_under(c, r + R_), z_);
     descend_to(at(0), top);
     const double drop = 2 * M_PI * r * slope_ / kPerTurn;
@@ -479,11 +517,12 @@ class AdaptivePlanner {
       const Vec2 p = at(++k);
       w_->plunge_to(Vec3(p.x(), p.y(), zc));
     }
-    // The whole disc is cut once the helix is down; a last turn at the level flattens its floor.
+    // The whole disc is cut once the helix is down; a last turn at the level (still the entry, at the plunge
+    // feed: it takes the wedge the last turn down left with the cutter's end) flattens its floor.
     cut(c, c, r + R_);
     for (int i = 0; i < kPerTurn; ++i) {
       const Vec2 p = at(++k);
-      w_->feed(Vec3(p.x(), p.y(), z_));
+      w_->plunge_to(Vec3(p.x(), p.y(), z_));
     }
     swept_.push_back({c});
     swept_.push_back({w_->position().head<2>()});
@@ -493,9 +532,13 @@ class AdaptivePlanner {
   // Over what stands on the way to p, down to the approach over `top`, and in at the plunge feed to `top`: the
   // start of an entry into material.
   void descend_to(const Vec2& p, double top) {
+    if (!w_->at_safe()) ++report_.lifts;
+    if (!params_.material) {
+      w_->enter(Vec3(p.x(), p.y(), top), top + params_.approach);
+      return;
+    }
     const Vec2 from = w_->position().head<2>();
     const double over = std::max(top_.highest_along(from, p, R_) + params_.link_clearance, top);
-    if (!w_->at_safe()) ++report_.lifts;
     w_->link_to(Vec3(p.x(), p.y(), top), std::max(over, w_->position().z()), top + params_.approach);
   }
 
@@ -507,7 +550,7 @@ class AdaptivePlanner {
       const Vec2 e0 = reach_along(p, -d), e1 = reach_along(p, d);
       if ((e1 - e0).norm() > (b - a).norm()) a = e0, b = e1;
     }
-    if ((b - a).norm() < 2 * cell_) return false;
+    if ((b - a).norm() < R_) return false;  // a corner's or sliver's few cells: left to rest machining
     ++report_.ramps;
     const double top = std::max(top_.highest_along(a, b, R_), z_);
     descend_to(a, top);
@@ -522,9 +565,9 @@ class AdaptivePlanner {
       w_->plunge_to(Vec3(q.x(), q.y(), zc));
       forward = !forward;
     }
-    // Along the whole way at the level, there and back.
+    // Along the whole way at the level, there and back (the entry's end, at the plunge feed).
     cut(a, b);
-    for (const Vec2& q : {a, b, a}) w_->feed(Vec3(q.x(), q.y(), z_));
+    for (const Vec2& q : {a, b, a}) w_->plunge_to(Vec3(q.x(), q.y(), z_));
     swept_.push_back({a, b});
     return true;
   }
@@ -534,7 +577,7 @@ class AdaptivePlanner {
     Vec2 last = p;
     for (double s = 0.5 * cell_; s <= 4 * R_; s += 0.5 * cell_) {
       const Vec2 q = p + s * d;
-      if (!inside_->material(q)) break;
+      if (!in_part_clearance(q)) break;
       last = q;
     }
     return last;
@@ -555,7 +598,7 @@ class AdaptivePlanner {
   std::vector<std::vector<Vec2>> swept_;
   bool skipped_ = false;  // a piece of the ring could not be entered
   double ring_step_ = 0;
-  double T_[4] = {0, 0, 0, 0};  // how far the ring's cutter reaches beyond the area cleared before it  // the cutter's centre at the level since the cleared area last grew
+  int phase_ = 0;  // how far the ring's cutter reaches beyond the area cleared before it  // the cutter's centre at the level since the cleared area last grew
   std::optional<LevelMaterial> material_, inside_;
 };
 

@@ -55,7 +55,7 @@ clip::Paths part_blocked(const std::vector<Loop>& loops, double grow, double sim
 }  // namespace
 
 LevelRegions level_regions(const PlanParams& params, const PlanFrame& f, double z, const std::vector<Loop>& loops,
-                           const Vec2& work_lo, const Vec2& work_hi, double arc_tolerance) {
+                           const Vec2& work_lo, const Vec2& work_hi, double arc_tolerance, double skin) {
   const double R = f.cutter.radius();
   clip::Paths blocked = part_blocked(loops, f.tolerance, 0.5 * arc_tolerance, arc_tolerance);
   // The fixture standing above the level keeps the cutter a radius and the link clearance away.
@@ -65,7 +65,10 @@ LevelRegions level_regions(const PlanParams& params, const PlanFrame& f, double 
   LevelRegions r;
   r.allowed = clip::subtract(clip::rectangle(work_lo, work_hi), blocked);
   r.material = material_above(params, f, z);
-  r.target = clip::intersect(r.material, clip::offset(r.allowed, R, arc_tolerance));
+  // Within a hair less than R of the allowed centres: the ring that runs along a wall rounds off its corners by
+  // the arc tolerance, and the thin skin it leaves at the wall (the wall's own material, not a cut) must not count
+  // as material that makes the whole ring a cut.
+  r.target = clip::intersect(r.material, clip::offset(r.allowed, R - skin, arc_tolerance));
   return r;
 }
 

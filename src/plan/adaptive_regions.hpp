@@ -12,12 +12,13 @@ namespace rosmill::core {
 struct LevelRegions {
   clip::Paths allowed;   // centres whose cutter stays out of the part (and fixture) at and above the level
   clip::Paths material;  // material standing above the level
-  clip::Paths target;    // the material the cutter reaches: material within R of `allowed`
+  clip::Paths target;    // the material the cutter reaches: material within R - skin of `allowed`
 };
 
 // `loops`: the waterline's loops at the level (closed, around where the cutter would go into the part);
-// `work_lo`, `work_hi`: the rectangle the centre keeps to; `arc_tolerance`: of the offsets.
+// `work_lo`, `work_hi`: the rectangle the centre keeps to; `arc_tolerance`: of the offsets; `skin`: how much
+// less than R from the allowed centres the target reaches.
 LevelRegions level_regions(const PlanParams& params, const PlanFrame& f, double z, const std::vector<Loop>& loops,
-                           const Vec2& work_lo, const Vec2& work_hi, double arc_tolerance);
+                           const Vec2& work_lo, const Vec2& work_hi, double arc_tolerance, double skin);
 
 }  // namespace rosmill::core

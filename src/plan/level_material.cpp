@@ -17,7 +17,27 @@ LevelMaterial::LevelMaterial(const Vec2& lo, const Vec2& hi, double cell)
     : x0_(lo.x()), y0_(lo.y()), cell_(cell),
       nx_(std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)))),
       ny_(std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cell)))),
-      bits_(size_t(nx_) * size_t(ny_), 0) {}
+      bits_(size_t(nx_) * size_t(ny_), 0), bx_((nx_ + kBlock - 1) / kBlock), by_((ny_ + kBlock - 1) / kBlock),
+      block_count_(size_t(bx_) * size_t(by_), 0) {}
+
+void LevelMaterial::set(size_t c, uint8_t value) {
+  if (bits_[c] == value) return;
+  const size_t b = size_t((long(c / nx_) / kBlock) * bx_ + long(c % nx_) / kBlock);
+  block_count_[b] += value ? 1 : uint32_t(-1);
+  bits_[c] = value;
+}
+
+bool LevelMaterial::near_material(const Vec2& p, double r) const {
+  const double span = kBlock * cell_;
+  const long i0 = std::max(0L, static_cast<long>(std::floor((p.x() - r - x0_) / span)));
+  const long i1 = std::min(bx_ - 1, static_cast<long>(std::floor((p.x() + r - x0_) / span)));
+  const long j0 = std::max(0L, static_cast<long>(std::floor((p.y() - r - y0_) / span)));
+  const long j1 = std::min(by_ - 1, static_cast<long>(std::floor((p.y() + r - y0_) / span)));
+  for (long j = j0; j <= j1; ++j)
+    for (long i = i0; i <= i1; ++i)
+      if (block_count_[size_t(j) * bx_ + i]) return true;
+  return false;
+}
 
 void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
   // Scan lines through the cell centres; the crossings of every loop edge, sorted, bound the inside runs.
@@ -35,12 +55,13 @@ void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
     for (size_t k = 0; k + 1 < xs.size(); k += 2) {
       const long i0 = std::max(0L, static_cast<long>(std::ceil((xs[k] - x0_) / cell_ - 0.5)));
       const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor((xs[k + 1] - x0_) / cell_ - 0.5)));
-      for (long i = i0; i <= i1; ++i) bits_[size_t(j) * nx_ + i] = value;
+      for (long i = i0; i <= i1; ++i) set(size_t(j) * nx_ + i, value);
     }
   }
 }
 
 double LevelMaterial::engagement(const Vec2& p, const Vec2& dir, double r) const {
+  if (!near_material(p, r)) return 0;
   const double heading = std::atan2(dir.y(), dir.x());
   int in = 0;
   for (int k = 0; k < kArcSamples; ++k) {
@@ -69,6 +90,7 @@ bool LevelMaterial::each_within(const Vec2& a, const Vec2& b, double r, const F&
 }
 
 bool LevelMaterial::capsule_clear(const Vec2& a, const Vec2& b, double r) const {
+  if (!near_material(a, r + (b - a).norm())) return true;
   const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / std::max(r, cell_))));
   for (int k = 0; k < n; ++k)
     if (!each_within(a + (b - a) * (double(k) / n), a + (b - a) * (double(k + 1) / n), r,
@@ -82,13 +104,15 @@ void LevelMaterial::cut_along(const Vec2& a, const Vec2& b, double r) {
   const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / std::max(r, cell_))));
   for (int k = 0; k < n; ++k)
     each_within(a + (b - a) * (double(k) / n), a + (b - a) * (double(k + 1) / n), r, [&](size_t c) {
-      bits_[c] = 0;
+      set(c, 0);
       return true;
     });
 }
 
 double LevelMaterial::material_area() const {
-  return double(std::count(bits_.begin(), bits_.end(), uint8_t(1))) * cell_ * cell_;
+  size_t n = 0;
+  for (uint32_t c : block_count_) n += c;
+  return double(n) * cell_ * cell_;
 }
 
 }  // namespace rosmill::core

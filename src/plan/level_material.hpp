@@ -25,6 +25,8 @@ class LevelMaterial {
   // Degrees of the leading half-circle (the half ahead of `dir`) of radius r around p that lies in material:
   // 180 for a full slot, acos(1 - ae / r) for a side cut of width ae, 0 in air.
   double engagement(const Vec2& p, const Vec2& dir, double r) const;
+  // False only when no material lies within r of p (blocks of cells counted: a quick test before finer ones).
+  bool near_material(const Vec2& p, double r) const;
   // No material cell centre within r of p.
   bool disc_clear(const Vec2& p, double r) const;
   // No material cell centre within r of the segment a-b.
@@ -41,6 +43,11 @@ class LevelMaterial {
   double x0_, y0_, cell_;
   long nx_, ny_;
   std::vector<uint8_t> bits_;
+  // Material cells per block of kBlock x kBlock cells.
+  static constexpr long kBlock = 16;
+  long bx_ = 0, by_ = 0;
+  std::vector<uint32_t> block_count_;
+  void set(size_t c, uint8_t value);
 };
 
 }  // namespace rosmill::core

@@ -23,6 +23,7 @@ void check_plan_params(const PlanParams& p) {
   if (!std::isnan(p.air_gap)) check_range(p.air_gap, 0, 1000, "parameter air_gap", "mm");
   // Radial engagement of adaptive clearing: above 0 (no cut at all) and at most a full-width slot.
   if (!std::isnan(p.engagement_deg)) check_range(p.engagement_deg, 0, 180, "parameter engagement", "degrees", Bound::Open);
+  check_range(p.max_feed, 0, 1e6, "parameter max_feed", "mm/min");
   if (p.material) p.material->check("parameter material");
 }
 

@@ -439,6 +439,10 @@ PlanParams from_plan_parameters(const msg::PlanParameters& m, const core::Tool& 
   p.safe_clearance = length_field(m.safe_clearance, defaults.safe_clearance, "safe_clearance", false);
   check_range(m.angle, -2 * M_PI, 2 * M_PI, "parameters.angle", "rad");  // radians as sent, not degrees
   p.angle_deg = m.angle == 0.0 ? defaults.angle_deg : m.angle * 180.0 / M_PI;
+  if (m.engagement != 0.0 && !std::isnan(m.engagement)) {
+    check_range(m.engagement, 0, M_PI, "parameters.engagement", "rad", Bound::Open);
+    p.engagement_deg = m.engagement * 180.0 / M_PI;
+  }
   if (!std::isnan(p.stepover) && p.stepover > tool.cutter.diameter)
     throw Error("parameters.stepover", "is larger than the tool diameter (" +
                                            std::to_string(to_metres(tool.cutter.diameter)) + " m)");

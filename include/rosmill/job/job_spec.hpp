@@ -53,6 +53,7 @@ struct OperationSpec {
   // The direction of the raster's and the roughing's lines in the setup's frame (degrees from its X; NaN: the
   // strategy's own). Lines across a slot reach its walls' feet exactly; lines along it leave up to a stepover there.
   double angle = NAN;
+  double engagement = NAN;  // adaptive: largest radial engagement, degrees (NaN: from the stepover)
   std::string setup = "+Z";  // the name of its setup
   size_t setup_index = 0;    // into JobSpec::setups
   // Rest machining: only where the stock the operations before left stands above the design by more than the

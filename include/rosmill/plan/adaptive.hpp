@@ -23,6 +23,13 @@
 
 namespace rosmill::core {
 
+// The most the radial engagement of a move at a level passes the limit by, as the verifier measures it
+// (verify/engagement.hpp, within its own tolerance besides): the planner samples its rings every R/20 on a bitmap of
+// R/20 cells (2 degrees), and a ring that turns into an inner corner tighter than its turn radius takes up to
+// about 8 degrees more there (measured on a closed pocket, test_adaptive). Entries (a helix or ramp down and its
+// turn or pass at the bottom) are plunges at the plunge feed and cut with the cutter's end: not bounded.
+constexpr double kAdaptiveEngagementSlackDeg = 10.0;
+
 struct AdaptiveOptions {
   double min_turn_radius = NAN;  // mm the cutter's centre turns on at least while cutting; NaN: 0.2 R
   double helix_radius = NAN;     // mm; NaN: 0.5 R (smaller where the material left is narrower)

@@ -45,6 +45,8 @@ struct PlanParams {
   // Adaptive clearing: the largest radial engagement of the cutter, degrees (0, 180]; NaN: the engagement of a
   // straight side cut one stepover wide, acos(1 - stepover / R).
   double engagement_deg = NAN;
+  // mm/min the machine feeds at most (0: no cap): a feed raised for a thin engagement stops there.
+  double max_feed = 0.0;
 };
 
 // Throws Error naming the field ("parameter allowance") and its accepted range when a value is NaN where NaN does

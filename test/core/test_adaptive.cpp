@@ -1,0 +1,265 @@
+// Adaptive clearing (plan/adaptive.hpp) and the roughing levels at flat faces (plan/levels.hpp). Every bound is
+// checked by code the planner does not share: the engagement by the verifier's measurement on a height field
+// (verify/engagement.hpp), the material left and gouges by the stock simulation and the job's reports.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "job_test_options.hpp"
+#include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/gcode/post.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/geometry/primitives.hpp"
+#include "rosmill/job/job_spec.hpp"
+#include "rosmill/plan/adaptive.hpp"
+#include "rosmill/plan/levels.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
+#include "rosmill/stock/program.hpp"
+#include "rosmill/verify/engagement.hpp"
+#include "rosmill/verify/verify.hpp"
+
+using namespace rosmill::core;
+
+namespace {
+
+// The engagement bound adaptive.hpp states (kAdaptiveEngagementSlackDeg over the limit, the corners of the rings
+// that turn into an inner corner) plus the verifier's own stated tolerance.
+constexpr double kEngagementSlackDeg = kAdaptiveEngagementSlackDeg + verify::kEngagementToleranceDeg;
+
+// A block [0, L] x [0, W] x [0, H] with a rectangular pocket [x0, x1] x [y0, y1] down to H - depth, closed and
+// oriented outwards.
+Mesh pocket_block(double L, double W, double H, double x0, double x1, double y0, double y1, double depth) {
+  std::vector<Vec3> c;
+  auto quad = [&](const Vec3& a, const Vec3& b, const Vec3& d, const Vec3& e) {  // counter-clockwise seen outside
+    c.insert(c.end(), {a, b, d, a, d, e});
+  };
+  const double f = H - depth;
+  // Outer walls and bottom.
+  quad({0, 0, 0}, {L, 0, 0}, {L, 0, H}, {0, 0, H});
+  quad({L, 0, 0}, {L, W, 0}, {L, W, H}, {L, 0, H});
+  quad({L, W, 0}, {0, W, 0}, {0, W, H}, {L, W, H});
+  quad({0, W, 0}, {0, 0, 0}, {0, 0, H}, {0, W, H});
+  quad({0, 0, 0}, {0, W, 0}, {L, W, 0}, {L, 0, 0});
+  // Top around the pocket: four strips.
+  quad({0, 0, H}, {L, 0, H}, {L, y0, H}, {0, y0, H});
+  quad({0, y1, H}, {L, y1, H}, {L, W, H}, {0, W, H});
+  quad({0, y0, H}, {x0, y0, H}, {x0, y1, H}, {0, y1, H});
+  quad({x1, y0, H}, {L, y0, H}, {L, y1, H}, {x1, y1, H});
+  // The pocket's walls (facing into it) and floor.
+  quad({x0, y0, f}, {x0, y1, f}, {x0, y1, H}, {x0, y0, H});
+  quad({x1, y1, f}, {x1, y0, f}, {x1, y0, H}, {x1, y1, H});
+  quad({x1, y0, f}, {x0, y0, f}, {x0, y0, H}, {x1, y0, H});
+  quad({x0, y1, f}, {x1, y1, f}, {x1, y1, H}, {x0, y1, H});
+  quad({x0, y0, f}, {x1, y0, f}, {x1, y1, f}, {x0, y1, f});
+  return build_mesh(c);
+}
+
+PlanParams flat(double diameter, double stepover, double stepdown, double allowance) {
+  PlanParams p;
+  p.tool = default_tool(Cutter{CutterType::FlatEnd, diameter, 0});
+  p.stepover = stepover;
+  p.stepdown = stepdown;
+  p.allowance = allowance;
+  p.tolerance = 0.01;
+  return p;
+}
+
+struct Planned {
+  Job job;
+  PlanReport report;
+};
+
+Planned adaptive(const Mesh& mesh, const PlanParams& params) {
+  const MeshSurface surface(mesh);
+  Planned p;
+  p.job = adaptive_on(surface, params, AdaptiveOptions{}, {}, &p.report);
+  return p;
+}
+
+// The verifier's engagement over the program on the plan's box stock: the largest over the feed moves (the entries
+// -- a helix or a ramp down, and its turn or pass at the bottom -- are plunges: they cut with the cutter's end).
+double measured_level_engagement(const Job& job, const Box3& stock) {
+  const stock::MachineProgram program = stock::program_from_job(job);
+  std::vector<MoveType> types;
+  for (const Toolpath& tp : job)
+    for (const ToolpathPass& pass : tp.passes)
+      for (const Move& m : pass.moves) types.push_back(m.type);
+  EXPECT_EQ(types.size(), program.moves.size());
+  stock::HeightField field = stock::HeightField::box(
+      verify::engagement_grid(program, stock), stock.min.z(), stock.max.z());
+  const verify::EngagementReport r = verify::measure_engagement(program, field);
+  double worst = 0;
+  for (size_t k = 0; k < program.moves.size() && k < types.size(); ++k)
+    if (types[k] == MoveType::Feed) {
+      worst = std::max(worst, double(r.move_deg[k]));
+    }
+  return worst;
+}
+
+verify::VerifyResult verified(const Mesh& design, const Job& job, const Box3& stock, double resolution = 0.25) {
+  verify::StockSpec spec;
+  spec.kind = verify::StockSpec::Kind::Box;
+  spec.box = stock;
+  verify::VerifyOptions o;
+  o.resolution = resolution;
+  return verify::verify_program(design, stock::program_from_job(job), spec, o);
+}
+
+// Within `inset` of nothing but the pocket's floor: the largest material left there over the design.
+double left_on_floor(const verify::VerifyResult& v, double x0, double x1, double y0, double y1, double inset) {
+  const stock::GridSpec& g = v.grid.grid;
+  double worst = -INFINITY;
+  for (int j = g.first_y(y0 + inset); j <= g.last_y(y1 - inset); ++j)
+    for (int i = g.first_x(x0 + inset); i <= g.last_x(x1 - inset); ++i)
+      worst = std::max(worst, double(v.grid.deviation[g.index(i, j)]));
+  return worst;
+}
+
+}  // namespace
+
+TEST(RoughingLevels, FlatFacesGetALevelAtTheirHeightPlusTheAllowance) {
+  // The cube's top at 60 with 0.5 mm allowance: CL heights 60.5 over it, 0.5 (the floor) around it.
+  std::vector<double> heights(50, 60.5);
+  heights.insert(heights.end(), 100, 0.5);
+  heights.push_back(33.3);  // a single sample is no face
+  EXPECT_EQ(flat_heights(heights, 4, 0.5), std::vector<double>({60.5}));
+  const std::vector<double> levels = roughing_levels(65, 0.5, 3, {60.5});
+  EXPECT_EQ(levels.front(), 62);
+  EXPECT_NE(std::find(levels.begin(), levels.end(), 60.5), levels.end());
+  EXPECT_EQ(levels.back(), 0.5);
+  EXPECT_TRUE(std::is_sorted(levels.rbegin(), levels.rend()));
+  // A step within 0.05 mm above a flat level is cut by it.
+  const std::vector<double> merged = roughing_levels(63.52, 0.5, 3, {60.5});
+  EXPECT_EQ(std::count_if(merged.begin(), merged.end(), [](double z) { return z > 60.4 && z < 60.6; }), 1);
+}
+
+// Roughing the cube (step-down 3, allowance 0.5) left 2 mm on its top before the levels at flat faces: zigzag and
+// adaptive now leave the allowance on the top and the sides, as the job's stock model finds it.
+TEST(Adaptive, CubeRoughingLeavesTheAllowanceAdaptiveAndZigzag) {
+  for (const char* strategy : {"rough", "adaptive"}) {
+    const job::JobSpec spec = job::parse_job(
+        std::string("part: primitive:cube\nresolution: 0.5\noperations:\n  - {strategy: ") + strategy +
+            ", tool: flat:10, stepover: 4, stepdown: 3, allowance: 0.5}\n",
+        "cube.yaml", ROSMILL_SOURCE_DIR);
+    const job::JobReport r = job::run_job(spec, job_test::options());
+    const job::OperationReport& op = r.operations.at(0);
+    SCOPED_TRACE(strategy);
+    EXPECT_NEAR(op.min_left_mm, 0.5, 0.5 * 0.5 + 1e-6);  // within the stock's cell
+    EXPECT_NEAR(op.max_left_mm, 0.5, 0.5 + 1e-6);
+    EXPECT_LE(op.gouge_mm, 0.0);
+    if (std::string(strategy) == "adaptive") {
+      ASSERT_TRUE(op.engagement_measured);
+      EXPECT_LE(op.engagement.max_deg, 180.0);
+    }
+  }
+}
+
+// An open region (the cube's stock margin, entered from the air beside it) and a closed pocket (a helix): cleared
+// to the allowance, no gouge, the engagement at the levels within the limit as the verifier measures it.
+TEST(Adaptive, OpenAndClosedRegionsClearedAtTheEngagementLimit) {
+  const Mesh cube = make_primitive("cube");
+  PlanParams open = flat(10, 4, 3, 0.5);
+  const Planned a = adaptive(cube, open);
+  EXPECT_EQ(a.report.helices, 0u);  // the stock's open sides are the way in
+  EXPECT_LE(a.report.max_engagement_deg, a.report.engagement_limit_deg + 2.0);
+  EXPECT_NEAR(a.report.engagement_limit_deg, std::acos(1 - 4.0 / 5.0) * 180 / M_PI, 1e-9);
+  const Box3 stock = Box3::between(Vec3(-5, -5, 0), Vec3(65, 65, 65));
+  EXPECT_LE(measured_level_engagement(a.job, stock), a.report.engagement_limit_deg + kEngagementSlackDeg);
+  const verify::VerifyResult va = verified(cube, a.job, stock, 0.5);
+  EXPECT_LE(va.report.max_gouge_mm, 0.0);
+  EXPECT_EQ(va.report.rapid_cut_cells, 0u);
+  // On the top: the allowance (the level at 60.5).
+  EXPECT_NEAR(left_on_floor(va, 10, 50, 10, 50, 0), 0.5, 0.01);
+
+  const Mesh pocket = pocket_block(80, 60, 20, 20, 60, 15, 45, 10);
+  const gcode::MachineLimits machine =
+      gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/machine.yaml");
+  PlanParams closed = flat(6, 1.2, 5, 0.2);
+  closed.stock_margin = 0;
+  closed.max_feed = machine.max_feed;  // as `rosmill plan` does with the machine it checks against
+  const Planned p = adaptive(pocket, closed);
+  EXPECT_GE(p.report.helices, 1u);
+  EXPECT_EQ(p.report.ramps, 0u);
+  EXPECT_LE(p.report.left_area_mm2, 10.0);  // the pocket's corners, tighter than the turn radius, at 3 levels
+  const Box3 block = Box3::between(Vec3(0, 0, 0), Vec3(80, 60, 20));
+  EXPECT_LE(measured_level_engagement(p.job, block), p.report.engagement_limit_deg + kEngagementSlackDeg);
+  const verify::VerifyResult vp = verified(pocket, p.job, block);
+  EXPECT_LE(vp.report.max_gouge_mm, 0.0);
+  EXPECT_LE(left_on_floor(vp, 20, 60, 15, 45, 3.5), 0.2 + 0.01);
+  // The program LinuxCNC's interpreter reads, within the simulator's envelope.
+  gcode::ProgramChecks checks;
+  checks.machine = machine;
+  checks.rs274 = true;
+  const gcode::PreparedProgram prepared = gcode::prepare_program(p.job, gcode::post_options_for("linuxcnc"), checks);
+  ASSERT_TRUE(prepared.rs274.has_value());
+  EXPECT_TRUE(prepared.limits_checked);
+}
+
+// FreeCAD's Adaptive gives no path at small step-overs: 2 % of the diameter still clears the pocket.
+TEST(Adaptive, TwoPercentStepoverStillClears) {
+  const Mesh pocket = pocket_block(40, 30, 10, 10, 30, 10, 20, 3);
+  PlanParams p = flat(6, 0.12, 3, 0.2);
+  p.stock_margin = 0;
+  const Planned a = adaptive(pocket, p);
+  const Box3 block = Box3::between(Vec3(0, 0, 0), Vec3(40, 30, 10));
+  EXPECT_LE(measured_level_engagement(a.job, block), a.report.engagement_limit_deg + kEngagementSlackDeg);
+  const verify::VerifyResult v = verified(pocket, a.job, block);
+  EXPECT_LE(v.report.max_gouge_mm, 0.0);
+  EXPECT_LE(left_on_floor(v, 10, 30, 10, 20, 3.5), 0.2 + 0.01);
+}
+
+// FreeCAD's "start point not found" when the tool is large for the pocket: a slot 0.4 mm wider than the tool is
+// entered by a ramp along it (no helix fits) and cut to its ends.
+TEST(Adaptive, SlotBarelyWiderThanTheToolIsEnteredByARamp) {
+  const Mesh slot = pocket_block(60, 30, 10, 10, 50, 9.8, 20.2, 4);
+  PlanParams p = flat(10, 4, 4, 0);
+  p.stock_margin = 0;
+  const Planned a = adaptive(slot, p);
+  EXPECT_GE(a.report.ramps, 1u);
+  EXPECT_EQ(a.report.helices, 0u);
+  const verify::VerifyResult v = verified(slot, a.job, Box3::between(Vec3(0, 0, 0), Vec3(60, 30, 10)));
+  EXPECT_LE(v.report.max_gouge_mm, 0.0);
+  EXPECT_LE(left_on_floor(v, 15.5, 44.5, 13, 17, 0), 0.01);  // the slot's floor, past the cutter's corners
+}
+
+// No level is cut twice, and the first entry starts at the stock's top (FreeCAD's helix started far above it).
+TEST(Adaptive, EachLevelOnceAndTheFirstEntryAtTheStocksTop) {
+  const Mesh pocket = pocket_block(80, 60, 20, 20, 60, 15, 45, 10);
+  PlanParams p = flat(6, 1.2, 4, 0.2);
+  p.stock_margin = 0;
+  const Planned a = adaptive(pocket, p);
+  std::vector<double> levels;
+  for (const ToolpathPass& pass : a.job[0].passes) {
+    double z = INFINITY;
+    for (const Move& m : pass.moves) z = std::min(z, m.to.z());
+    levels.push_back(z);
+  }
+  ASSERT_GE(levels.size(), 3u);
+  for (size_t k = 1; k < levels.size(); ++k) EXPECT_LT(levels[k], levels[k - 1]);
+  EXPECT_EQ(std::count_if(levels.begin(), levels.end(), [](double z) { return std::abs(z - 10.2) < 1e-9; }), 1)
+      << "the pocket's floor plus the allowance";
+  // The first move below the stock's top is the helix's first, starting on the top itself.
+  const auto& moves = a.job[0].passes[0].moves;
+  const auto first_in = std::find_if(moves.begin(), moves.end(), [](const Move& m) { return m.to.z() < 20 - 1e-9; });
+  ASSERT_NE(first_in, moves.end());
+  ASSERT_NE(first_in, moves.begin());
+  EXPECT_NEAR((first_in - 1)->to.z(), 20.0, 1e-9);
+  EXPECT_EQ(first_in->type, MoveType::Plunge);
+}
+
+// Feeds follow the engagement: where the cutter is in the material less than the tool's stated engagement the
+// feed is raised (radial chip thinning), never above the machine's.
+TEST(Adaptive, FeedsFollowTheEngagement) {
+  const Mesh cube = make_primitive("cube");
+  PlanParams p = flat(10, 2, 3, 0.5);
+  p.max_feed = 2500;
+  const Planned a = adaptive(cube, p);
+  double lo = INFINITY, hi = 0;
+  for (const ToolpathPass& pass : a.job[0].passes)
+    for (const Move& m : pass.moves)
+      if (m.type == MoveType::Feed) lo = std::min(lo, m.feed), hi = std::max(hi, m.feed);
+  EXPECT_GE(lo, p.tool.feed - 1e-9);  // never slower than the table's feed at its own engagement
+  EXPECT_GT(hi, p.tool.feed);
+  EXPECT_LE(hi, 2500 + 1e-9);
+}
