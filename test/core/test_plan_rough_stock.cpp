@@ -226,7 +226,7 @@ TEST(PlanRoughStock, CommandLine) {
   EXPECT_NE(open.err.find("not closed"), std::string::npos) << open.err;
   const CliRun raster = run_rosmill("plan " + part_path + " --strategy raster --stock " + stock_path);
   EXPECT_NE(raster.status, 0);
-  EXPECT_NE(raster.err.find("rough only"), std::string::npos) << raster.err;
+  EXPECT_NE(raster.err.find("rough and adaptive only"), std::string::npos) << raster.err;
   const CliRun missing = run_rosmill("plan " + part_path + args + " --stock " + dir + "/no_such_stock.stl");
   EXPECT_NE(missing.status, 0);
   EXPECT_NE(missing.err.find("no_such_stock.stl"), std::string::npos) << missing.err;
