@@ -9,7 +9,6 @@
 #include "rosmill/cutter/chip_thinning.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/plan/drop_grid.hpp"
 #include "rosmill/plan/levels.hpp"
 
 namespace rosmill::core {
@@ -102,11 +101,8 @@ class AdaptivePlanner {
   // ---- levels and material above them
 
   std::vector<double> level_heights(const Surface& surface) const {
-    const DropGrid g = grid_over(f_.part, 0, std::max(0.5 * R_, 0.5));
-    std::vector<double> h;
-    for (const Vec3& p : drop_grid(surface, f_.drop_cutter, g, f_.part.min.z())) h.push_back(p.z() + f_.allowance);
-    const double floor = f_.part.min.z() + f_.allowance;
-    return roughing_levels(f_.stock.max.z(), floor, f_.stepdown, flat_heights(std::move(h), 4, floor));
+    return roughing_levels(f_.stock.max.z(), f_.part.min.z() + f_.allowance, f_.stepdown,
+                           flat_face_heights(surface, f_));
   }
 
   // What stands on the way of links and entries, lowered as the levels cut it: the job's material, else the stock
@@ -278,7 +274,10 @@ class AdaptivePlanner {
     const size_t n = loop.p.size();
     if (!at_level() || (loop.p[from] - w_->position().head<2>()).norm() > 1e-6) return false;
     const size_t steps = (to + n - from) % n;
-    if (steps * cell_ > 40 * R_) return false;  // farther round than a lift and back costs
+    // Round the ring through air at up to three times the feed, or up, across and down at the feed through the
+    // air above: follow it unless it is much the longer way.
+    const double straight = (loop.p[to] - loop.p[from]).norm();
+    if (steps * cell_ > 3 * straight + 20 * R_) return false;
     for (size_t k = 0; k < steps; ++k)
       if (!material_->capsule_clear(loop.p[(from + k) % n], loop.p[(from + k + 1) % n], R_)) return false;
     phase_ = 4;

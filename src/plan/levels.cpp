@@ -1,5 +1,7 @@
 #include "rosmill/plan/levels.hpp"
 
+#include "rosmill/plan/drop_grid.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -18,6 +20,24 @@ std::vector<double> flat_heights(std::vector<double> cl_heights, size_t min_coun
     i = j;
   }
   return flats;
+}
+
+std::vector<double> flat_face_heights(const Surface& surface, const PlanFrame& f) {
+  constexpr double kSame = 1e-6;
+  const DropGrid g = grid_over(f.part, 0, std::max(0.5 * f.cutter.radius(), 0.5));
+  std::vector<double> h;
+  for (const Vec3& p : drop_grid(surface, f.drop_cutter, g, f.part.min.z())) h.push_back(p.z() + f.allowance);
+  const auto same = [&](size_t a, size_t b) { return std::abs(h[a] - h[b]) <= kSame; };
+  std::vector<double> plateaus;
+  for (size_t j = 0; j < g.ny; ++j)
+    for (size_t i = 0; i < g.nx; ++i) {
+      const size_t k = j * g.nx + i;
+      const bool row = (i > 0 && same(k, k - 1)) || (i + 1 < g.nx && same(k, k + 1));
+      const bool column = (j > 0 && same(k, k - g.nx)) || (j + 1 < g.ny && same(k, k + g.nx));
+      if (row && column) plateaus.push_back(h[k]);
+    }
+  const double floor = f.part.min.z() + f.allowance;
+  return flat_heights(std::move(plateaus), 4, floor);
 }
 
 std::vector<double> roughing_levels(double top, double floor, double stepdown, const std::vector<double>& flats,

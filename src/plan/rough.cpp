@@ -13,9 +13,6 @@
 namespace rosmill::core {
 namespace {
 
-// Samples of one CL height that make a flat face a level of its own (a face a few samples across).
-constexpr size_t kFlatSamples = 4;
-
 // One scan line sampled once: positions along it, the CL heights of the widened cutter and (with a job's
 // material) the highest material under it.
 struct SampledLine {
@@ -123,10 +120,7 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
   // Levels from the stock top down every step-down and at every flat face plus the allowance (levels.hpp); the
   // last at the part's floor plus the allowance.
   const double floor = f.part.min.z() + f.allowance;
-  std::vector<double> heights;
-  for (const SampledLine& L : lines) heights.insert(heights.end(), L.h.begin(), L.h.end());
-  const std::vector<double> levels =
-      roughing_levels(f.stock.max.z(), floor, f.stepdown, flat_heights(std::move(heights), kFlatSamples, floor));
+  const std::vector<double> levels = roughing_levels(f.stock.max.z(), floor, f.stepdown, flat_face_heights(surface, f));
   std::unique_ptr<StockReach> reach;
   if (params.stock_mesh && !params.material)
     reach = std::make_unique<StockReach>(*params.stock_mesh, levels, f.stock.max.z(), R, f.tolerance);
