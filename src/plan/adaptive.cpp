@@ -274,10 +274,9 @@ class AdaptivePlanner {
     const size_t n = loop.p.size();
     if (!at_level() || (loop.p[from] - w_->position().head<2>()).norm() > 1e-6) return false;
     const size_t steps = (to + n - from) % n;
-    // Round the ring through air at up to three times the feed, or up, across and down at the feed through the
-    // air above: follow it unless it is much the longer way.
-    const double straight = (loop.p[to] - loop.p[from]).norm();
-    if (steps * cell_ > 3 * straight + 20 * R_) return false;
+    // Round the ring through air (at up to three times the feed) rather than up, across and down, unless the way
+    // round is longer than the diameter twenty times over: a long closed channel's two fronts lift instead.
+    if (steps * cell_ > 40 * R_) return false;
     for (size_t k = 0; k < steps; ++k)
       if (!material_->capsule_clear(loop.p[(from + k) % n], loop.p[(from + k + 1) % n], R_)) return false;
     phase_ = 4;

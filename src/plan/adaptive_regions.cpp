@@ -58,10 +58,17 @@ LevelRegions level_regions(const PlanParams& params, const PlanFrame& f, double 
                            const Vec2& work_lo, const Vec2& work_hi, double arc_tolerance, double skin) {
   const double R = f.cutter.radius();
   clip::Paths blocked = part_blocked(loops, f.tolerance, 0.5 * arc_tolerance, arc_tolerance);
-  // The fixture standing above the level keeps the cutter a radius and the link clearance away.
-  if (params.material && !params.material->fixture.empty())
-    blocked = clip::unite(blocked, clip::offset(cells_above(*params.material, params.material->fixture, z),
-                                                R + params.link_clearance, arc_tolerance));
+  // The fixture keeps the tool the link clearance away: the flutes from what stands above the level, the shank
+  // from what stands above the flutes, the holder from what stands above the stick-out.
+  if (params.material && !params.material->fixture.empty()) {
+    const Tool& t = params.tool;
+    const double bands[3][2] = {{0.0, R},
+                                {t.cutter.flute_length, std::max(R, 0.5 * t.cutter.shank_diameter)},
+                                {t.stick_out_mm(), std::max(R, 0.5 * t.holder_mm())}};
+    for (const auto& band : bands)
+      blocked = clip::unite(blocked, clip::offset(cells_above(*params.material, params.material->fixture, z + band[0]),
+                                                  band[1] + params.link_clearance, arc_tolerance));
+  }
   LevelRegions r;
   r.allowed = clip::subtract(clip::rectangle(work_lo, work_hi), blocked);
   r.material = material_above(params, f, z);
