@@ -19,8 +19,6 @@ constexpr double kMeasureDeg = 2.0;  // the engagement's resolution: one sample 
 constexpr size_t kMaxRings = 20000;  // per level: a bound on the work whatever the geometry
 constexpr int kStepTries = 8;        // ring step reductions before the smallest step is taken
 
-double deg(double rad) { return rad * 180.0 / M_PI; }
-
 // A closed loop of the cutter's centre sampled every `step` at most, with the direction of travel at each sample.
 struct Sampled {
   std::vector<Vec2> p, dir;
@@ -279,7 +277,6 @@ class AdaptivePlanner {
     if (steps * cell_ > 40 * R_) return false;
     for (size_t k = 0; k < steps; ++k)
       if (!material_->capsule_clear(loop.p[(from + k) % n], loop.p[(from + k + 1) % n], R_)) return false;
-    phase_ = 4;
     for (size_t k = 1; k <= steps; ++k)
       if (loop.vertex[(from + k) % n] || k == steps) cut_to(loop.p[(from + k) % n]);
     return true;
@@ -299,7 +296,6 @@ class AdaptivePlanner {
     size_t k = 1;
     const Vec2 start = loop.p[piece.first], t = loop.dir[piece.first];
     if (material_->disc_clear(start, R_)) {
-      phase_ = 5;
       reach_air(start);
     } else if (!spiral_in(loop, piece, k) && !enter(start, t)) {
       skipped_ = true;
@@ -307,7 +303,6 @@ class AdaptivePlanner {
     }
     // A whole loop goes on round past where the spiral joined it: that stretch was cut short of the ring.
     const size_t end = piece.count > n ? piece.count + k : piece.count;
-    phase_ = 3;
     for (; k <= end; ++k)
       if (loop.vertex[(piece.first + k) % n] || k == end) cut_to(loop.p[(piece.first + k) % n]);
   }
@@ -337,9 +332,7 @@ class AdaptivePlanner {
     }
     if (curve.empty() || !material_->disc_clear(curve.front(), R_)) return false;
     if (!std::all_of(curve.begin(), curve.end(), [&](const Vec2& p) { return in_part_clearance(p); })) return false;
-    phase_ = 5;
     reach_air(curve.front());
-    phase_ = 1;
     for (size_t j = 1; j < curve.size(); j += 2) cut_to(curve[j]);
     k = i;
     return true;
@@ -348,10 +341,6 @@ class AdaptivePlanner {
   // Brings the cutter to `start` at the level, arriving along `t` through cleared air: straight along the level,
   // else down into cleared air beside it and an arc lead-in. False when neither is possible.
   bool enter(const Vec2& start, const Vec2& t) {
-    if (at_level() && free_way(w_->position().head<2>(), start)) {
-      cut_to(start);
-      return true;
-    }
     const Vec2 left(-t.y(), t.x());
     for (double rho : {std::max(r_min_, 0.5 * R_), R_, 1.5 * R_}) {
       std::vector<Vec2> arc;
@@ -362,18 +351,13 @@ class AdaptivePlanner {
       }
       if (!std::all_of(arc.begin(), arc.end(), [&](const Vec2& p) { return in_part_clearance(p); })) continue;
       if (!material_->disc_clear(arc.front(), R_)) continue;
-      if (at_level() && free_way(w_->position().head<2>(), arc.front())) cut_to(arc.front());
-      else descend(arc.front());
-      phase_ = 2;
+      reach_air(arc.front());
       for (size_t k = 1; k < arc.size(); ++k) cut_to(arc[k]);
-      return true;
-    }
-    if (material_->disc_clear(start, R_)) {
-      descend(start);
       return true;
     }
     return false;
   }
+
 
   bool at_level() const { return !w_->at_safe() && std::abs(w_->position().z() - z_) < 1e-9; }
 
@@ -596,7 +580,6 @@ class AdaptivePlanner {
   std::vector<std::vector<Vec2>> swept_;
   bool skipped_ = false;  // a piece of the ring could not be entered
   double ring_step_ = 0;
-  int phase_ = 0;  // how far the ring's cutter reaches beyond the area cleared before it  // the cutter's centre at the level since the cleared area last grew
   std::optional<LevelMaterial> material_, inside_;
 };
 
@@ -604,8 +587,7 @@ class AdaptivePlanner {
 
 double engagement_limit(const PlanParams& params, const PlanFrame& frame) {
   if (!std::isnan(params.engagement_deg)) return params.engagement_deg;
-  const double R = frame.cutter.radius();
-  return deg(std::acos(std::clamp(1 - frame.stepover / R, -1.0, 1.0)));
+  return side_cut_engagement_deg(frame.stepover, frame.cutter.radius());
 }
 
 Job adaptive_on(const Surface& surface, const PlanParams& params, const AdaptiveOptions& options,

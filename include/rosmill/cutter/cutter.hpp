@@ -23,6 +23,13 @@ struct Cutter {
 };
 
 // A tool of the tool table (config/tools.yaml): a cutter plus how to run it.
+// Degrees of a cutter's circle in material in a straight side cut `ae` wide: acos(1 - ae / radius), 180 from a
+// cut of the whole diameter (a slot).
+inline double side_cut_engagement_deg(double ae, double radius) {
+  const double c = 1.0 - ae / radius;
+  return std::acos(c < -1.0 ? -1.0 : c > 1.0 ? 1.0 : c) * 180.0 / M_PI;
+}
+
 struct Tool {
   int id = 1;
   std::string name;
@@ -46,9 +53,7 @@ struct Tool {
   // The engagement `feed` is for: the table's, else that of a side cut one stepover wide, acos(1 - stepover / R)
   // (at most 180 degrees: a stepover of the whole diameter is a slot).
   double feed_engagement_deg() const {
-    if (!std::isnan(feed_engagement)) return feed_engagement;
-    const double c = 1.0 - stepover / cutter.radius();
-    return std::acos(c < -1.0 ? -1.0 : c > 1.0 ? 1.0 : c) * 180.0 / M_PI;
+    return std::isnan(feed_engagement) ? side_cut_engagement_deg(stepover, cutter.radius()) : feed_engagement;
   }
   // An ER collet nut's diameter for the shank (ER16: 32 mm for a 10 mm shank), when the table gives none.
   double holder_mm() const { return std::isnan(holder_diameter) ? cutter.shank_diameter + 22.0 : holder_diameter; }
