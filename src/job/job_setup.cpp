@@ -47,18 +47,6 @@ std::optional<gcode::WorkOffset> work_offset_of(const SetupReport& s, size_t ind
   return w;
 }
 
-// Per cell of the grid, the top of the fixture over its square (-infinity where none).
-std::vector<float> fixture_tops(const fixture::Fixture& f, const stock::GridSpec& g) {
-  std::vector<float> top(g.cells(), -INFINITY);
-  const double half = 0.5 * g.cell;  // a cell whose square the box overlaps, not only its centre
-  for (const fixture::FixtureBox& b : f.boxes)
-    for (int j = g.first_y(b.box.min.y() - half); j <= g.last_y(b.box.max.y() + half); ++j)
-      for (int i = g.first_x(b.box.min.x() - half); i <= g.last_x(b.box.max.x() + half); ++i) {
-        float& t = top[g.index(i, j)];
-        t = std::max(t, static_cast<float>(b.box.max.z()));
-      }
-  return top;
-}
 
 // The fixture's boxes grown by the check clearance, as the surface planning keeps clear of.
 Mesh fixture_check_mesh(const fixture::Fixture& f) {
@@ -165,6 +153,18 @@ void index_on_table(SetupReport& r, const SetupSpec& spec, const stock::InProces
 }
 
 }  // namespace
+
+std::vector<float> fixture_tops(const fixture::Fixture& f, const stock::GridSpec& g) {
+  std::vector<float> top(g.cells(), -INFINITY);
+  const double half = 0.5 * g.cell;  // a cell whose square the box overlaps, not only its centre
+  for (const fixture::FixtureBox& b : f.boxes)
+    for (int j = g.first_y(b.box.min.y() - half); j <= g.last_y(b.box.max.y() + half); ++j)
+      for (int i = g.first_x(b.box.min.x() - half); i <= g.last_x(b.box.max.x() + half); ++i) {
+        float& t = top[g.index(i, j)];
+        t = std::max(t, static_cast<float>(b.box.max.z()));
+      }
+  return top;
+}
 
 double indexing_seconds(const machine::Trunnion& t, const machine::Index& from, const machine::Index& to,
                         double from_z, double to_z, double rapid_feed, const Vec3& max_acceleration) {

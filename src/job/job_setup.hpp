@@ -55,6 +55,9 @@ struct SetupContext {
   TableSetting* table = nullptr;  // a trunnion's (null: each setup clamped on a 3-axis machine)
 };
 
+// Per cell of the grid, the top of the fixture over its square (-infinity where none).
+std::vector<float> fixture_tops(const fixture::Fixture& f, const stock::GridSpec& g);
+
 // The part clamped on a trunnion's table by the first setup's fixture, as the raw stock stands at A = C = 0.
 TableSetting place_on_table(const machine::Trunnion& trunnion, const fixture::FixtureSpec& fixture,
                             const stock::InProcessStock& stock, const JobOptions& options, const std::string& where);

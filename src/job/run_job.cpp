@@ -140,6 +140,19 @@ size_t material_for(const JobSetup& s, const stock::HeightField& view, const Ope
   return work;
 }
 
+// The material grid grown by what the tool reaches beyond the stock, with the fixture on it. The stock's own grid
+// ends at its faces, and the jaws and clamps beside them would not be seen: a cutter clearing the stock's edges
+// (adaptive clearing works up to 2R + 1 past the stock), and its shank and holder above, must keep clear of them.
+void see_fixture_beside_stock(const fixture::Fixture& fixture, const Tool& tool, double link_clearance,
+                              MaterialTop& m) {
+  const double R = tool.cutter.radius();
+  const double body = std::max({R, 0.5 * tool.cutter.shank_diameter, 0.5 * tool.holder_mm()});
+  m.pad(static_cast<int>(std::ceil((2 * R + 1 + body + link_clearance + kFixtureCheckClearance) / m.cell)));
+  stock::GridSpec g;
+  g.x0 = m.x0, g.y0 = m.y0, g.cell = m.cell, g.nx = m.nx, g.ny = m.ny;
+  m.fixture = fixture_tops(fixture, g);
+}
+
 // Plans one operation in its setup on the stock as it is; `nothing` tells when it had nothing to cut.
 Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const JobSpec& job, const OperationSpec& op,
                    const JobOptions& options, const std::string& where, const PlanProgress& progress,
@@ -149,6 +162,10 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
   // The part is already turned: the planner gets it in the setup's frame (a strategy that slices the mesh sees
   // the part alone; every other the part with the fixture kept clear of).
   if (kind.needs_mesh) request.input.mesh = &s.part;
+  // A strategy that follows the material keeps clear of the fixture through the material grid, by the height band
+  // of each part of the tool (see_fixture_beside_stock): its walls are the part's alone. The fixture as a surface
+  // would add walls that enclose the part's own, and a level's region would take the part for a hole.
+  else if (kind.follows_material && options.plan_on_stock) request.input.surface = s.part_surface.get();
   else request.input.surface = &s.surface();
   request.strategy = op.strategy;
   request.presets = options.presets;
@@ -174,6 +191,8 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
   if (!options.plan_on_stock) return plan(request);
   MaterialTop material;
   const size_t work = material_for(s, stock.view(s.report.frame), op, kind.roughing, material, r.rest_cells);
+  if (!s.report.fixture.empty())
+    see_fixture_beside_stock(s.report.fixture, request.params.tool, request.params.link_clearance, material);
   request.params.material = &material;
   // Roughing (and rest machining) with nothing above the design and the allowance where it works: no move at all,
   // not passes in air. A finishing operation runs: material left on a wall, beside the tool axis, does not show
@@ -480,6 +499,15 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     const stock::HeightField after = stock.view(sr.frame);
     std::tie(r.min_left_mm, r.max_left_mm) = material_left(*setup, after);
     std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(*setup, program, job.resolution);
+    // A cut into the design, as the independent simulation finds it, is a defect of the plan, never a figure to
+    // report beside a program: no program of this job is written.
+    if (r.gouge_mm > 0) {
+      char depth[32];
+      std::snprintf(depth, sizeof depth, "%.3f", r.gouge_mm);
+      throw Error(where + " (" + op.name + ", setup " + sr.name + ")",
+                  "the verifier finds the cutter " + std::string(depth) + " mm below the design at toolpath move " +
+                      std::to_string(r.gouge_move) + ": no program is written");
+    }
     for (const Toolpath& tp : toolpaths) {
       const ToolpathStats s = toolpath_stats(tp, job.rapid_feed, options.max_acceleration);
       r.cutting_mm += s.cutting_length;

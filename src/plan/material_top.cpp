@@ -31,6 +31,36 @@ void MaterialTop::check(const std::string& where) const {
     throw Error(where, "the heights to cut (" + std::to_string(cut.size()) + ") do not fill the material grid");
 }
 
+namespace {
+
+// `values` (nx * ny, or empty) copied into a grid grown by `pad` cells on every side, `fill` around.
+template <class T>
+void pad_cells(std::vector<T>& values, int nx, int ny, int pad, T fill) {
+  if (values.empty()) return;
+  const int wide = nx + 2 * pad;
+  std::vector<T> grown(static_cast<size_t>(wide) * static_cast<size_t>(ny + 2 * pad), fill);
+  for (int j = 0; j < ny; ++j)
+    std::copy_n(values.begin() + static_cast<std::ptrdiff_t>(j) * nx, nx,
+                grown.begin() + static_cast<std::ptrdiff_t>(j + pad) * wide + pad);
+  values.swap(grown);
+}
+
+}  // namespace
+
+void MaterialTop::pad(int cells) {
+  if (cells <= 0) return;
+  pad_cells(top, nx, ny, cells, -INFINITY);
+  pad_cells(cut, nx, ny, cells, -INFINITY);
+  pad_cells(fixture, nx, ny, cells, -INFINITY);
+  pad_cells(keep, nx, ny, cells, uint8_t{0});
+  pad_cells(keep_low, nx, ny, cells, NAN);
+  pad_cells(keep_high, nx, ny, cells, NAN);
+  x0 -= cells * cell;
+  y0 -= cells * cell;
+  nx += 2 * cells;
+  ny += 2 * cells;
+}
+
 double MaterialTop::highest() const {
   double h = -INFINITY;
   for (size_t c = 0; c < top.size(); ++c) h = std::max(h, standing(c));

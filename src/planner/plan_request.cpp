@@ -1,5 +1,6 @@
 #include "rosmill/planner/plan_request.hpp"
 
+#include <cmath>
 #include <memory>
 #include <sstream>
 
@@ -63,7 +64,10 @@ Job run(const StrategyEntry& entry, const std::string& name, const PlanningReque
     rest.approach = params.approach;
     job = keep_to_cells(job, *params.material, rest);
   }
-  for (Toolpath& tp : job) tp.strategy = name;
+  for (Toolpath& tp : job) {
+    tp.strategy = name;
+    tp.tolerance = std::isnan(params.tolerance) ? kDefaultTolerance : params.tolerance;
+  }
   if (r.reports) {
     report.strategy = name;
     report.cl_points = 0;
@@ -82,7 +86,7 @@ const StrategyEntry& entry_of(const Preset& p, const PresetTable& table) {
 // The tolerance the input's surface is built with: the given one, else the (first) preset's, else the engine's.
 double surface_tolerance(const PlanningRequest& r, const Preset* preset) {
   if (!std::isnan(r.params.tolerance)) return r.params.tolerance;
-  return preset ? preset_params(*preset, r.params).tolerance : 0.001;
+  return preset ? preset_params(*preset, r.params).tolerance : kDefaultTolerance;
 }
 
 }  // namespace
@@ -109,6 +113,7 @@ PlanKind plan_kind(const std::string& name, const PresetTable* presets, const st
     if (!e) throw Error(where, "unknown strategy '" + s + "'");
     k.needs_mesh |= e->needs_mesh;
     k.roughing &= e->roughing;
+    k.follows_material &= e->follows_material;
   }
   return k;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "rosmill/toolpath/canon_arc.hpp"
@@ -89,8 +90,13 @@ bool sweeps_into(const Vec3& a, const Vec3& b, double radius, double from, doubl
 }
 
 std::string FixtureCollision::message() const {
+  const auto point = [](const Vec3& p) {
+    char s[96];
+    std::snprintf(s, sizeof s, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
+    return std::string(s);
+  };
   return "the " + part + " enters the fixture's " + box + " at move " + std::to_string(source) + " (a " +
-         (rapid ? "rapid" : "feed") + ")";
+         (rapid ? "rapid" : "feed") + " from " + point(from) + " to " + point(to) + " mm)";
 }
 
 std::optional<FixtureCollision> first_fixture_collision(const MachineProgram& program,
@@ -111,7 +117,7 @@ std::optional<FixtureCollision> first_fixture_collision(const MachineProgram& pr
       };
       if (!meets(all)) continue;
       for (const fixture::FixtureBox& b : fixture.boxes)
-        if (meets(b.box)) return FixtureCollision{k, m.source, m.rapid, part.name, b.name};
+        if (meets(b.box)) return FixtureCollision{k, m.source, m.rapid, part.name, b.name, m.from, m.to};
     }
   }
   return std::nullopt;

@@ -263,3 +263,68 @@ TEST(Adaptive, FeedsFollowTheEngagement) {
   EXPECT_GT(hi, p.tool.feed);
   EXPECT_LE(hi, 2500 + 1e-9);
 }
+
+// Rest adaptive: a 6 mm end mill after a 10 mm one works where the 10 mm left more than the allowance and the rest
+// threshold (the pocket's corners), not over the whole pocket again: it removes what the 10 mm left there, gouges
+// nothing, and cuts a small part of the 10 mm's length. Adaptive follows the job's material, so `rest` changes
+// nothing: told or not, it cuts only what is left.
+TEST(Adaptive, RestAfterALargerToolTouchesOnlyWhatThatToolLeft) {
+  const auto job_with = [](const std::string& rest) {
+    return job::parse_job(
+        "part: data/pocket.stl\nresolution: 0.5\nstock:\n  mesh: data/pocket_casting.stl\noperations:\n"
+        "  - {name: rough, strategy: adaptive, tool: flat:10, stepdown: 2, allowance: 0.5}\n"
+        "  - {name: rest, strategy: adaptive, tool: flat:6, stepdown: 2, allowance: 0.5" + rest + "}\n",
+        "rest_adaptive.yaml", ROSMILL_SOURCE_DIR "/config/jobs");
+  };
+  const job::JobReport r = job::run_job(job_with(", rest: true, rest_threshold: 0.1"), job_test::options());
+  const job::JobReport all = job::run_job(job_with(""), job_test::options());
+  ASSERT_EQ(r.operations.size(), 2u);
+  ASSERT_EQ(all.operations.size(), 2u);
+  const job::OperationReport& rough = r.operations[0];
+  const job::OperationReport& rest = r.operations[1];
+  std::printf("10 mm adaptive: %.0f mm cutting, left %.3f..%.3f mm; 6 mm rest adaptive: %.0f mm cutting, %.0f mm3, "
+              "left %.3f..%.3f mm; 6 mm adaptive without rest: %.0f mm cutting, %.0f mm3\n",
+              rough.cutting_mm, rough.min_left_mm, rough.max_left_mm, rest.cutting_mm, rest.removed_mm3,
+              rest.min_left_mm, rest.max_left_mm, all.operations[1].cutting_mm, all.operations[1].removed_mm3);
+  EXPECT_GT(rest.removed_mm3, 0.0);
+  EXPECT_LE(rest.gouge_mm, 0.0);
+  EXPECT_GE(rest.min_left_mm, -0.001);
+  EXPECT_LE(rest.max_left_mm, rough.max_left_mm);
+  EXPECT_LT(rest.cutting_mm, 0.1 * rough.cutting_mm);
+  // The same material comes off, the same way, whether or not the operation is told to keep to the rest.
+  EXPECT_NEAR(rest.removed_mm3, all.operations[1].removed_mm3, 0.05 * all.operations[1].removed_mm3 + 1.0);
+  EXPECT_NEAR(rest.cutting_mm, all.operations[1].cutting_mm, 0.05 * all.operations[1].cutting_mm + 1.0);
+}
+
+// In a vise: the jaws stand beside the stock, outside the stock's own grid, where adaptive clearing enters from
+// the air beside an open side. The job's fixture check (a sweep of the tool's cutter, shank and holder through
+// the vise's boxes, code the planner does not share) passes every move, the verifier finds no gouge, and the
+// toolpath does come down beside the stock below the jaws' top: the case that had a rapid into the moving jaw.
+TEST(Adaptive, InAViseKeepsClearOfTheJawsBesideTheStock) {
+  job::JobSpec spec = job::read_job(ROSMILL_SOURCE_DIR "/config/jobs/pocket_sides.yaml");
+  spec.setups.resize(2);  // the top and the left
+  std::vector<job::OperationSpec> kept;
+  for (job::OperationSpec op : spec.operations) {
+    if (op.setup_index >= spec.setups.size()) continue;
+    if (op.strategy == "rough") op.strategy = "adaptive";
+    kept.push_back(op);
+  }
+  spec.operations = kept;
+  job::JobOptions o = job_test::options();
+  double lowest_beside = INFINITY;  // the lowest tip beside the stock (outside its x range) in the top's roughing
+  o.operation_done = [&](const job::OperationView& v) {
+    if (v.index != 0) return;
+    const Box3 stock = v.stock.bounds_in(v.setup.frame);
+    for (const Toolpath& tp : v.toolpaths)
+      for (const ToolpathPass& pass : tp.passes)
+        for (const Move& m : pass.moves)
+          if (m.to.x() > stock.max.x() || m.to.x() < stock.min.x()) lowest_beside = std::min(lowest_beside, m.to.z());
+  };
+  const job::JobReport r = job::run_job(spec, o);
+  ASSERT_GE(r.operations.size(), 3u);
+  EXPECT_EQ(r.operations[0].strategy, "adaptive");
+  EXPECT_LE(r.gouge_mm, 0.0);
+  EXPECT_GE(r.min_left_mm, -0.001);
+  // The jaws grip 4 mm of the 23 mm casting: their top stands 19 mm under the stock's top, the datum.
+  EXPECT_LT(lowest_beside, -19.0);
+}

@@ -122,7 +122,8 @@ TEST(FixtureCollision, NamesThePartTheBoxAndTheMove) {
   const auto holder = stock::first_fixture_collision(program({{Vec3(0, 10, -20), Vec3(0, 10, -26)}}), f);
   ASSERT_TRUE(holder);
   EXPECT_EQ(holder->part, "holder");
-  EXPECT_NE(holder->message().find("the holder enters the fixture's vise fixed jaw at move 1 (a feed)"),
+  EXPECT_NE(holder->message().find("the holder enters the fixture's vise fixed jaw at move 1 (a feed from "
+                                   "(0.000, 10.000, -20.000) to (0.000, 10.000, -26.000) mm)"),
             std::string::npos)
       << holder->message();
   // A rapid over the jaw's top at the cutter's clearance is no collision; 0.5 mm lower it is.

@@ -36,6 +36,10 @@ struct MaterialTop {
   // Throws Error naming `where` when the sizes disagree or the cell is not a positive number.
   void check(const std::string& where) const;
   bool keeps() const { return !keep.empty(); }
+  // Grows the grid by `cells` on every side: no material, no fixture and nothing kept there. A job pads the stock's
+  // grid so that planning also sees the fixture beside the stock, where the cutter reaches when it clears the
+  // stock's edges, and then fills `fixture` on the grown grid.
+  void pad(int cells);
   double highest() const;  // of the material and the fixture over the whole grid; -infinity when empty
   Box3 extent() const;     // the squares of the cells with material, and their heights (empty without)
   // What stands in cell c: the material, or the fixture where it is higher.

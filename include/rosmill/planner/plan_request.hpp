@@ -53,6 +53,7 @@ void check_plan_name(const std::string& name, const PresetTable* presets, const 
 // check_plan_name.
 struct PlanKind {
   bool needs_mesh = false, roughing = true;
+  bool follows_material = true;  // every stage cuts only what the job's material grid holds (StrategyEntry)
 };
 PlanKind plan_kind(const std::string& name, const PresetTable* presets, const std::string& where);
 

@@ -34,7 +34,9 @@ struct FixtureCollision {
   bool rapid = false;
   std::string part;       // "cutter", "shank" or "holder"
   std::string box;        // the fixture box's name
-  std::string message() const;  // "the holder enters vise fixed jaw at toolpath move 1234 (a feed)"
+  Vec3 from = Vec3::Zero(), to = Vec3::Zero();  // the move's tip, setup frame (mm)
+  // "the holder enters the fixture's vise fixed jaw at move 1234 (a feed from (x, y, z) to (x, y, z) mm)"
+  std::string message() const;
 };
 
 // The first move whose tool meets a box of the fixture (the program and the fixture in the same setup frame).
