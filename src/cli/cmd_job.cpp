@@ -11,9 +11,11 @@
 #include <memory>
 
 #include "command.hpp"
+#include "progress_bar.hpp"
 #include "config_file.hpp"
 #include "work_offset_option.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/job/job_progress.hpp"
 #include "rosmill/job/run_job.hpp"
 #include "rosmill/sheet/setup_sheet.hpp"
 
@@ -55,7 +57,14 @@ void run(const JobArgs& a) {
   sheet::SheetJob sheet;
   sheet.title = a.file;
   if (!a.out.empty()) o.operation_done = [&](const job::OperationView& v) { sheet.toolpaths.push_back(v.toolpaths); };
+  ProgressBar bar(!a.json);
+  job::report_progress(o, spec, [&bar](const job::JobProgress& p) {
+    bar.update(p.name + " (" + std::to_string(p.operation + 1) + "/" + std::to_string(p.operations) + ", " + p.setup + ")",
+               p.fraction);
+    return true;
+  });
   const job::JobReport r = job::run_job(spec, o);
+  bar.clear();
   if (!a.out.empty()) {
     const Mesh part = job::read_part(spec);
     sheet.report = &r;

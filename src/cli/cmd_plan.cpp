@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "progress_bar.hpp"
 #include "config_file.hpp"
 #include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/cutter/tool_table.hpp"
@@ -173,7 +174,13 @@ void run(const Options& o) {
   request.presets = &presets;
   std::vector<PlanReport> reports;
   request.reports = &reports;
+  ProgressBar bar(!o.json);
+  request.progress = [&bar, &o](double fraction) {
+    bar.update("plan " + o.strategy, fraction);
+    return true;
+  };
   const Job job = plan(request);
+  bar.clear();
   const std::string tool_name = preset ? job_tools(job) : params.tool.name;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!o.out.empty() && gcode::is_program_path(o.out)) {

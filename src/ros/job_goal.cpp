@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "rosmill/error.hpp"
+#include "rosmill/job/job_progress.hpp"
 #include "rosmill/job/job_spec.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/finish_goal.hpp"
@@ -119,30 +120,25 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
       }
       if (context.show) context.show(view);
     };
-    uint32_t operations = static_cast<uint32_t>(spec.operations.size());
-    std::vector<std::string> names;
-    for (const job::OperationSpec& op : spec.operations) names.push_back(op.name);
-    options.operations_known = [&](const std::vector<job::OperationSpec>& ops) {
-      operations = static_cast<uint32_t>(ops.size());
-      names.clear();
-      for (const job::OperationSpec& op : ops) names.push_back(op.name);
-    };
     auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
-    options.progress = [&](size_t op, double fraction) {
+    size_t operations = spec.operations.size();
+    job::report_progress(options, spec, [&](const job::JobProgress& p) {
+      operations = p.operations;
       if (context.cancel_requested()) return false;
       const auto now = std::chrono::steady_clock::now();
-      if (fraction > 0 && fraction < 1 && now - last < std::chrono::milliseconds(100)) return true;
+      if (p.operation_fraction > 0 && p.operation_fraction < 1 && now - last < std::chrono::milliseconds(100))
+        return true;
       last = now;
       PlanJobFeedback fb;
-      fb.operation = static_cast<uint32_t>(op);
-      fb.operations = operations;
-      fb.name = op < names.size() ? names[op] : "";
-      fb.stage = fraction >= 1 ? "done" : "running";
-      fb.operation_progress = static_cast<float>(fraction);
-      fb.progress = static_cast<float>((op + fraction) / std::max<uint32_t>(operations, 1));
+      fb.operation = static_cast<uint32_t>(p.operation);
+      fb.operations = static_cast<uint32_t>(p.operations);
+      fb.name = p.name;
+      fb.stage = p.operation_fraction >= 1 ? "done" : "running";
+      fb.operation_progress = static_cast<float>(p.operation_fraction);
+      fb.progress = static_cast<float>(p.fraction);
       context.feedback(fb);
       return true;
-    };
+    });
     const job::JobReport report = job::run_job(spec, options);
     result = to_job_result(report);
     for (size_t k = 0; k < report.setups.size() && k < frames.size(); ++k)
