@@ -81,7 +81,10 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--dialect", a->options.dialect, "linuxcnc or grbl")->capture_default_str();
   cmd->add_flag("--arcs", a->options.arcs, "fit G2/G3 arcs to runs of feed moves");
   cmd->add_option("--arc-tolerance", a->options.arc_tolerance, "mm")->capture_default_str();
-  cmd->add_option("--decimals", a->options.decimals, "digits after the point")->capture_default_str();
+  cmd->add_option("--decimals", a->options.decimals,
+                  "digits after the point, 1 to 6 (default: enough to keep rounding within a tenth of the "
+                  "toolpaths' tolerance, at least 3)")
+      ->check(CLI::Range(1, 6));
   cmd->add_flag("--line-numbers", a->options.line_numbers, "write N words");
   cmd->add_option("--blend-tolerance", a->options.blend_tolerance, "G64 P (LinuxCNC), mm")->capture_default_str();
   cmd->add_option("--coolant", a->coolant, "flood, mist or off")->capture_default_str();

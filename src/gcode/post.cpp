@@ -1,5 +1,6 @@
 #include "rosmill/gcode/post.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -294,8 +295,21 @@ std::string index_block(double a, double c) {
   return "G0 A" + fixed_text(a, kAngleDecimals) + " C" + fixed_text(c, kAngleDecimals);
 }
 
-Program post(const Job& job, const PostOptions& o) {
-  const Dialect& d = find_dialect(o.dialect);
+int decimals_for_tolerance(double tolerance) {
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) return 3;
+  const double d = std::ceil(std::log10(5.0 * std::sqrt(3.0) / tolerance) - 1e-9);
+  return static_cast<int>(std::clamp(d, 3.0, 6.0));
+}
+
+Program post(const Job& job, const PostOptions& given) {
+  const Dialect& d = find_dialect(given.dialect);
+  PostOptions o = given;
+  if (o.decimals == 0) {
+    double tolerance = INFINITY;
+    for (const Toolpath& tp : job)
+      if (tp.tolerance > 0) tolerance = std::min(tolerance, tp.tolerance);
+    o.decimals = decimals_for_tolerance(tolerance);
+  }
   decimal_scale(o.decimals);  // validates
   if (job.empty()) throw Error("post", "the job has no toolpath");
   Program prog;

@@ -29,7 +29,7 @@ PlanFrame make_frame(const Surface& surface, const PlanParams& params) {
   f.cutter = params.tool.cutter;
   f.stepover = resolved(params.stepover, params.tool.stepover, "stepover");
   f.stepdown = resolved(params.stepdown, params.tool.stepdown, "stepdown");
-  f.tolerance = resolved(params.tolerance, 0.001, "tolerance");
+  f.tolerance = resolved(params.tolerance, kDefaultTolerance, "tolerance");
   if (!(params.allowance >= 0) || !std::isfinite(params.allowance))
     throw Error("parameter allowance", "must be >= 0");
   if (!(params.stock_margin >= 0)) throw Error("parameter stock_margin", "must be >= 0");

@@ -36,7 +36,8 @@ RunnerSettings runner_settings(const ::ros::NodeHandle& pnh) {
   s.post.dialect = string_param(pnh, "dialect", "linuxcnc");
   gcode::find_dialect(s.post.dialect);  // validates the name now
   s.post.arcs = bool_param(pnh, "arcs", false);
-  s.post.decimals = int_param(pnh, "decimals", 3, 1, 6);
+  // 0: from the toolpaths' tolerance (gcode::decimals_for_tolerance).
+  s.post.decimals = int_param(pnh, "decimals", 0, 0, 6);
   s.checks.rs274 = bool_param(pnh, "verify_rs274", true);
   const std::string machine = string_param(pnh, "machine", "");
   if (!machine.empty())

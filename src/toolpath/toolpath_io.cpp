@@ -98,6 +98,7 @@ json toolpath_to_json(const Toolpath& tp) {
   return json{{"strategy", tp.strategy},      {"tool", tool_to_json(tp.tool)},
               {"safe_z", tp.safe_z},          {"clearance_z", tp.clearance_z},
               {"start", {tp.start.x(), tp.start.y(), tp.start.z()}},
+              {"tolerance", std::isnan(tp.tolerance) ? json() : json(tp.tolerance)},
               {"passes", std::move(passes)}};
 }
 
@@ -109,6 +110,13 @@ Toolpath toolpath_from_json(const json& doc, const std::string& where) {
   tp.safe_z = number(doc, "safe_z", where);
   tp.clearance_z = number(doc, "clearance_z", where);
   tp.start = vec3(doc.value("start", json()), where + ": start");
+  // Optional (older files have none): the plan's tolerance, which the post's rounding keeps within a tenth of.
+  if (doc.contains("tolerance") && !doc["tolerance"].is_null()) {
+    const json& t = doc["tolerance"];
+    if (!t.is_number() || !(t.get<double>() > 0) || !std::isfinite(t.get<double>()))
+      throw Error(where, "field 'tolerance' must be a positive number of mm");
+    tp.tolerance = t.get<double>();
+  }
   const json& passes = doc.value("passes", json());
   if (!passes.is_array()) throw Error(where, "field 'passes' missing or not an array");
   for (size_t i = 0; i < passes.size(); ++i) {

@@ -18,7 +18,9 @@ enum class Coolant { Off, Flood, Mist };
 
 struct PostOptions {
   std::string dialect = "linuxcnc";
-  int decimals = 3;                // digits after the point for lengths (feeds and speeds use fewer)
+  // Digits after the point for lengths (feeds and speeds use fewer); 0: chosen from the toolpaths' tolerance
+  // (decimals_for_tolerance), 3 when they state none.
+  int decimals = 0;
   double blend_tolerance = 0.01;   // G64 P (mm) where the dialect blends paths
   bool line_numbers = false;       // N words
   int line_number_step = 10;
@@ -52,6 +54,11 @@ struct Program {
   std::string text() const;         // lines joined with '\n', ending with '\n'
   size_t motion_blocks() const;     // lines that move the machine (G0/G1/G2/G3 blocks)
 };
+
+// The fewest decimals (3 to 6) whose rounding moves a point by at most a tenth of `tolerance`: half a unit of the
+// last digit on each of three axes, sqrt(3)/2 * 10^-d <= tolerance / 10. The default plan tolerance, 0.001 mm,
+// takes 4 decimals (a point moves at most 0.000087 mm); 0.01 mm takes 3.
+int decimals_for_tolerance(double tolerance);
 
 // The default options with another dialect.
 PostOptions post_options_for(const std::string& dialect);

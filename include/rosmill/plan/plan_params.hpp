@@ -19,13 +19,16 @@ const char* sampling_name(Sampling s);
 // "chord" or "step-error"; throws Error naming `where` otherwise.
 Sampling parse_sampling(const std::string& text, const std::string& where);
 
+// The chord / gouge tolerance (mm) a plan keeps when none is given.
+constexpr double kDefaultTolerance = 0.001;
+
 // Parameters; NaN means "the tool's default" (stepover, stepdown) or the strategy's default.
 struct PlanParams {
   Tool tool;
   double stepover = NAN;
   double stepdown = NAN;
   double allowance = 0.0;    // stock to leave on every surface (mm)
-  double tolerance = 0.001;  // chord / gouge tolerance (mm)
+  double tolerance = kDefaultTolerance;  // chord / gouge tolerance (mm)
   double angle_deg = 0.0;    // raster direction in the XY plane
   double stock_margin = 5.0; // box stock: the part's bounding box grown by this (mm)
   // Roughing from a stock mesh instead of the box (closed, containing the part, same frame and units; not owned;

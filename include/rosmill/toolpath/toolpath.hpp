@@ -1,6 +1,7 @@
 // The toolpath: what every planning strategy produces and what the post-processor, the verifier and the ROS layer
 // consume. Positions are cutter locations (the tool tip) in millimetres in the workpiece frame (G54).
 #pragma once
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct Toolpath {
   // coordinates, then G0 A C) where they change.
   bool indexed = false;
   double a = 0, c = 0;
+  // The plan's tolerance (mm): how far its chords may stray from the surface. NaN when unknown. The post writes
+  // enough decimals that rounding stays within a tenth of it.
+  double tolerance = NAN;
 
   size_t move_count() const;
   Box3 bounds() const;
