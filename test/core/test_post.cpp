@@ -7,6 +7,9 @@
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/number_format.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "rosmill/toolpath/toolpath_io.hpp"
+
+#include <nlohmann/json.hpp>
 #include "test_post_jobs.hpp"
 
 using namespace rosmill::core;
@@ -150,4 +153,52 @@ TEST(PostOptions, LineNumbersAndUnknownDialect) {
     EXPECT_NE(std::string(e.what()).find("known: linuxcnc, grbl"), std::string::npos) << e.what();
   }
   EXPECT_THROW(post(Job{}, PostOptions{}), Error);
+}
+
+// The output's rounding stays within a tenth of the plan's tolerance: the decimals follow the toolpaths' tolerance
+// (a point rounded on three axes moves sqrt(3)/2 units of the last digit), at least 3 and at most 6.
+TEST(Post, DecimalsKeepRoundingWithinATenthOfTheTolerance) {
+  for (double tol : {1.0, 0.05, 0.01, 0.005, 0.001, 0.0001, 1e-5, 1e-7}) {
+    const int d = gcode::decimals_for_tolerance(tol);
+    SCOPED_TRACE(tol);
+    EXPECT_GE(d, 3);
+    EXPECT_LE(d, 6);
+    if (d < 6) EXPECT_LE(std::sqrt(3.0) / 2 * std::pow(10.0, -d), tol / 10 + 1e-15);
+    if (d > 3) EXPECT_GT(std::sqrt(3.0) / 2 * std::pow(10.0, -(d - 1)), tol / 10);  // the fewest that do
+  }
+  EXPECT_EQ(gcode::decimals_for_tolerance(0.001), 4);
+  EXPECT_EQ(gcode::decimals_for_tolerance(0.01), 3);
+  EXPECT_EQ(gcode::decimals_for_tolerance(NAN), 3);
+  // A job whose toolpaths carry 0.001 mm: every written point within 0.0001 mm of the toolpath's.
+  Job job{test::raster_toolpath()};
+  for (Move& m : job[0].passes[0].moves) m.to += Vec3(1.0 / 3, 2.0 / 7, 1.0 / 9);
+  job[0].tolerance = 0.001;
+  const gcode::Program p = gcode::post(job);
+  EXPECT_EQ(p.decimals, 4);
+  EXPECT_TRUE(std::regex_search(p.text(), std::regex("X-?[0-9]+\\.[0-9]{4}\\b")));
+  EXPECT_FALSE(std::regex_search(p.text(), std::regex("X-?[0-9]+\\.[0-9]{5}")));
+  job[0].tolerance = NAN;  // unknown: the customary 3
+  EXPECT_EQ(gcode::post(job).decimals, 3);
+  gcode::PostOptions five;
+  five.decimals = 5;  // as asked
+  EXPECT_EQ(gcode::post(job, five).decimals, 5);
+}
+
+// A toolpath file keeps the plan's tolerance (so `rosmill post` of a file rounds as the plan allows); an older
+// file without it reads as unknown; a bad one is refused naming the field.
+TEST(Post, ToolpathFilesCarryTheTolerance) {
+  Toolpath tp = test::raster_toolpath();
+  tp.tolerance = 0.002;
+  EXPECT_DOUBLE_EQ(toolpath_from_json(toolpath_to_json(tp), "t").tolerance, 0.002);
+  nlohmann::json j = toolpath_to_json(tp);
+  j.erase("tolerance");
+  EXPECT_TRUE(std::isnan(toolpath_from_json(j, "t").tolerance));
+  j["tolerance"] = -1;
+  try {
+    toolpath_from_json(j, "file.json: toolpath 0");
+    ADD_FAILURE() << "a negative tolerance was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("file.json: toolpath 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("'tolerance'"), std::string::npos) << e.what();
+  }
 }
