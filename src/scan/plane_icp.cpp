@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include "rosmill/error.hpp"
@@ -133,6 +134,69 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
   Eigen::Matrix4d unshift = Eigen::Matrix4d::Identity();
   unshift.topRightCorner<3, 1>() = impl_->origin;
   return unshift * pose;
+}
+
+std::vector<PlanePair> PlaneIcp::pairs(const std::vector<Vec3>& moving, const std::vector<Vec3>& moving_normals,
+                                       const Eigen::Matrix4d& pose, double max_distance, double outline_degrees) const {
+  if (moving.size() != moving_normals.size()) throw Error("point-to-plane ICP", "one normal per moving point is needed");
+  const Eigen::Matrix3d r = pose.topLeftCorner<3, 3>();
+  const Vec3 t = pose.topRightCorner<3, 1>() - impl_->origin;
+  std::vector<PlanePair> out(moving.size());
+  std::vector<char> found(moving.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, moving.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const Vec3 q = r * moving[i] + t;
+      size_t j;
+      double sq;
+      if (!impl_->index->nearest(q, max_distance, j, sq)) continue;
+      PlanePair& p = out[i];
+      p.point = q + impl_->origin;
+      p.normal = impl_->normals[j];
+      p.residual = p.normal.dot(q - impl_->index->points()[j]);
+      p.outline = normals_disagree(r * moving_normals[i], p.normal, outline_degrees);
+      found[i] = 1;
+    }
+  });
+  // At a sharp edge whose two faces the moving points both show, a point near it may pair with the other face's
+  // sample: that is no outline (the other face is seen, its own points pair with it too). An outline pair's face
+  // has no moving point of its own within the reach.
+  std::vector<Vec3> moved(moving.size());
+  for (size_t i = 0; i < moving.size(); ++i) moved[i] = r * moving[i] + t + impl_->origin;
+  const PointIndex seen(moved);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, moving.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
+    constexpr size_t kLook = 16;
+    size_t near[kLook];
+    double sq[kLook];
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      PlanePair& p = out[i];
+      if (!found[i] || !p.outline) continue;
+      const Vec3 on_face = p.point - p.residual * p.normal;  // the point's foot on its pair's tangent plane
+      const size_t n = seen.nearest_k(on_face, kLook, near, sq);
+      for (size_t k = 0; k < n && sq[k] < max_distance * max_distance && p.outline; ++k)
+        p.outline = normals_disagree(r * moving_normals[near[k]], p.normal, outline_degrees);
+    }
+  });
+  std::vector<PlanePair> kept;
+  kept.reserve(out.size());
+  for (size_t i = 0; i < out.size(); ++i)
+    if (found[i]) kept.push_back(out[i]);
+  return kept;
+}
+
+double PlaneIcp::spacing() const {
+  const std::vector<Vec3>& points = impl_->index->points();
+  if (points.size() < 2) return 0;
+  // A thousand points tell the median.
+  const size_t stride = std::max<size_t>(1, points.size() / 1000);
+  std::vector<double> nearest;
+  for (size_t i = 0; i < points.size(); i += stride) {
+    size_t found[2];
+    double sq[2];
+    if (impl_->index->nearest_k(points[i], 2, found, sq) == 2) nearest.push_back(std::sqrt(sq[1]));
+  }
+  if (nearest.empty()) return 0;
+  std::nth_element(nearest.begin(), nearest.begin() + long(nearest.size() / 2), nearest.end());
+  return 2 * nearest[nearest.size() / 2];
 }
 
 }  // namespace rosmill::core::scan

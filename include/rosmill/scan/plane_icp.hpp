@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "rosmill/geometry/types.hpp"
+#include "rosmill/scan/pose_information.hpp"
 
 namespace rosmill::core::scan {
 
@@ -32,6 +33,19 @@ class PlaneIcp {
   // most `iterations` steps (fewer once a step moves less than 1e-6 mm and 1e-6 rad).
   Eigen::Matrix4d align(const std::vector<Vec3>& moving, const Eigen::Matrix4d& start, double max_distance,
                         int iterations, IcpOutcome* outcome = nullptr) const;
+
+  // The pairs a step at `pose` (moving -> fixed) uses: each moving point with its nearest fixed point within
+  // `max_distance` mm, in the fixed frame, with the fixed normal and the residual. A pair is an outline pair when
+  // the moving point's own normal (`moving_normals`, before the pose; signs arbitrary) differs from its pair's by
+  // more than `outline_degrees` and no moving point within `max_distance` of the pair's face has a normal that
+  // agrees with it (that face is not seen: a plate's side wall from above; at an edge whose two faces are both
+  // seen, the pair is a surface pair). Throws Error when the sizes differ.
+  std::vector<PlanePair> pairs(const std::vector<Vec3>& moving, const std::vector<Vec3>& moving_normals,
+                               const Eigen::Matrix4d& pose, double max_distance, double outline_degrees) const;
+
+  // The fixed surface's sampling spacing, mm: twice the median distance from a point to its nearest neighbour
+  // (for points spread at random over an area A, about sqrt(A / count); for a grid, twice its pitch).
+  double spacing() const;
 
  private:
   struct Impl;
