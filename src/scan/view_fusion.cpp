@@ -2,12 +2,16 @@
 
 #include <chrono>
 #include <cmath>
+#include <sstream>
+
+#include <Eigen/Geometry>
 
 #include "rosmill/cloud/cloud_prep.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/covered_share.hpp"
 #include "rosmill/scan/plane_icp.hpp"
+#include "rosmill/scan/principal_axes.hpp"
 #include "rosmill/scan/surface_normals.hpp"
 #include "rosmill/scan/thinning.hpp"
 
@@ -31,18 +35,55 @@ std::vector<Vec3> reference_points(const std::vector<std::vector<Vec3>>& thinned
   return thin_evenly(all, limit);
 }
 
-// Aligns view i onto the reference and returns its new pose.
-Eigen::Matrix4d refine_view(const std::vector<Vec3>& view, const Eigen::Matrix4d& pose,
-                            const std::vector<Vec3>& reference, double max_correction, PhaseClock& clock) {
+// Aligns view i onto the reference from `pose` and returns its new pose; `check` receives how well the overlap
+// fixes it (pose_information.hpp) and how far it moved from its `given` pose.
+Eigen::Matrix4d refine_view(const std::vector<Vec3>& view, const Eigen::Matrix4d& pose, const Eigen::Matrix4d& given,
+                            const std::vector<Vec3>& reference, const FusionOptions& o, PhaseClock& clock,
+                            ViewCorrection& check) {
   const std::vector<Vec3> normals = estimate_normals(reference);
   clock.lap("reference normals");
   const PlaneIcp icp(reference, normals);
   clock.lap("ICP index");
   // The long reach only brings the view near: a third of its points do that, all of them make the fine fit.
-  Eigen::Matrix4d t = icp.align(thin_evenly(view, view.size() / 3), pose, max_correction, 30);
-  t = icp.align(view, t, max_correction / 5, 30);
+  Eigen::Matrix4d t = icp.align(thin_evenly(view, view.size() / 3), pose, o.max_correction, 30);
+  t = icp.align(view, t, o.max_correction / 5, 30);
   clock.lap("ICP");
+  const PrincipalFrame frame = principal_frame(reference);
+  Box3 box;
+  for (const Vec3& p : reference) box.add(p);
+  check.information = pose_information(icp.pairs(view, estimate_normals(view), t, o.max_correction / 5,
+                                                 o.information.outline_degrees),
+                                       frame.centroid, frame.axes, 0.5 * box.size().norm(), icp.spacing(),
+                                       o.information, "reference");
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& p : view) centroid += p;
+  centroid = (given * (centroid / double(view.size())).homogeneous()).head<3>();
+  const Eigen::Matrix4d correction = t * rigid_inverse(given);
+  check.found = correction;
+  check.moved_mm = ((correction * centroid.homogeneous()).head<3>() - centroid).norm();
+  check.turned_deg = rotation_angle_deg(correction);
+  clock.lap("pose information");
   return t;
+}
+
+// Marks the correction when the overlap does not fix it; withholds it (returns false) when it exceeds the stated
+// pose error.
+bool accept(ViewCorrection& c, const FusionOptions& o) {
+  c.ambiguous = c.information.ambiguous();
+  c.exceeds_pose_error = c.moved_mm > o.pose_error_mm || c.turned_deg > o.pose_error_deg;
+  std::ostringstream why;
+  if (c.exceeds_pose_error)
+    why << "the correction (" << c.moved_mm << " mm at the view's centroid, " << c.turned_deg
+        << " deg) exceeds the stated pose error (" << o.pose_error_mm << " mm, " << o.pose_error_deg << " deg)";
+  if (c.ambiguous)
+    why << (c.exceeds_pose_error ? "; " : "") << "the overlap fixes the view's pose only weakly along: "
+        << c.information.describe();
+  c.reason = why.str();
+  // Only a correction beyond the stated pose error is withheld: the sigmas from estimated normals of two clouds
+  // are not yet calibrated against truth well enough to withhold every weak one (a relief's views fuse to the
+  // noise and are still marked ambiguous), so a weak one is applied and marked.
+  c.applied = !c.exceeds_pose_error;
+  return c.applied;
 }
 
 }  // namespace
@@ -53,6 +94,11 @@ void FusionOptions::check() const {
     throw Error("fusion option max_correction", "must be a positive number of mm");
   if (!(min_overlap >= 0 && min_overlap <= 1)) throw Error("fusion option min_overlap", "must lie in [0, 1]");
   if (icp_points < 100) throw Error("fusion option icp_points", "must be at least 100");
+  if (!(pose_error_mm > 0) || !std::isfinite(pose_error_mm))
+    throw Error("fusion option pose_error_mm", "must be a positive number of mm");
+  if (!(pose_error_deg > 0) || !std::isfinite(pose_error_deg))
+    throw Error("fusion option pose_error_deg", "must be a positive number of degrees");
+  information.check();
 }
 
 PointCloud fuse_views(const std::vector<ScanView>& views, const FusionOptions& o, FusionReport* report) {
@@ -74,6 +120,7 @@ PointCloud fuse_views(const std::vector<ScanView>& views, const FusionOptions& o
     thinned.push_back(thin_evenly(views[i].cloud.points, o.icp_points));
     r.points_in += views[i].cloud.points.size();
   }
+  r.checks.assign(views.size(), ViewCorrection());
   if (o.refine && views.size() > 1) {
     for (int round = 0; round < o.rounds; ++round)
       for (size_t i = 1; i < views.size(); ++i) {
@@ -88,10 +135,16 @@ PointCloud fuse_views(const std::vector<ScanView>& views, const FusionOptions& o
           throw Error(view_name(views[i], i), "meets no other view within " + std::to_string(o.max_correction) +
                                                   " mm (" + std::to_string(100 * before) +
                                                   "% of its points): its pose is wrong or the views do not overlap");
-        poses[i] = refine_view(thinned[i], poses[i], reference, o.max_correction, clock);
+        ViewCorrection& check = r.checks[i];
+        const Eigen::Matrix4d refined = refine_view(thinned[i], poses[i], views[i].pose, reference, o, clock, check);
+        poses[i] = accept(check, o) ? refined : views[i].pose;
       }
   }
   clock.lap("checks, thinning, references");
+  for (const ViewCorrection& c : r.checks) {
+    r.withheld += !c.applied;
+    r.ambiguous += c.ambiguous;
+  }
   std::vector<Vec3> fused;
   fused.reserve(r.points_in);
   for (size_t i = 0; i < views.size(); ++i) {

@@ -57,7 +57,7 @@ struct PoseInformationOptions {
   double floor = 0.005;           // mm: the least sigma of any direction (what no term models)
   double floor_share_of_rms = 0.5;  // ... and at least this share of the surface pairs' RMS residual
   double correlation = 0.01;      // of the surface pairs' residuals (errors they share: facets, tessellation)
-  double outline_degrees = 30;    // a pair is an outline pair when the two normals' lines differ by more
+  double outline_degrees = 60;    // a pair is an outline pair when the two normals' lines differ by more
   void check() const;             // Error naming the option out of range
 };
 
