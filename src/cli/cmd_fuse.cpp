@@ -2,8 +2,9 @@
 //   [--rounds N] [--max-correction MM] [--pose-error MM] [--pose-error-deg DEG] [--json]: views (PCD, PLY) with
 // their sensor poses (YAML files, see include/rosmill/scan/pose_file.hpp) brought into one frame, refined by ICP,
 // fused, filtered, written as PCD. A view whose correction exceeds the stated pose error keeps its given pose
-// ("applied": false); a view whose pose the overlap fixes only weakly is marked ("ambiguous": true, "weak" naming
-// the directions, "reason"). Either way the cloud is still written and the command exits with status 3.
+// ("applied": false); a view whose pose the overlap fixes only weakly is corrected along the well-fixed motions only,
+// keeping its given pose along the weak ones ("locked": true), and marked ("ambiguous": true, "weak" naming the
+// directions, "reason"). Either way the cloud is still written and the command exits with status 3.
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -59,6 +60,7 @@ void run(const FuseArgs& a) {
                                   {"applied", c.applied},
                                   {"ambiguous", c.ambiguous},
                                   {"exceeds_pose_error", c.exceeds_pose_error},
+                                  {"locked", c.locked},
                                   {"found_moved_mm", c.moved_mm},
                                   {"found_turned_deg", c.turned_deg},
                                   {"reason", c.reason}};

@@ -156,6 +156,11 @@ PoseInformation pose_information(const std::vector<PlanePair>& pairs, const Vec3
         std::max(d.rotation ? info.rotation_sigma_deg : info.translation_sigma, d.sigma);
     if (d.weak) info.weak.push_back(d);
   }
+  for (int k = 0; k < 6; ++k) {
+    const Vector6 v = vectors.col(k);
+    info.motions.col(k) << axes * v.head<3>() / radius, axes * v.tail<3>();
+    info.motion_sigma[k] = pairs.empty() ? kInfinity : spread(v);
+  }
   // A weak motion that mixes the axes (a screw, a turn about an axis off the centre) shows in no single one:
   // the eigen-directions of the information catch it.
   if (info.weak.empty())
@@ -180,6 +185,16 @@ PoseInformation pose_information(const std::vector<PlanePair>& pairs, const Vec3
     return (a.rotation ? a.sigma * M_PI / 180 * radius : a.sigma) > (b.rotation ? b.sigma * M_PI / 180 * radius : b.sigma);
   });
   return info;
+}
+
+Eigen::Matrix<double, 6, Eigen::Dynamic> PoseInformation::fixed_motions(double bound) const {
+  Eigen::Matrix<double, 6, Eigen::Dynamic> out(6, 0);
+  for (int k = 0; k < 6; ++k)
+    if (motion_sigma[k] <= bound) {
+      out.conservativeResize(Eigen::NoChange, out.cols() + 1);
+      out.col(out.cols() - 1) = motions.col(k);
+    }
+  return out;
 }
 
 std::string PoseInformation::describe() const {

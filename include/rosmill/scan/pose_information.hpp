@@ -70,6 +70,13 @@ struct PoseInformation {
   double surface_rms = 0;                              // mm: RMS residual of the surface pairs
   std::array<PoseDirection, 6> dofs;                   // slides along axes 1, 2, 3, then turns about them
   std::vector<PoseDirection> weak;                     // the weak motions (eigen-directions), weakest first
+  // The eigen-directions of the information as motions: columns (turn in radians, slide in mm; turns about
+  // `centre`) in the fixed frame, each with its sigma (mm: a turn's displacement at the radius; infinity: free).
+  Eigen::Matrix<double, 6, 6> motions = Eigen::Matrix<double, 6, 6>::Identity();
+  Eigen::Matrix<double, 6, 1> motion_sigma = Eigen::Matrix<double, 6, 1>::Zero();
+  // The motions whose sigma is within `bound` mm, as columns: an alignment restricted to them (plane_icp.hpp,
+  // IcpMotions) keeps the pose where it started along the others.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> fixed_motions(double bound) const;
   double translation_sigma = 0, rotation_sigma_deg = 0;  // the largest of the dofs'
   bool ambiguous() const { return !weak.empty(); }
   double max_sigma = 0;                                // mm: the bound the weak ones exceed

@@ -10,7 +10,9 @@
 //      onto): when the correction moves the view further than the stated pose error allows (at the view's
 //      centroid, or turns it by more), it is withheld and the view keeps its given pose; when the overlap fixes a
 //      direction of the view's pose only weakly (views of a plate from above, of a cylinder from its side), the
-//      report marks it ambiguous, naming the weak directions. A correction is never applied silently.
+//      report marks it ambiguous, naming the weak directions; a motion fixed no better than `lock_sigma` is
+//      locked: the view is aligned again from its given pose along the well-fixed motions only and keeps its
+//      given pose along the others. A correction is never applied silently.
 //   3. The union is thinned by a voxel grid and cleared of outliers (PCL, the cloud preparation's filters).
 #pragma once
 #include <string>
@@ -42,6 +44,11 @@ struct FusionOptions {
   double pose_error_mm = 10.0;   // how far a given pose may be off: a larger correction (at the view's centroid) ...
   double pose_error_deg = 2.0;   // ... or a larger turn is withheld
   PoseInformationOptions information;  // when a direction of a view's pose counts as weak
+  double lock_sigma = 0.25;      // mm: a motion the overlap fixes no better (1 sigma) keeps the given pose
+  // A reference point whose surface variation exceeds both this and `crease_factor` times the reference's median
+  // has no face's normal (its neighbours straddle a step): its pairs count as outline pairs.
+  double crease_variation = 0.02;
+  double crease_factor = 10;
   void check() const;
 };
 
@@ -50,6 +57,7 @@ struct ViewCorrection {
   bool applied = true;           // false: withheld (beyond the pose error), the view kept its given pose
   bool ambiguous = false;        // the overlap fixes some direction only weakly (information.weak names them)
   bool exceeds_pose_error = false;
+  bool locked = false;           // some motions kept the given pose (sigma above lock_sigma); the others were corrected
   Eigen::Matrix4d found = Eigen::Matrix4d::Identity();  // the correction found (common frame), applied or not
   double moved_mm = 0, turned_deg = 0;  // ... its move at the view's centroid and its turn
   std::string reason;            // why withheld; empty when applied
