@@ -124,8 +124,13 @@ class ScanRegistrar {
       scan::FusionReport report;
       const PointCloud fused = session_.finish(fusion_, report);
       fused_pub_.publish(to_cloud_msg(fused, session_.fixed_frame()));
+      std::string withheld;  // a correction the overlap does not fix is never applied silently
+      for (size_t i = 0; i < report.checks.size(); ++i)
+        if (!report.checks[i].applied || report.checks[i].ambiguous)
+          withheld += "; view " + std::to_string(i + 1) +
+                      (report.checks[i].applied ? " is ambiguous: " : " keeps its given pose: ") + report.checks[i].reason;
       return std::to_string(session_.views()) + " views fused: " + std::to_string(report.points_out) + " of " +
-             std::to_string(report.points_in) + " points in '" + session_.fixed_frame() + "'";
+             std::to_string(report.points_in) + " points in '" + session_.fixed_frame() + "'" + withheld;
     });
   }
 

@@ -6,7 +6,6 @@
 #include <numeric>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +18,7 @@
 #include "rosmill/scan/near_surface_cells.hpp"
 #include "rosmill/scan/plane_icp.hpp"
 #include "rosmill/scan/principal_axes.hpp"
+#include "rosmill/scan/surface_normals.hpp"
 #include "rosmill/scan/surface_sample.hpp"
 #include "rosmill/scan/thinning.hpp"
 
@@ -132,34 +132,6 @@ std::vector<Fit> race_candidates(const PlaneIcp& icp, const NearSurfaceCells& ce
   return fits;
 }
 
-// The pose's covariance from the point-to-plane normal equations at the fit: rows (p x n, n) per inlier, with
-// the rotation columns scaled by the part's size so that the eigenvalues compare. Returns the smallest over the
-// largest eigenvalue (near 0: a direction the seen surface does not fix).
-double estimate_uncertainty(const std::vector<Vec3>& in_design, const std::vector<SurfaceDistance>& nearest,
-                            const Mesh& mesh, const Vec3& centre, double length, RegistrationResult& r) {
-  Eigen::Matrix<double, 6, 6> h = Eigen::Matrix<double, 6, 6>::Zero();
-  for (size_t i = 0; i < in_design.size(); ++i) {
-    if (nearest[i].face == kNone) continue;  // an outlier
-    const Vec3& p = in_design[i];
-    const Vec3& n = mesh.normals[nearest[i].face];
-    Eigen::Matrix<double, 6, 1> j;
-    j << (p - centre).cross(n) / length, n;
-    h += j * j.transpose();
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> es(h);
-  const double ratio = es.eigenvalues()[5] > 0 ? es.eigenvalues()[0] / es.eigenvalues()[5] : 0;
-  if (ratio < 1e-12) {
-    r.translation_sigma = r.rotation_sigma_deg = std::numeric_limits<double>::infinity();
-    return ratio;
-  }
-  const Eigen::Matrix<double, 6, 6> cov = r.rms * r.rms * es.eigenvectors() *
-                                          es.eigenvalues().cwiseInverse().asDiagonal() * es.eigenvectors().transpose();
-  const Eigen::Matrix3d rot = cov.topLeftCorner<3, 3>() / (length * length), tra = cov.bottomRightCorner<3, 3>();
-  r.rotation_sigma_deg = std::sqrt(std::max(0.0, rot.eigenvalues().real().maxCoeff())) * 180 / M_PI;
-  r.translation_sigma = std::sqrt(std::max(0.0, tra.eigenvalues().real().maxCoeff()));
-  return ratio;
-}
-
 std::string fixed(double v, int digits) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
@@ -168,12 +140,15 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
+std::string vector_text(const Vec3& a) {
+  return "(" + fixed(a.x(), 3) + ", " + fixed(a.y(), 3) + ", " + fixed(a.z(), 3) + ")";
+}
+
 // "a 180.0 deg turn about (0.000, 1.000, 0.000)": a rigid motion in words.
 std::string describe_motion(const Eigen::Matrix4d& m) {
   const Eigen::AngleAxisd turn(Eigen::Matrix3d(m.topLeftCorner<3, 3>()));
   const Vec3& a = turn.axis();
-  return "a " + fixed(turn.angle() * 180 / M_PI, 1) + " deg turn about (" + fixed(a.x(), 3) + ", " + fixed(a.y(), 3) +
-         ", " + fixed(a.z(), 3) + ")";
+  return "a " + fixed(turn.angle() * 180 / M_PI, 1) + " deg turn about " + vector_text(a);
 }
 
 SymmetryOptions symmetry_options(const RegistrationOptions& o) {
@@ -199,6 +174,7 @@ void RegistrationOptions::check() const {
     throw Error("registration option ambiguity_rms", "must be a factor >= 1");
   for (auto [v, name] : {std::pair{min_inlier_share, "min_inlier_share"}, {min_overlap, "min_overlap"}})
     if (!(v >= 0 && v <= 1)) throw Error(std::string("registration option ") + name, "must lie in [0, 1]");
+  information.check();
   if (design_points < 100 || coarse_points < 50 || fine_points < 50)
     throw Error("registration options", "design_points >= 100, coarse_points >= 50 and fine_points >= 50 are needed");
 }
@@ -315,7 +291,6 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
                                        [](const Refined& a, const Refined& b) { return better(a.fit, b.fit); });
   const Fit best = winner->fit;
   const std::vector<Vec3>& best_in_design = winner->in_design;
-  const std::vector<SurfaceDistance>& best_nearest = winner->nearest;
   for (const Refined& alt : refined)
     if (&alt != &*winner && r.alternatives.size() < 5 && alt.fit.share >= best.share - o.ambiguity_share &&
         alt.fit.rms <= o.ambiguity_rms * best.rms + 1e-3 &&
@@ -337,7 +312,11 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   r.overlap = covered_share(thin_evenly(target.points, 5000), best_in_design,
                              o.inlier_distance + 2 * std::sqrt(area / double(fine.size())));
   clock.lap("overlap");
-  const double conditioning = estimate_uncertainty(best_in_design, best_nearest, design, centre, 0.5 * size, r);
+  r.information = pose_information(icp.pairs(fine, estimate_normals(fine), best.scan_to_design, o.inlier_distance,
+                                             o.information.outline_degrees),
+                                   centre, design_frame.axes, 0.5 * size, icp.spacing(), o.information);
+  r.translation_sigma = r.information.translation_sigma;
+  r.rotation_sigma_deg = r.information.rotation_sigma_deg;
   clock.lap("uncertainty");
   r.fine_seconds = seconds_since(fine_start);
 
@@ -352,10 +331,12 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
     const int equal = near_equal_moments(design_frame.moments, o.moment_tolerance);
     if (equal) why << "; the design has " << equal << " near-equal principal moments (a symmetric part)";
   }
-  if (conditioning < 1e-4) {
+  if (r.information.ambiguous()) {
     if (why.tellp() > 0) why << "; ";
-    why << "the scanned surface does not fix every direction of the pose (it can slide or turn on itself: "
-           "conditioning " << conditioning << ")";
+    why << "the scanned surface fixes the pose only weakly along: " << r.information.describe()
+        << "; in the scan's frame:";
+    for (const PoseDirection& d : r.information.weak)
+      why << " " << (d.rotation ? "turn about " : "slide along ") << vector_text(r.transform.topLeftCorner<3, 3>() * d.axis);
   }
   r.ambiguity = why.str();
   r.ambiguous = !r.ambiguity.empty();
@@ -381,8 +362,8 @@ std::string format_registration(const RegistrationResult& r) {
     s << "  " << fixed(r.transform(i, 0), 9) << ' ' << fixed(r.transform(i, 1), 9) << ' ' << fixed(r.transform(i, 2), 9)
       << ' ' << fixed(r.transform(i, 3), 6) << '\n';
   s << "rms: " << fixed(r.rms, 5) << " mm\ninlier share: " << fixed(r.inlier_share, 4) << "\noverlap: "
-    << fixed(r.overlap, 4) << "\nuncertainty (1 sigma): " << r.translation_sigma << " mm, " << r.rotation_sigma_deg
-    << " deg\nambiguous: " << (r.ambiguous ? "yes (" + r.ambiguity + ")" : std::string("no")) << "\ncandidates: "
+    << fixed(r.overlap, 4) << "\nuncertainty (1 sigma, worst direction): " << r.translation_sigma << " mm, "
+    << r.rotation_sigma_deg << " deg\n" << format_pose_information(r.information) << "ambiguous: " << (r.ambiguous ? "yes (" + r.ambiguity + ")" : std::string("no")) << "\ncandidates: "
     << r.candidates << ", scan points used: " << r.scan_points_used << "\ntime: global " << fixed(r.global_seconds, 3)
     << " s, fine " << fixed(r.fine_seconds, 3) << " s\n";
   return s.str();

@@ -20,6 +20,31 @@ nlohmann::ordered_json matrix_json(const Eigen::Matrix4d& t) {
   return rows;
 }
 
+nlohmann::ordered_json pose_information_json(const PoseInformation& info) {
+  const auto direction = [](const PoseDirection& d) {
+    return nlohmann::ordered_json{{"name", d.name},
+                                  {"kind", d.rotation ? "rotation" : "translation"},
+                                  {"axis", {d.axis.x(), d.axis.y(), d.axis.z()}},
+                                  {d.rotation ? "sigma_deg" : "sigma_mm", finite_or_null(d.sigma)},
+                                  {"surface_information", d.surface_information},
+                                  {"outline_information", d.outline_information},
+                                  {"weak", d.weak},
+                                  {"free", d.free},
+                                  {"outline_only", d.outline_only}};
+  };
+  nlohmann::ordered_json j;
+  j["centre"] = {info.centre.x(), info.centre.y(), info.centre.z()};
+  j["radius_mm"] = info.radius;
+  j["surface_pairs"] = info.surface_pairs;
+  j["outline_pairs"] = info.outline_pairs;
+  j["max_sigma_mm"] = info.max_sigma;
+  j["dofs"] = nlohmann::ordered_json::array();
+  for (const PoseDirection& d : info.dofs) j["dofs"].push_back(direction(d));
+  j["weak"] = nlohmann::ordered_json::array();
+  for (const PoseDirection& d : info.weak) j["weak"].push_back(direction(d));
+  return j;
+}
+
 nlohmann::ordered_json registration_json(const RegistrationResult& r) {
   nlohmann::ordered_json j;
   j["transform"] = matrix_json(r.transform);
@@ -32,6 +57,7 @@ nlohmann::ordered_json registration_json(const RegistrationResult& r) {
   for (const auto& a : r.alternatives) j["alternatives"].push_back(matrix_json(a));
   j["translation_sigma_mm"] = finite_or_null(r.translation_sigma);
   j["rotation_sigma_deg"] = finite_or_null(r.rotation_sigma_deg);
+  j["degrees_of_freedom"] = pose_information_json(r.information);
   j["candidates"] = r.candidates;
   j["scan_points_used"] = r.scan_points_used;
   j["seconds"] = r.global_seconds + r.fine_seconds;

@@ -1,5 +1,7 @@
 #include "rosmill/scan/surface_normals.hpp"
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -9,11 +11,12 @@
 
 namespace rosmill::core::scan {
 
-std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbours) {
+std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbours, std::vector<double>* variation) {
   if (neighbours < 3 || points.size() < size_t(neighbours))
     throw Error("normal estimation", "needs at least " + std::to_string(std::max(neighbours, 3)) + " points");
   const PointIndex index(points);
   std::vector<Vec3> out(points.size());
+  if (variation) variation->assign(points.size(), 0.0);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
     std::vector<size_t> near(static_cast<size_t>(neighbours));
     std::vector<double> sq(static_cast<size_t>(neighbours));
@@ -31,7 +34,9 @@ std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbou
       }
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
       const Vec3 normal = es.eigenvectors().col(0);  // the direction of least spread
-      out[i] = found >= 3 && es.eigenvalues()[2] > 0 && normal.allFinite() ? Vec3(normal.normalized()) : Vec3::UnitZ();
+      const bool plane = found >= 3 && es.eigenvalues()[2] > 0 && normal.allFinite();
+      out[i] = plane ? Vec3(normal.normalized()) : Vec3::UnitZ();
+      if (variation) (*variation)[i] = plane ? std::max(0.0, es.eigenvalues()[0]) / es.eigenvalues().sum() : 1.0 / 3;
     }
   });
   return out;

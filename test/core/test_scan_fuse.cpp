@@ -5,17 +5,21 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
 
 #include "error_of.hpp"
+#include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
 #include "rosmill/scan/pose_file.hpp"
 #include "rosmill/scan/view_fusion.hpp"
 #include "rosmill/testing/ply_mesh.hpp"
+#include "rosmill/testing/pose_error.hpp"
+#include "rosmill/testing/sanitized.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
 using namespace rosmill::core;
@@ -74,6 +78,9 @@ TEST(ScanFuse, ThreePerturbedViewsFuseWithinNoise) {
   const double rms = rms_to(relief, fused, &worst);
   std::printf("fused %zu points: rms distance to the design %.4f mm, max %.4f mm (noise 0.02 mm per axis)\n",
               fused.points.size(), rms, worst);
+  for (size_t i = 1; i < 3; ++i)
+    std::printf("view %zu: %s%s", i, report.checks[i].reason.c_str(),
+                scan::format_pose_information(report.checks[i].information).c_str());
   EXPECT_LT(rms, 0.03);
   EXPECT_LT(worst, 0.15);
   // The corrections undo the nudges: 1 mm and 0.5 degree each.
@@ -169,4 +176,126 @@ TEST(ScanFuse, PoseFilesInBothForms) {
   EXPECT_NE(error("matrix: [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]\nxyz: [0,0,0]").find("not both"), std::string::npos);
   EXPECT_NE(error("xyz: [0, 0, zero]\nquaternion: [0, 0, 0, 1]").find("not a number"), std::string::npos);
   EXPECT_NE(error("pose: 1").find("unknown field 'pose'"), std::string::npos);
+}
+
+namespace {
+
+// Two views of `design` from `positions` (only faces within `incidence` degrees of the line to the sensor), the
+// second with its pose off by `off`.
+std::vector<scan::ScanView> two_views(const Mesh& design, const Vec3 (&positions)[2], double incidence,
+                                      const Eigen::Matrix4d& off, uint64_t seed) {
+  const Vec3 centre = (design.bbox.min + design.bbox.max) / 2;
+  std::vector<scan::ScanView> views;
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::Matrix4d pose = sensor_pose(positions[i], centre);
+    scan::ScanView v;
+    v.cloud.points = transformed_points(rigid_inverse(pose), synthetic::synthetic_scan(design, {positions[i]}, 30000,
+                                                                                      0.02, seed + uint64_t(i),
+                                                                                      incidence).points);
+    v.pose = i == 0 ? pose : Eigen::Matrix4d(off * pose);
+    v.name = "view " + std::to_string(i);
+    views.push_back(v);
+  }
+  return views;
+}
+
+}  // namespace
+
+// Two views from above of a plate with engraved text (pycam-textbox; no return from its walls), the second's pose
+// off by 1 mm and 0.5 degree in random directions: the overlap fixes z and the tilts, not x, y or the turn about
+// z. The correction is marked ambiguous, naming the turn about z, never applied silently. And a correction beyond
+// the stated pose error is withheld on the relief whose views fuse well: the view keeps its given pose.
+TEST(ScanFuse, PlateViewsFromAboveAreMarkedAndLargeCorrectionsWithheld) {
+  const Mesh plate = read_stl(std::string(ROSMILL_TEST_DATA) + "/pycam-textbox.stl");
+  const Vec3 centre = (plate.bbox.min + plate.bbox.max) / 2;
+  const Vec3 above[2] = {centre + Vec3(-20, 0, 400), centre + Vec3(20, 5, 400)};
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> gauss;
+  const int trials = rosmill::testing::cases(4, 1);
+  int wrong_and_certain = 0;
+  for (int t = 0; t < trials; ++t) {
+    const Vec3 axis(gauss(rng), gauss(rng), gauss(rng));
+    const Eigen::Matrix4d off = synthetic::nudge(1.0, 0.5, axis);
+    const std::vector<scan::ScanView> views = two_views(plate, above, 60, off, 90 + uint64_t(10 * t));
+    scan::FusionReport report;
+    const PointCloud fused = scan::fuse_views(views, {}, &report);
+    const scan::ViewCorrection& c = report.checks[1];
+    double worst = 0;
+    const double rms = rms_to(plate, fused, &worst);
+    std::printf("plate from above, trial %d: correction %.3f mm %.3f deg, %s%s (%s)\n", t, c.moved_mm, c.turned_deg,
+                c.applied ? "applied" : "withheld", c.locked ? ", weak directions locked" : "", c.reason.c_str());
+    EXPECT_TRUE(c.ambiguous);
+    EXPECT_TRUE(c.locked);
+    EXPECT_EQ(report.ambiguous, 1u);
+    EXPECT_NE(c.reason.find("rotation about the reference's z axis"), std::string::npos) << c.reason;
+    // The pose the view ends with against the truth (off^-1), along each direction: a direction not named weak
+    // is within 3 stated sigmas.
+    const std::array<double, 6> e = synthetic::error_by_dof(c.information, report.corrections[1] * off);
+    std::printf("  true error / stated 3 sigma per direction:");
+    for (size_t k = 0; k < 6; ++k) {
+      const scan::PoseDirection& d = c.information.dofs[k];
+      std::printf(" %.4f/%.4f%s", std::abs(e[k]), 3 * d.sigma, d.weak ? "(weak)" : "");
+      wrong_and_certain += !d.weak && std::abs(e[k]) > 3 * d.sigma;
+    }
+    std::printf("; fused rms %.3f mm, max %.3f mm\n", rms, worst);
+  }
+  EXPECT_EQ(wrong_and_certain, 0);
+  // A relief whose views fuse well: a stated pose error below the real one withholds the corrections.
+  const Mesh relief = read_stl(std::string(ROSMILL_TEST_DATA) + "/mount_rush.stl");
+  scan::FusionOptions strict;
+  strict.pose_error_deg = 0.2;  // the views are off by 0.5 degree
+  scan::FusionReport report;
+  scan::fuse_views(relief_views(relief), strict, &report);
+  for (size_t i = 1; i < 3; ++i) {
+    EXPECT_FALSE(report.checks[i].applied) << i;
+    EXPECT_TRUE(report.checks[i].exceeds_pose_error) << i;
+    EXPECT_TRUE(report.corrections[i].isIdentity(1e-12));
+    EXPECT_NE(report.checks[i].reason.find("exceeds the stated pose error"), std::string::npos);
+  }
+}
+
+// Two views of a turned part from its side (the test cylinder, r 25 h 60, 36 facets; caps unseen), 30 degrees
+// apart, the second's pose off by 1 mm and 0.5 degree in random directions: the overlap leaves the slide along the
+// axis to the mantle's ends alone, and that slide is named weak. The ICP rolls the view about the axis until the
+// two seen patches coincide (about 30 degrees: the pairs at the reference's border drag it), a correction beyond
+// the stated pose error, so it is withheld: the view keeps its given pose. A correction applied (weak motions
+// locked) has no direction stated certain off by more than 3 sigma; a withheld one is not counted (the view keeps
+// its given pose, as uncertain as the stated pose error).
+TEST(ScanFuse, CylinderViewsFromTheSideNameTheirAxisAndApplyNothingSilently) {
+  const Mesh cylinder = build_mesh(cylinder_corners());
+  const Vec3 centre = (cylinder.bbox.min + cylinder.bbox.max) / 2;
+  const Vec3 side[2] = {centre + 400 * Vec3(std::cos(0.26), std::sin(0.26), 0),
+                        centre + 400 * Vec3(std::cos(-0.26), std::sin(-0.26), 0)};
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> gauss;
+  const int trials = rosmill::testing::cases(4, 1);
+  int wrong_and_certain = 0;
+  for (int t = 0; t < trials; ++t) {
+    const Eigen::Matrix4d off = synthetic::nudge(1.0, 0.5, Vec3(gauss(rng), gauss(rng), gauss(rng)));
+    scan::FusionReport report;
+    const PointCloud fused = scan::fuse_views(two_views(cylinder, side, 80, off, 40 + uint64_t(10 * t)), {}, &report);
+    const scan::ViewCorrection& c = report.checks[1];
+    double worst = 0;
+    const double rms = rms_to(cylinder, fused, &worst);
+    std::printf("cylinder from the side, trial %d: %s\n", t, c.reason.c_str());
+    EXPECT_TRUE(c.ambiguous);
+    EXPECT_TRUE(c.locked || !c.applied);
+    if (!c.applied) {
+      EXPECT_TRUE(report.corrections[1].isIdentity(1e-12));
+    }
+    EXPECT_NE(c.reason.find("translation along the reference's z axis"), std::string::npos) << c.reason;
+    const std::array<double, 6> e = synthetic::error_by_dof(c.information, report.corrections[1] * off);
+    std::printf("  true error / stated 3 sigma per direction:");
+    for (size_t k = 0; k < 6; ++k) {
+      const scan::PoseDirection& d = c.information.dofs[k];
+      std::printf(" %.4f/%.4f%s", std::abs(e[k]), 3 * d.sigma, d.weak ? "(weak)" : "");
+      wrong_and_certain += c.applied && !d.weak && std::abs(e[k]) > 3 * d.sigma;
+      // The slide along the axis (z) is weak.
+      if (!d.rotation && std::abs(d.axis.z()) > 0.99) {
+        EXPECT_TRUE(d.weak) << d.name;
+      }
+    }
+    std::printf("; fused rms %.3f mm, max %.3f mm\n", rms, worst);
+  }
+  EXPECT_EQ(wrong_and_certain, 0);
 }

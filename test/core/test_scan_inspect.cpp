@@ -138,7 +138,13 @@ TEST(ScanInspect, CommandLineRegisterInspectFuse) {
   std::ofstream(dir + "/right.yaml") << "units: mm\nxyz: [0, 0, 10]\nquaternion: [0, 0, 0, 1]\n";
   const CliRun fuse = run_rosmill("fuse " + dir + "/left.pcd " + dir + "/left.yaml " + dir + "/right.pcd " + dir +
                                   "/right.yaml --units mm -o " + dir + "/fused.pcd --json");
-  ASSERT_EQ(fuse.status, 0) << fuse.err;
+  // The halves meet only along the cut: their overlap fixes the second's pose only weakly, which the fusion marks
+  // (exit status 3, the view "ambiguous" naming its weak directions) while still writing the cloud.
+  ASSERT_EQ(fuse.status, 3) << fuse.err;
+  const auto f = nlohmann::json::parse(fuse.out);
+  EXPECT_TRUE(f["corrections"][1]["ambiguous"].get<bool>());
+  EXPECT_FALSE(f["corrections"][1]["weak"].empty());
+  EXPECT_NE(fuse.err.find("ambiguous"), std::string::npos) << fuse.err;
   CloudReadOptions mm;
   mm.units = Units::Millimetre;
   EXPECT_EQ(read_cloud(dir + "/fused.pcd", mm).points.size(), scan.points.size());

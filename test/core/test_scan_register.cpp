@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <limits>
 #include <random>
@@ -25,6 +26,7 @@
 #include "rosmill/scan/plane_icp.hpp"
 #include "rosmill/scan/surface_sample.hpp"
 #include "rosmill/testing/ply_mesh.hpp"
+#include "rosmill/testing/pose_error.hpp"
 #include "rosmill/testing/sanitized.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
@@ -329,4 +331,151 @@ TEST(ScanRegister, RealPartScanRecoveredAndAnotherObjectRefused) {
   const PointCloud milk = read_cloud(std::string(ROSMILL_TEST_DATA) + "/pcl_milk.pcd");
   const std::string error = error_of([&] { scan::register_design(design, milk); });
   EXPECT_NE(error.find("refused"), std::string::npos) << error;
+}
+
+namespace {
+
+// The registration of `design` seen by `sensors` (only faces within `incidence` degrees of a sensor's line) in
+// `poses` random poses: each trial's true error against its stated sigmas. Returns the trials; prints them.
+struct Trial {
+  scan::RegistrationResult result;
+  std::array<double, 6> error{};
+  double worst_ratio = 0;  // largest |error| / sigma over the six directions
+  double corner_error = 0;
+  bool refused = false;
+};
+
+// `symmetries`: motions of the design onto itself; the error is taken against the nearest pose they give (those
+// put the same surface in the same place).
+std::vector<Trial> trials(const char* name, const Mesh& design, const std::vector<Vec3>& sensors, double incidence,
+                          int poses, uint64_t seed, const std::vector<Eigen::Matrix4d>& symmetries = {}) {
+  std::mt19937_64 rng(seed);
+  std::vector<Trial> out;
+  for (int i = 0; i < poses; ++i) {
+    const PointCloud seen = synthetic::synthetic_scan(design, sensors, 30000, 0.02, seed + uint64_t(i), incidence);
+    const Eigen::Matrix4d truth = synthetic::random_rigid(rng, 200);
+    PointCloud scan;
+    scan.points = transformed_points(truth, seen.points);
+    scan.recompute_bbox();
+    Trial t;
+    try {
+      t.result = scan::register_design(design, scan);
+    } catch (const Error& e) {
+      t.refused = true;
+      std::printf("  %s pose %d: refused (%s)\n", name, i, e.what());
+      out.push_back(t);
+      continue;
+    }
+    Eigen::Matrix4d error = rigid_inverse(truth) * t.result.transform;
+    for (const Eigen::Matrix4d& s : symmetries)
+      if (rotation_angle_deg(rigid_inverse(truth) * t.result.transform * s) < rotation_angle_deg(error))
+        error = rigid_inverse(truth) * t.result.transform * s;
+    t.error = synthetic::error_by_dof(t.result.information, error);
+    t.worst_ratio = synthetic::worst_sigma_ratio(t.result.information, error);
+    t.corner_error = synthetic::box_corner_error(design, error);
+    std::printf("  %s pose %d: %s; true error / stated 3 sigma per direction:", name, i,
+                t.result.ambiguous ? "ambiguous" : "certain");
+    for (size_t k = 0; k < 6; ++k)
+      std::printf(" %.4f/%.4f", std::abs(t.error[k]), 3 * t.result.information.dofs[k].sigma);
+    std::printf(" (%s)\n", t.result.information.describe().c_str());
+    if (i == 0) std::printf("%s", scan::format_pose_information(t.result.information).c_str());
+    out.push_back(t);
+  }
+  return out;
+}
+
+// Which of the six directions are weak, as a string of 0/1 (slides along axes 1-3, turns about them).
+std::string weak_pattern(const scan::PoseInformation& info) {
+  std::string s;
+  for (const scan::PoseDirection& d : info.dofs) s += d.weak ? '1' : '0';
+  return s;
+}
+
+// How many trials were wrong (an error beyond 3 sigma in some direction) and said certain.
+int wrong_and_certain(const std::vector<Trial>& ts) {
+  int n = 0;
+  for (const Trial& t : ts) n += !t.refused && t.worst_ratio > 3;
+  return n;
+}
+
+}  // namespace
+
+// A plate seen from above along its faces only (pycam-textbox: 130 x 50 x 10 mm with engraved text; a scanner gets
+// no return from the walls at 87 degrees' incidence): the top and the pockets' floors fix z and the tilts, only the
+// outlines x, y and the turn about z. Those three are reported weak, the other three not, and every stated sigma
+// covers the true error (3 sigma).
+TEST(ScanRegister, PlateFromAboveHasXYAndTurnWeak) {
+  const Mesh design = model("pycam-textbox.stl");
+  const auto ts = trials("pycam-textbox from above", design, synthetic::sensors_above(design, 0, 1000), 60,
+                         rosmill::testing::cases(6, 1), 61);
+  for (const Trial& t : ts) {
+    ASSERT_FALSE(t.refused);
+    EXPECT_TRUE(t.result.ambiguous);
+    // The design's principal axes are its x, y, z: slides along x, y and the turn about z weak.
+    EXPECT_EQ(weak_pattern(t.result.information), "110001") << t.result.ambiguity;
+    EXPECT_NE(t.result.ambiguity.find("translation along the design's x axis"), std::string::npos) << t.result.ambiguity;
+    EXPECT_NE(t.result.ambiguity.find("rotation about the design's z axis"), std::string::npos) << t.result.ambiguity;
+  }
+  EXPECT_EQ(wrong_and_certain(ts), 0);
+}
+
+// A turned part seen from the side: a cylinder r 25 h 60 about z with 360 facets (a CAD export at a fine
+// tolerance), its caps at 90 degrees' incidence giving no return. The mantle fixes the slides across the axis and
+// the tilts; the slide along the axis only its ends' outlines fix, the turn about it only the facets' 1-degree
+// kinks. Those two are reported weak (the design's symmetry about its axis makes the pose ambiguous anyway), and no
+// stated sigma is below the true error (taken against the nearest symmetric pose).
+TEST(ScanRegister, CylinderFromTheSideHasItsAxisWeak) {
+  constexpr int kFacets = 360;
+  std::vector<Vec3> corners;  // a triangle soup, three corners a triangle, outward
+  const auto at = [](int k, double z) {
+    return Vec3(25 * std::cos(2 * M_PI * k / kFacets), 25 * std::sin(2 * M_PI * k / kFacets), z);
+  };
+  for (int k = 0; k < kFacets; ++k)
+    for (const Vec3& c : {at(k, 0), at(k + 1, 0), at(k + 1, 60), at(k, 0), at(k + 1, 60), at(k, 60), Vec3(0, 0, 60),
+                          at(k, 60), at(k + 1, 60), Vec3(0, 0, 0), at(k + 1, 0), at(k, 0)})
+      corners.push_back(c);
+  const Mesh design = build_mesh(corners);
+  std::vector<Eigen::Matrix4d> symmetries;  // turns by a facet about the axis, and turned over end for end
+  for (int k = 0; k < kFacets; ++k)
+    for (int over = 0; over < 2; ++over) {
+      Eigen::Matrix4d s = Eigen::Matrix4d::Identity();
+      s.topLeftCorner<3, 3>() = Eigen::AngleAxisd(2 * M_PI * k / kFacets, Vec3::UnitZ()).toRotationMatrix() *
+                                Eigen::AngleAxisd(over * M_PI, Vec3::UnitX()).toRotationMatrix();
+      s(2, 3) = over ? 60 : 0;
+      symmetries.push_back(s);
+    }
+  const auto ts = trials("cylinder from the side", design, {Vec3(1000, 0, 30)}, 80, rosmill::testing::cases(4, 1), 71,
+                         symmetries);
+  for (const Trial& t : ts) {
+    ASSERT_FALSE(t.refused);
+    EXPECT_TRUE(t.result.ambiguous);
+    const scan::PoseInformation& info = t.result.information;
+    // The axis is the principal axis whose weak slide and turn are reported: z in the design's frame.
+    size_t weak_slides = 0, weak_turns = 0;
+    for (const scan::PoseDirection& d : info.dofs) {
+      const bool along_axis = std::abs(d.axis.z()) > 0.99;
+      EXPECT_EQ(d.weak, along_axis) << d.name << ": sigma " << d.sigma;
+      (d.rotation ? weak_turns : weak_slides) += d.weak;
+    }
+    EXPECT_EQ(weak_slides, 1u);
+    EXPECT_EQ(weak_turns, 1u);
+    EXPECT_NE(t.result.ambiguity.find("translation along the design's z axis"), std::string::npos) << t.result.ambiguity;
+    EXPECT_NE(t.result.ambiguity.find("rotation about the design's z axis"), std::string::npos) << t.result.ambiguity;
+  }
+  EXPECT_EQ(wrong_and_certain(ts), 0);
+}
+
+// An asymmetric part seen from above and two sides (featuretype, a machined-feature test part): every direction
+// is fixed by its faces, none is weak, and the stated sigmas cover the true errors.
+TEST(ScanRegister, AsymmetricPartHasNoWeakDirection) {
+  const Mesh design = model("featuretype.STL", Units::Inch);
+  const auto ts = trials("featuretype, three views", design, synthetic::sensors_above(design, 2, 1000), 90,
+                         rosmill::testing::cases(4, 1), 81);
+  for (const Trial& t : ts) {
+    ASSERT_FALSE(t.refused);
+    EXPECT_FALSE(t.result.ambiguous) << t.result.ambiguity;
+    EXPECT_EQ(weak_pattern(t.result.information), "000000");
+    EXPECT_LT(t.result.translation_sigma, 0.05);
+  }
+  EXPECT_EQ(wrong_and_certain(ts), 0);
 }

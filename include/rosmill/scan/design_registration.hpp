@@ -6,10 +6,10 @@
 //      worse candidate drops out; the best fit wins.
 //   2. Fine: point-to-plane ICP (plane_icp.hpp) with shrinking pairing distance on up to `fine_points` scan points.
 //   3. Fitness from exact point-to-triangle distances (mesh_distance.hpp): RMS of the inliers, inlier share,
-//      overlap (share of the design the scan covers); the pose's uncertainty from the point-to-plane normal
-//      equations (covariance ~ rms^2 (J^T J)^-1, the estimate that Censi, "An accurate closed-form estimate of
-//      ICP's covariance" (2007), starts from); ambiguity when another candidate pose fits as well, or when the
-//      seen surface leaves a direction unconstrained (a turned part about its axis, a plane).
+//      overlap (share of the design the scan covers); how well the fine step's pairs fix each of the six degrees
+//      of freedom in the design's principal frame, with a sigma per direction that covers the outlines' bias
+//      (pose_information.hpp); ambiguity when another candidate pose fits as well, or when a direction is fixed
+//      only weakly (a turned part about its axis, a plate seen from above along its faces).
 //   4. Refusal (Error, nothing returned) below the thresholds of the options.
 #pragma once
 #include <string>
@@ -20,6 +20,7 @@
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
 #include "rosmill/scan/phase_clock.hpp"
+#include "rosmill/scan/pose_information.hpp"
 
 namespace rosmill::core::scan {
 
@@ -35,6 +36,7 @@ struct RegistrationOptions {
   size_t coarse_points = 3000;      // about this many voxel-thinned scan points for the global step
   size_t fine_points = 20000;       // at most this many scan points for the fine step and the fitness
   uint64_t seed = 1;                // of the design sampling
+  PoseInformationOptions information;  // when a direction counts as weak, the sigmas' floor
   void check() const;               // Error naming the option out of range
 };
 
@@ -46,8 +48,9 @@ struct RegistrationResult {
   bool ambiguous = false;
   std::string ambiguity;     // why, when ambiguous
   std::vector<Eigen::Matrix4d> alternatives;  // other poses that fit about as well
-  double translation_sigma = 0;  // mm, 1-sigma along the worst direction
+  double translation_sigma = 0;  // mm, 1-sigma along the worst direction (infinity: a free one)
   double rotation_sigma_deg = 0;
+  PoseInformation information;   // per degree of freedom, in the design's principal frame
   size_t candidates = 0;     // global candidates tried
   size_t scan_points_used = 0;
   double global_seconds = 0, fine_seconds = 0;

@@ -10,14 +10,18 @@
 namespace rosmill::core::synthetic {
 
 PointCloud synthetic_scan(const Mesh& design, const std::vector<Vec3>& sensors, size_t samples, double noise,
-                          uint64_t seed) {
+                          uint64_t seed, double max_incidence_deg) {
+  const double least_cosine = std::cos(max_incidence_deg * M_PI / 180);
   const scan::SurfaceSample s = scan::sample_surface(design, samples, seed);
   std::mt19937_64 rng(seed ^ 0x9e3779b97f4a7c15ull);
   std::normal_distribution<double> gauss(0.0, noise);
   PointCloud cloud;
   for (size_t i = 0; i < s.points.size(); ++i) {
     bool seen = false;
-    for (const Vec3& sensor : sensors) seen = seen || s.normals[i].dot(sensor - s.points[i]) > 0;
+    for (const Vec3& sensor : sensors) {
+      const Vec3 to = sensor - s.points[i];
+      seen = seen || (s.normals[i].dot(to) > 0 && (max_incidence_deg >= 90 || s.normals[i].dot(to) >= least_cosine * to.norm()));
+    }
     if (!seen) continue;
     cloud.points.push_back(s.points[i] + Vec3(gauss(rng), gauss(rng), gauss(rng)));
   }

@@ -14,9 +14,11 @@
 namespace rosmill::core::synthetic {
 
 // The points (design frame, mm) of `samples` surface samples that some sensor in `sensors` (positions, design
-// frame) faces, each moved by noise of standard deviation `noise` mm per axis.
+// frame) faces, each moved by noise of standard deviation `noise` mm per axis. With `max_incidence_deg` below 90
+// a sensor sees only surface whose normal lies within that angle of the line to it (a real scanner gets no return
+// from grazing faces: from above, a plate's side walls and a pocket's walls are not seen).
 PointCloud synthetic_scan(const Mesh& design, const std::vector<Vec3>& sensors, size_t samples, double noise,
-                          uint64_t seed);
+                          uint64_t seed, double max_incidence_deg = 90);
 
 // A uniformly random rotation (a normalised Gaussian quaternion) and a translation uniform in
 // [-max_translation, max_translation]^3.
