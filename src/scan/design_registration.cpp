@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/number_text.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/covered_share.hpp"
 #include "rosmill/scan/design_symmetry.hpp"
@@ -132,23 +133,15 @@ std::vector<Fit> race_candidates(const PlaneIcp& icp, const NearSurfaceCells& ce
   return fits;
 }
 
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
-
 std::string vector_text(const Vec3& a) {
-  return "(" + fixed(a.x(), 3) + ", " + fixed(a.y(), 3) + ", " + fixed(a.z(), 3) + ")";
+  return "(" + decimal_text(a.x(), 3) + ", " + decimal_text(a.y(), 3) + ", " + decimal_text(a.z(), 3) + ")";
 }
 
 // "a 180.0 deg turn about (0.000, 1.000, 0.000)": a rigid motion in words.
 std::string describe_motion(const Eigen::Matrix4d& m) {
   const Eigen::AngleAxisd turn(Eigen::Matrix3d(m.topLeftCorner<3, 3>()));
   const Vec3& a = turn.axis();
-  return "a " + fixed(turn.angle() * 180 / M_PI, 1) + " deg turn about " + vector_text(a);
+  return "a " + decimal_text(turn.angle() * 180 / M_PI, 1) + " deg turn about " + vector_text(a);
 }
 
 SymmetryOptions symmetry_options(const RegistrationOptions& o) {
@@ -205,7 +198,7 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   const double leaf = std::sqrt(area / double(o.coarse_points));
   const std::vector<Vec3> coarse = thin_by_voxel(scan.points, leaf);
   if (coarse.size() < 10) throw Error(kWhere, "the scan is too small for the design: " + std::to_string(coarse.size()) +
-                                                  " points at the design's sampling of " + fixed(leaf, 3) + " mm");
+                                                  " points at the design's sampling of " + decimal_text(leaf, 3) + " mm");
   const std::vector<Eigen::Matrix4d> candidates =
       principal_axes_candidates(design_frame, principal_frame(coarse), o.moment_tolerance);
   r.candidates = candidates.size();
@@ -342,16 +335,16 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   r.ambiguous = !r.ambiguity.empty();
 
   if (r.inlier_share < o.min_inlier_share)
-    throw Error(kWhere, "refused: only " + fixed(100 * r.inlier_share, 1) + "% of the scan lies within " +
-                            fixed(o.inlier_distance, 3) + " mm of the design (minimum " +
-                            fixed(100 * o.min_inlier_share, 1) + "%): the scan does not show this part, or shows "
+    throw Error(kWhere, "refused: only " + decimal_text(100 * r.inlier_share, 1) + "% of the scan lies within " +
+                            decimal_text(o.inlier_distance, 3) + " mm of the design (minimum " +
+                            decimal_text(100 * o.min_inlier_share, 1) + "%): the scan does not show this part, or shows "
                             "much besides it (crop the table and clamps)");
   if (r.rms > o.max_rms)
-    throw Error(kWhere, "refused: the RMS distance " + fixed(r.rms, 4) + " mm exceeds the maximum " +
-                            fixed(o.max_rms, 4) + " mm");
+    throw Error(kWhere, "refused: the RMS distance " + decimal_text(r.rms, 4) + " mm exceeds the maximum " +
+                            decimal_text(o.max_rms, 4) + " mm");
   if (r.overlap < o.min_overlap)
-    throw Error(kWhere, "refused: the scan covers " + fixed(100 * r.overlap, 1) + "% of the design (minimum " +
-                            fixed(100 * o.min_overlap, 1) + "%)");
+    throw Error(kWhere, "refused: the scan covers " + decimal_text(100 * r.overlap, 1) + "% of the design (minimum " +
+                            decimal_text(100 * o.min_overlap, 1) + "%)");
   return r;
 }
 
@@ -359,13 +352,13 @@ std::string format_registration(const RegistrationResult& r) {
   std::ostringstream s;
   s << "transform (design -> scan, mm, row-major):\n";
   for (int i = 0; i < 4; ++i)
-    s << "  " << fixed(r.transform(i, 0), 9) << ' ' << fixed(r.transform(i, 1), 9) << ' ' << fixed(r.transform(i, 2), 9)
-      << ' ' << fixed(r.transform(i, 3), 6) << '\n';
-  s << "rms: " << fixed(r.rms, 5) << " mm\ninlier share: " << fixed(r.inlier_share, 4) << "\noverlap: "
-    << fixed(r.overlap, 4) << "\nuncertainty (1 sigma, worst direction): " << r.translation_sigma << " mm, "
+    s << "  " << decimal_text(r.transform(i, 0), 9) << ' ' << decimal_text(r.transform(i, 1), 9) << ' ' << decimal_text(r.transform(i, 2), 9)
+      << ' ' << decimal_text(r.transform(i, 3), 6) << '\n';
+  s << "rms: " << decimal_text(r.rms, 5) << " mm\ninlier share: " << decimal_text(r.inlier_share, 4) << "\noverlap: "
+    << decimal_text(r.overlap, 4) << "\nuncertainty (1 sigma, worst direction): " << r.translation_sigma << " mm, "
     << r.rotation_sigma_deg << " deg\n" << format_pose_information(r.information) << "ambiguous: " << (r.ambiguous ? "yes (" + r.ambiguity + ")" : std::string("no")) << "\ncandidates: "
-    << r.candidates << ", scan points used: " << r.scan_points_used << "\ntime: global " << fixed(r.global_seconds, 3)
-    << " s, fine " << fixed(r.fine_seconds, 3) << " s\n";
+    << r.candidates << ", scan points used: " << r.scan_points_used << "\ntime: global " << decimal_text(r.global_seconds, 3)
+    << " s, fine " << decimal_text(r.fine_seconds, 3) << " s\n";
   return s.str();
 }
 

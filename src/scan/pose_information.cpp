@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "rosmill/error.hpp"
+#include "rosmill/number_text.hpp"
 
 namespace rosmill::core::scan {
 namespace {
@@ -28,20 +29,12 @@ Vector6 row(const PlanePair& p, const Vec3& centre, const Eigen::Matrix3d& axes,
   return j;
 }
 
-std::string number(double v, int digits) {
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(digits);
-  s << v;
-  return s.str();
-}
-
 // "the design's x axis" when the axis lies within 10 degrees of a coordinate axis, else its direction.
 std::string axis_name(const Vec3& axis, const std::string& frame) {
   static const char* const kNames[3] = {"x", "y", "z"};
   for (int k = 0; k < 3; ++k)
     if (std::abs(axis[k]) > std::cos(10 * M_PI / 180)) return "the " + frame + "'s " + kNames[k] + " axis";
-  return "(" + number(axis.x(), 3) + ", " + number(axis.y(), 3) + ", " + number(axis.z(), 3) + ") in the " + frame +
+  return "(" + decimal_text(axis.x(), 3) + ", " + decimal_text(axis.y(), 3) + ", " + decimal_text(axis.z(), 3) + ") in the " + frame +
          "'s frame";
 }
 
@@ -205,12 +198,12 @@ std::string PoseInformation::describe() const {
     if (d.free)
       s << "free: nothing seen constrains it";
     else
-      s << "1 sigma " << number(d.sigma, d.rotation ? 3 : 4) << (d.rotation ? " deg" : " mm")
+      s << "1 sigma " << decimal_text(d.sigma, d.rotation ? 3 : 4) << (d.rotation ? " deg" : " mm")
         << (d.outline_only ? ", fixed only by outlines" : "");
     s << ")";
   }
   if (!weak.empty())
-    s << ": weak beyond a 1-sigma " << number(max_sigma, 3) << " mm (a turn's at " << number(radius, 1)
+    s << ": weak beyond a 1-sigma " << decimal_text(max_sigma, 3) << " mm (a turn's at " << decimal_text(radius, 1)
       << " mm from the centre)";
   return s.str();
 }
@@ -218,16 +211,16 @@ std::string PoseInformation::describe() const {
 std::string format_pose_information(const PoseInformation& info) {
   std::ostringstream s;
   s << "degrees of freedom (principal frame, turns about the centroid, information per pair at radius "
-    << number(info.radius, 1) << " mm; " << info.surface_pairs << " surface and " << info.outline_pairs
+    << decimal_text(info.radius, 1) << " mm; " << info.surface_pairs << " surface and " << info.outline_pairs
     << " outline pairs):\n";
   for (const PoseDirection& d : info.dofs) {
     s << "  " << d.name << ": sigma ";
     if (d.free)
       s << "free";
     else
-      s << number(d.sigma, 4) << (d.rotation ? " deg" : " mm");
-    s << ", information surface " << number(d.surface_information, 5) << " + outlines "
-      << number(d.outline_information, 5) << (d.weak ? " (weak)" : "") << "\n";
+      s << decimal_text(d.sigma, 4) << (d.rotation ? " deg" : " mm");
+    s << ", information surface " << decimal_text(d.surface_information, 5) << " + outlines "
+      << decimal_text(d.outline_information, 5) << (d.weak ? " (weak)" : "") << "\n";
   }
   return s.str();
 }

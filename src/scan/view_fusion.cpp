@@ -9,6 +9,7 @@
 
 #include "rosmill/cloud/cloud_prep.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/number_text.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/covered_share.hpp"
 #include "rosmill/scan/plane_icp.hpp"
@@ -108,7 +109,7 @@ bool accept(ViewCorrection& c, const FusionOptions& o) {
     why << (c.exceeds_pose_error ? "; " : "") << "the overlap fixes the view's pose only weakly along: "
         << c.information.describe()
         << (c.locked ? "; the view keeps its given pose along the motions fixed no better than a 1-sigma " : "")
-        << (c.locked ? std::to_string(o.lock_sigma).substr(0, 5) + " mm, corrected along the others"
+        << (c.locked ? decimal_text(o.lock_sigma, 2) + " mm, corrected along the others"
                      : "; corrected along all of them");
   c.reason = why.str();
   c.applied = !c.exceeds_pose_error;
