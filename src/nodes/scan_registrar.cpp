@@ -25,6 +25,7 @@
 #include "rosmill/ros/input_diagnostics.hpp"
 #include "rosmill/ros/node_main.hpp"
 #include "rosmill/ros/params.hpp"
+#include "rosmill/ros/scan_params.hpp"
 #include "rosmill/ros/scan_report_msg.hpp"
 #include "rosmill/ros/scan_session.hpp"
 #include "rosmill/ros/transform_wait.hpp"
@@ -41,7 +42,7 @@ class ScanRegistrar {
         tf_listener_(tf_),
         session_(tf_, string_param(pnh, "fixed_frame", "table"), double_param(pnh, "transform_timeout", 0.5, 0, 30)),
         diagnostics_(nh, "scan") {
-    read_options(pnh);
+    read_scan_options(pnh, fusion_, registration_);
     const std::string design = string_param(pnh, "design", "");
     if (!design.empty()) {
       StlReadOptions o;
@@ -62,18 +63,6 @@ class ScanRegistrar {
   }
 
  private:
-  void read_options(const ::ros::NodeHandle& pnh) {
-    fusion_.voxel = double_param(pnh, "voxel", 0.0, 0.0, 100.0);
-    fusion_.outlier_neighbours = int_param(pnh, "outlier_neighbours", 0, 0, 200);
-    fusion_.rounds = int_param(pnh, "fusion_rounds", fusion_.rounds, 1, 10);
-    fusion_.max_correction = double_param(pnh, "max_correction", fusion_.max_correction, 0.01, 1000.0);
-    scan::RegistrationOptions& r = registration_;
-    r.inlier_distance = double_param(pnh, "inlier_distance", r.inlier_distance, 1e-3, 100.0);
-    r.min_inlier_share = double_param(pnh, "min_inlier_share", r.min_inlier_share, 0.0, 1.0);
-    r.max_rms = double_param(pnh, "max_rms", r.max_rms, 1e-4, 100.0);
-    r.min_overlap = double_param(pnh, "min_overlap", r.min_overlap, 0.0, 1.0);
-  }
-
   void on_mesh(const shape_msgs::Mesh::ConstPtr& msg) {
     try {
       auto mesh = std::make_shared<const Mesh>(from_mesh_msg(*msg, "mesh"));
@@ -93,20 +82,9 @@ class ScanRegistrar {
     return design_;
   }
 
-  // Runs a request, answering its success and message; a refusal is logged and on /diagnostics.
   template <class Response, class Fn>
   bool answer(const char* what, Response& res, Fn&& fn) {
-    try {
-      res.message = fn();
-      res.success = true;
-      diagnostics_.accepted(what, res.message);
-    } catch (const std::exception& e) {
-      res.success = false;
-      res.message = e.what();
-      ROS_WARN("scan_registrar: %s: %s", what, e.what());
-      diagnostics_.rejected(what, e.what());
-    }
-    return true;
+    return diagnostics_.answer("scan_registrar", what, res, std::forward<Fn>(fn));
   }
 
   bool on_start(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -124,13 +102,7 @@ class ScanRegistrar {
       scan::FusionReport report;
       const PointCloud fused = session_.finish(fusion_, report);
       fused_pub_.publish(to_cloud_msg(fused, session_.fixed_frame()));
-      std::string withheld;  // a correction the overlap does not fix is never applied silently
-      for (size_t i = 0; i < report.checks.size(); ++i)
-        if (!report.checks[i].applied || report.checks[i].ambiguous)
-          withheld += "; view " + std::to_string(i + 1) +
-                      (report.checks[i].applied ? " is ambiguous: " : " keeps its given pose: ") + report.checks[i].reason;
-      return std::to_string(session_.views()) + " views fused: " + std::to_string(report.points_out) + " of " +
-             std::to_string(report.points_in) + " points in '" + session_.fixed_frame() + "'" + withheld;
+      return fusion_summary(report, session_.views(), session_.fixed_frame());
     });
   }
 
@@ -146,9 +118,7 @@ class ScanRegistrar {
                                                                                  cloud.points), inspection(0)),
                          0);
       if (!req.dry_run) tf_broadcaster_.sendTransform(res.transform);
-      return std::string(req.dry_run ? "fit (dry run, not published)" : "published") + ": rms " +
-             std::to_string(r.rms) + " mm, inlier share " + std::to_string(r.inlier_share) +
-             (r.ambiguous ? ", ambiguous: " + r.ambiguity : "");
+      return registration_summary(r, req.dry_run);
     });
   }
 
@@ -167,9 +137,7 @@ class ScanRegistrar {
       fill_response(r, tolerance, req.use_workpiece_frame, res);
       publish_deviations(r, tolerance);
       if (!req.stock_out.empty()) write_cloud(req.stock_out, PointCloud{r.points, {}}, Units::Metre);
-      return std::to_string(r.deviations.size()) + " points, largest excess " +
-             std::to_string(r.largest_excess.distance) + " mm, " + std::to_string(r.above_tolerance) +
-             " above the tolerance";
+      return inspection_summary(r);
     });
   }
 

@@ -86,4 +86,24 @@ visualization_msgs::MarkerArray deviation_markers(const scan::InspectionReport& 
   return array;
 }
 
+std::string fusion_summary(const scan::FusionReport& r, size_t views, const std::string& frame) {
+  std::string withheld;
+  for (size_t i = 0; i < r.checks.size(); ++i)
+    if (!r.checks[i].applied || r.checks[i].ambiguous)
+      withheld += "; view " + std::to_string(i + 1) +
+                  (r.checks[i].applied ? " is ambiguous: " : " keeps its given pose: ") + r.checks[i].reason;
+  return std::to_string(views) + " views fused: " + std::to_string(r.points_out) + " of " +
+         std::to_string(r.points_in) + " points in '" + frame + "'" + withheld;
+}
+
+std::string registration_summary(const scan::RegistrationResult& r, bool dry_run) {
+  return std::string(dry_run ? "fit (dry run, not published)" : "published") + ": rms " + std::to_string(r.rms) +
+         " mm, inlier share " + std::to_string(r.inlier_share) + (r.ambiguous ? ", ambiguous: " + r.ambiguity : "");
+}
+
+std::string inspection_summary(const scan::InspectionReport& r) {
+  return std::to_string(r.deviations.size()) + " points, largest excess " + std::to_string(r.largest_excess.distance) +
+         " mm, " + std::to_string(r.above_tolerance) + " above the tolerance";
+}
+
 }  // namespace rosmill::edge

@@ -18,6 +18,23 @@ class InputDiagnostics {
   void accepted(const std::string& input, const std::string& summary);
   void rejected(const std::string& input, const std::string& reason);
 
+  // Runs a service request: `fn` returns its message. The response's success and message are set, and the request
+  // recorded as accepted, or as rejected and logged as a warning of `node`. Always true (the call was answered).
+  template <class Response, class Fn>
+  bool answer(const char* node, const char* what, Response& res, Fn&& fn) {
+    try {
+      res.message = fn();
+      res.success = true;
+      accepted(what, res.message);
+    } catch (const std::exception& e) {
+      res.success = false;
+      res.message = e.what();
+      ROS_WARN("%s: %s: %s", node, what, e.what());
+      rejected(what, e.what());
+    }
+    return true;
+  }
+
  private:
   void record(bool ok, const std::string& input, const std::string& text);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& d);

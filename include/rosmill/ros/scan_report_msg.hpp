@@ -10,6 +10,7 @@
 #include "rosmill/ros/namespaces.hpp"
 #include "rosmill/scan/design_registration.hpp"
 #include "rosmill/scan/inspection.hpp"
+#include "rosmill/scan/view_fusion.hpp"
 
 namespace rosmill::edge {
 
@@ -20,6 +21,12 @@ geometry_msgs::TransformStamped workpiece_transform(const scan::RegistrationResu
 void fill_response(const scan::RegistrationResult& r, const std::string& parent, const std::string& child,
                    RegisterScan::Response& res);
 void fill_response(const scan::InspectionReport& r, double tolerance_mm, bool registered, InspectScan::Response& res);
+
+// The services' one-line answers. A fusion names each view whose correction was held back or is ambiguous: a
+// correction the overlap does not fix is never applied silently.
+std::string fusion_summary(const scan::FusionReport& r, size_t views, const std::string& frame);
+std::string registration_summary(const scan::RegistrationResult& r, bool dry_run);
+std::string inspection_summary(const scan::InspectionReport& r);
 
 // At most `max_points` of the scan (evenly thinned), in `header.frame_id` (the workpiece frame).
 visualization_msgs::MarkerArray deviation_markers(const scan::InspectionReport& r, double tolerance_mm,
