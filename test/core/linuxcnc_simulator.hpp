@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +66,21 @@ class Simulator {
     o.program_dir = programs_;
     o.program_name = "test.ngc";
     return std::make_unique<LinuxcncController>("127.0.0.1", port_, o);
+  }
+
+  // The simulator's machine time in seconds (scripts/linuxcnc-sim clock): servo periods counted at their nominal
+  // length, so a loaded computer that runs the servo thread late does not stretch it. `motion` counts only the
+  // periods in which the trajectory planner had motion to run.
+  struct Clock {
+    double all = NAN, motion = NAN;
+  };
+  Clock clock() const {
+    const std::string out = root_ + "/clock.out";
+    const std::string cmd = ROSMILL_SOURCE_DIR "/scripts/linuxcnc-sim clock " + root_ + "/sim >" + out + " 2>&1";
+    Clock c;
+    if (std::system(cmd.c_str()) != 0 || !(std::istringstream(slurp(out)) >> c.all >> c.motion))
+      throw std::runtime_error("scripts/linuxcnc-sim clock failed: " + slurp(out));
+    return c;
   }
 
   // The tool length the simulator's tool table gives tool `id` (its Z column): G43 adds it to machine Z.
