@@ -7,9 +7,7 @@
 //   prints per program: lines, estimate s, simulator s (start to end, within a second), simulator motion s,
 //   estimate / simulator motion.
 
-#include <chrono>
 #include <cstdio>
-#include <thread>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -55,25 +53,9 @@ int main(int argc, char** argv) {
     for (const std::string& path : programs) {
       const std::vector<std::string> lines = gcode::read_program_lines(path);
       const double estimate = gcode::estimate_cycle_time(lines, machine.trajectory, path).seconds;
-      const auto before = sim.clock();
-      const control::ControllerStatus s = control::run_to_end(*c, lines, control::SendOptions{}, {}, 120.0);
-      // linuxcncrsh may report the program idle while the planner still runs it: the end is when the motion clock
-      // has stood still for 3 s.
-      auto after = sim.clock();
-      for (int still = 0; still < 3;) {
-        std::this_thread::sleep_for(std::chrono::seconds(1));
-        const auto now = sim.clock();
-        if (now.motion > after.motion) {
-          after = now;
-          still = 0;
-        } else {
-          ++still;
-        }
-      }
-      const double run = after.all - before.all, motion = after.motion - before.motion;
-      std::printf("%-60s %7zu %10.1f %10.1f %10.1f %7.3f%s (line %zu at the reported end)\n", path.c_str(),
-                  lines.size(), estimate, run, motion, estimate / motion,
-                  s.state == control::RunState::Finished ? "" : "  (did not finish)", s.current_line);
+      const auto t = sim.run_timed(*c, lines, 3.0);
+      std::printf("%-60s %7zu %10.1f %10.1f %10.1f %7.3f\n", path.c_str(),
+                  lines.size(), estimate, t.all, t.motion, estimate / t.motion);
       std::fflush(stdout);
     }
     c->disconnect();

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -12,8 +13,11 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "rosmill/control/linuxcnc.hpp"
+#include "rosmill/control/program_run.hpp"
 
 namespace sim_test {
 
@@ -81,6 +85,28 @@ class Simulator {
     if (std::system(cmd.c_str()) != 0 || !(std::istringstream(slurp(out)) >> c.all >> c.motion))
       throw std::runtime_error("scripts/linuxcnc-sim clock failed: " + slurp(out));
     return c;
+  }
+
+  // Runs `program` to its end on controller `c` and returns the machine time it took: `all` from its start until
+  // the motion clock last moved, `motion` while the planner had motion to run. linuxcncrsh may report a program idle
+  // while the planner still runs it, so the end is when the motion clock has stood still for `settle_s` (wall).
+  Clock run_timed(rosmill::core::control::Controller& c, const std::vector<std::string>& program,
+                  double settle_s = 2.0) const {
+    const Clock before = clock();
+    const auto s = rosmill::core::control::run_to_end(c, program, rosmill::core::control::SendOptions{}, {}, 120.0);
+    if (s.state != rosmill::core::control::RunState::Finished)
+      throw std::runtime_error("the program did not run to its end: " + s.error);
+    Clock after = clock();
+    for (auto still = std::chrono::steady_clock::now();
+         std::chrono::steady_clock::now() - still < std::chrono::duration<double>(settle_s);) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+      const Clock now = clock();
+      if (now.motion > after.motion) {
+        after = now;
+        still = std::chrono::steady_clock::now();
+      }
+    }
+    return {after.all - before.all, after.motion - before.motion};
   }
 
   // The tool length the simulator's tool table gives tool `id` (its Z column): G43 adds it to machine Z.
