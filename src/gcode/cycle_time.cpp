@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/interpreter.hpp"
@@ -26,7 +27,23 @@ struct Element {
   Vec3 start_dir = Vec3::Zero(), end_dir = Vec3::Zero();
   bool rapid = false, arc = false;
   double v_req = 0, v_max = 0, a_max = 0;  // mm/s, mm/s, mm/s^2 along the path
+  // Arcs: the plane's normal, the radius, the feed and the axes' own limits (before the normal acceleration's share).
+  Vec3 normal = Vec3::Zero();
+  double radius = 0, feed = 0, v_axes = 0, a_axes = 0;
 };
+
+struct ArcLimits {
+  double v_max, a_tangential;
+};
+
+// The normal acceleration v^2 / R takes its share of the acceleration `a` (pmCircleActualMaxVel): at the speed that
+// needs the normal share the arc keeps the tangential share; slower, what is left of the whole.
+ArcLimits arc_limits(double v_axes, double a, double radius) {
+  const double v_cut = std::sqrt(kNormalShare * a * radius);
+  if (v_axes > v_cut) return {v_cut, a * kTangentialShare};
+  const double an = v_axes * v_axes / radius / a;
+  return {v_axes, std::isfinite(a) ? a * std::sqrt(std::max(0.0, 1.0 - an * an)) : INFINITY};
+}
 
 // A segment of the planner's queue: a move (less what blends took of it) or a blend arc.
 struct Segment {
@@ -106,18 +123,15 @@ Element arc_element(const CanonMove& m, const TrajectoryLimits& lim) {
     if (lim.max_velocity[i] > 0) v_axes = std::min(v_axes, lim.max_velocity[i]);
     if (lim.max_acceleration[i] > 0) a = std::min(a, lim.max_acceleration[i]);
   }
-  // The normal acceleration v^2 / R takes its share of the acceleration (pmCircleActualMaxVel): at the speed
-  // that needs the normal share the arc keeps the tangential share; slower, what is left of the whole.
-  const double v_cut = std::sqrt(kNormalShare * a * radius);
-  if (v_axes > v_cut) {
-    e.v_max = v_cut;
-    e.a_max = a * kTangentialShare;
-  } else {
-    e.v_max = v_axes;
-    const double an = v_axes * v_axes / radius / a;
-    e.a_max = std::isfinite(a) ? a * std::sqrt(std::max(0.0, 1.0 - an * an)) : INFINITY;
-  }
+  const ArcLimits l = arc_limits(v_axes, a, radius);
+  e.v_max = l.v_max;
+  e.a_max = l.a_tangential;
   e.v_req = std::min<double>(m.feed / 60.0, e.v_max);
+  e.normal[ax.normal] = 1;
+  e.radius = radius;
+  e.feed = m.feed / 60.0;
+  e.v_axes = v_axes;
+  e.a_axes = a;
   return e;
 }
 
@@ -148,7 +162,13 @@ Junction junction(const Element& p, double p_remaining, const Element& n, double
                   const TrajectoryLimits& lim) {
   Junction j;
   if (!(tolerance > 0) || p.length <= 0 || n.length <= 0) return j;
-  if (p.rapid != n.rapid) {  // tpCheckCanonType: a rapid meeting a feed blends parabolically
+  // tpCheckCanonType: a rapid meeting a feed blends parabolically; so does a line meeting an arc out of its plane
+  // (a plunge into a circle), for which no blend arc exists.
+  const auto out_of_plane = [](const Element& arc, const Element& other) {
+    if (!arc.arc) return false;
+    return other.arc ? arc.normal.cross(other.normal).norm() > 1e-3 : std::abs(arc.normal.dot(other.end_dir)) > 1e-3;
+  };
+  if (p.rapid != n.rapid || out_of_plane(p, n) || out_of_plane(n, p)) {
     j.kind = Junction::Parabolic;
     j.overlap = parabolic_overlap(p, n, p_remaining, tolerance);
     return j;
@@ -224,9 +244,19 @@ std::vector<Segment> queue(const std::vector<Element>& moves, const std::vector<
     if (k + 1 < moves.size()) j = junction(e, remaining, moves[k + 1], tolerance[k], lim);
     Segment s;
     s.length = std::max(0.0, remaining - j.trim_prev);
-    s.v_max = std::min(e.v_req, e.length / lim.servo_period);  // tcClampVelocityByLength: a period at least
     const bool parabolic = j.kind == Junction::Parabolic;
-    s.a = e.a_max * (halve_start || parabolic ? 0.5 : 1.0);  // tpGetScaledAccel
+    double v_req = e.v_req, a = e.a_max;
+    if (halve_start || parabolic) {  // tpGetScaledAccel: half the acceleration where a parabolic blend overlaps
+      if (e.arc) {  // an arc's speed limit is then that of half its acceleration (tcFinalizeLength)
+        const ArcLimits l = arc_limits(e.v_axes, e.a_axes * 0.5, e.radius);
+        v_req = std::min(e.feed, l.v_max);
+        a = l.a_tangential;
+      } else {
+        a *= 0.5;
+      }
+    }
+    s.v_max = std::min(v_req, e.length / lim.servo_period);  // tcClampVelocityByLength: a period at least
+    s.a = a;
     s.overlap = j.overlap;
     if (j.kind == Junction::Tangent) s.end_cap = std::min(j.cap, s.v_max);
     if (j.kind == Junction::Arc) s.end_cap = std::min(j.cap, s.v_max);
@@ -295,7 +325,44 @@ class Timer {
   }
   void wait(double seconds) { result_.seconds += std::max(0.0, seconds); }
   void blend(double tolerance) { tolerance_now_ = tolerance; }
-  void move(const CanonMove& m) {
+  // The program's G54 origin on the machine (G10 L2): where the tool change position lies in its coordinates.
+  void origin(const Vec3& machine) { origin_ = machine; }
+
+  // M6: the machine stops, moves the tool to the tool change position in one rapid, changes it; the next move
+  // starts there.
+  void tool_change(const Vec3& at) {
+    stop();
+    if (lim_.has_tool_change_position) {
+      CanonMove to_change;
+      to_change.from = at;
+      to_change.to = lim_.tool_change_position - origin_;
+      to_change.rapid = true;
+      move(to_change);
+      stop();
+      start_ = to_change.to;
+    }
+    wait(lim_.tool_change_seconds);
+  }
+  // M3/M4 at `rpm` (after the moves before it): the spindle accelerates while the next rapids run; the first feed
+  // move waits until it is at speed.
+  void spindle(double rpm) {
+    stop();
+    wait(lim_.spindle_start_seconds);
+    if (lim_.spindle_acceleration > 0 && rpm > rpm_)
+      at_speed_ = now() + (lim_.spindle_at_speed_share * rpm - rpm_) / lim_.spindle_acceleration;
+    rpm_ = rpm;
+  }
+  void spindle_stop() {
+    stop();
+    rpm_ = 0;
+  }
+  void move(const CanonMove& given) {
+    CanonMove m = given;
+    if (start_) {
+      m.from = *start_;
+      m.known_from = 7;
+      start_.reset();
+    }
     if (m.indexes()) {
       stop();
       result_.motion_seconds += rotary_seconds(m, lim_);
@@ -303,6 +370,11 @@ class Timer {
     }
     const Element e = m.is_arc() ? arc_element(m, lim_) : line_element(m, lim_);
     if (e.length <= 1e-9) return;  // the planner drops a move that goes nowhere
+    if (!m.rapid && at_speed_ > 0) {  // the planner holds the first feed move until the spindle is at speed
+      stop();
+      wait(at_speed_ - now());
+      at_speed_ = 0;
+    }
     moves_.push_back(e);
     tolerance_.push_back(tolerance_now_);
   }
@@ -313,10 +385,15 @@ class Timer {
   }
 
  private:
+  double now() const { return result_.seconds + result_.motion_seconds; }  // of the moves planned so far
+
   const TrajectoryLimits& lim_;
   std::vector<Element> moves_;
   std::vector<double> tolerance_;  // G64 P in force at each move's end
   double tolerance_now_ = 0;       // exact stop until the program sets G64
+  Vec3 origin_ = Vec3::Zero();
+  std::optional<Vec3> start_;      // where the next move starts when the reader cannot know (after a tool change)
+  double rpm_ = 0, at_speed_ = 0;
   CycleTime result_;
 };
 
@@ -335,13 +412,17 @@ CycleTime estimate_cycle_time(const std::vector<std::string>& program, const Tra
   for (size_t k = 0; k < program.size(); ++k) {
     const Block& b = in.read(program[k], k + 1);
     // What the block does before it moves (RS274/NGC's order of execution): these wait for the motion queue.
-    if (has_any_m(b, {3, 4, 5, 6, 7, 8, 9}) || b.has_g(40) || b.has_g(430) || b.has_g(490) || b.has_g(100)) timer.stop();
-    if (b.has_m(6)) timer.wait(limits.tool_change_seconds);
-    if (b.has_m(3) || b.has_m(4)) timer.wait(limits.spindle_start_seconds);
+    if (has_any_m(b, {7, 8, 9}) || b.has_g(40) || b.has_g(430) || b.has_g(490) || b.has_g(100) || b.has_g(530))
+      timer.stop();
+    if (b.has_m(6)) timer.tool_change(in.state().position);
+    if (b.has_m(3) || b.has_m(4)) timer.spindle(in.state().spindle_rpm);
+    if (b.has_m(5)) timer.spindle_stop();
     if (b.has_g(40)) timer.wait(b.get('P'));
+    // G10 L2 P1 (or P0 while G54 is in force): the G54 origin the program sets on the machine.
+    if (b.has_g(100) && b.get('L') == 2 && (b.get('P') == 1 || (b.get('P') == 0 && in.state().work_offset == 54)))
+      timer.origin(Vec3(b.has('X') ? b.get('X') : 0, b.has('Y') ? b.get('Y') : 0, b.has('Z') ? b.get('Z') : 0));
     if (b.has_g(610) || b.has_g(611)) timer.blend(0);
     if (b.has_g(640)) timer.blend(b.has('P') ? b.get('P') : 1e9);  // G64 alone: as fast as the corners allow
-    if (b.has_g(530)) timer.stop();  // a machine-coordinate move: its length needs the offsets in force
     if (in.moved()) timer.move(in.move());
     if (in.state().ended) break;
   }

@@ -73,7 +73,8 @@ void read_trajectory(const YAML::Node& t, const std::string& path, TrajectoryLim
   if (!t.IsMap()) throw Error(where, "must be a map");
   static const std::set<std::string> known = {"max_velocity", "max_linear_velocity", "max_linear_acceleration",
                                              "servo_period", "optimization_depth", "arc_blend", "tangent_kink_ratio",
-                                             "max_feed_override", "tool_change_seconds", "spindle_start_seconds"};
+                                             "max_feed_override", "tool_change_seconds", "spindle_start_seconds",
+                                             "tool_change_position", "spindle_acceleration", "spindle_at_speed_share"};
   for (const auto& kv : t)
     if (!known.count(kv.first.Scalar())) throw Error(where, "unknown field '" + kv.first.Scalar() + "'");
   static const char* axes[] = {"x", "y", "z"};
@@ -98,6 +99,15 @@ void read_trajectory(const YAML::Node& t, const std::string& path, TrajectoryLim
   }
   if (t["tangent_kink_ratio"]) out.tangent_kink_ratio = positive(t, "tangent_kink_ratio", where);
   if (t["max_feed_override"]) out.max_feed_override = positive(t, "max_feed_override", where);
+  if (const YAML::Node p = t["tool_change_position"]) {
+    out.tool_change_position = point3(p, "trajectory.tool_change_position", path);
+    out.has_tool_change_position = true;
+  }
+  if (t["spindle_acceleration"]) out.spindle_acceleration = positive(t, "spindle_acceleration", where);
+  if (t["spindle_at_speed_share"]) {
+    out.spindle_at_speed_share = positive(t, "spindle_at_speed_share", where);
+    if (out.spindle_at_speed_share > 1) throw Error(where, "field 'spindle_at_speed_share' must be at most 1");
+  }
   for (const char* key : {"tool_change_seconds", "spindle_start_seconds"}) {
     if (!t[key]) continue;
     const double v = number(t[key], std::string("trajectory.") + key, path);

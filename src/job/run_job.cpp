@@ -487,9 +487,11 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
       r.rapid_mm += s.rapid_length;
     }
     // The operation's program as the post writes it, timed as the controller's planner runs it.
-    if (!toolpaths.empty())
-      r.time_s = gcode::estimate_cycle_time(toolpaths, gcode::post_options_for(options.dialect), options.trajectory)
-                     .seconds;
+    if (!toolpaths.empty()) {
+      gcode::PostOptions post = gcode::post_options_for(options.dialect);
+      if (trunnion) post.index_safe_z = trunnion->safe_z;
+      r.time_s = gcode::estimate_cycle_time(toolpaths, post, options.trajectory).seconds;
+    }
     if (sr.index && !toolpaths.empty()) {
       // The post indexes before the program's first toolpath and wherever A or C change.
       const machine::Index& to = *sr.index;

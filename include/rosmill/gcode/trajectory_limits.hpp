@@ -19,7 +19,14 @@ struct TrajectoryLimits {
   double tangent_kink_ratio = 0.1;       // a corner this gentle passes as tangent ([TRAJ] ARC_BLEND_KINK_RATIO)
   double max_feed_override = 1.0;        // the planner sizes blends for this feed override ([DISPLAY] MAX_FEED_OVERRIDE)
   double tool_change_seconds = 0;        // per M6 (the simulator's tool changer answers at once)
-  double spindle_start_seconds = 0;      // per M3/M4 (the simulator's spindle is at speed at once)
+  // M6 first moves the tool here (machine coordinates, mm; [EMCIO] TOOL_CHANGE_POSITION) in one rapid.
+  bool has_tool_change_position = false;
+  Vec3 tool_change_position = Vec3::Zero();
+  // After M3/M4 the first feed move waits until the spindle is at speed: it accelerates at this many rpm/s (zero:
+  // at speed at once) and counts as at speed from this share of the commanded speed on (HAL's at-speed signal).
+  double spindle_acceleration = 0;
+  double spindle_at_speed_share = 1.0;
+  double spindle_start_seconds = 0;      // more per M3/M4, whatever the speed
 
   bool limited() const { return max_acceleration.maxCoeff() > 0; }
 };
