@@ -352,6 +352,19 @@ class Timer {
       at_speed_ = now() + (lim_.spindle_at_speed_share * rpm - rpm_) / lim_.spindle_acceleration;
     rpm_ = rpm;
   }
+  // A move in machine coordinates (G53): to `machine` less the G54 origin (the tool length offset not counted).
+  // The reader leaves its axes unknown; the next move starts where it ends.
+  void machine_move(const Vec3& from, const Vec3& machine, const bool given[3], bool rapid, double feed) {
+    CanonMove m;
+    m.from = from;
+    m.to = from;
+    for (int i = 0; i < 3; ++i)
+      if (given[i]) m.to[i] = machine[i] - origin_[i];
+    m.rapid = rapid;
+    m.feed = float(feed);
+    move(m);
+    start_ = m.to;
+  }
   void spindle_stop() {
     stop();
     rpm_ = 0;
@@ -410,9 +423,10 @@ CycleTime estimate_cycle_time(const std::vector<std::string>& program, const Tra
   Interpreter in(source);
   Timer timer(limits);
   for (size_t k = 0; k < program.size(); ++k) {
+    const Vec3 before = in.state().position;
     const Block& b = in.read(program[k], k + 1);
     // What the block does before it moves (RS274/NGC's order of execution): these wait for the motion queue.
-    if (has_any_m(b, {7, 8, 9}) || b.has_g(40) || b.has_g(430) || b.has_g(490) || b.has_g(100) || b.has_g(530))
+    if (has_any_m(b, {7, 8, 9}) || b.has_g(40) || b.has_g(430) || b.has_g(490) || b.has_g(100))
       timer.stop();
     if (b.has_m(6)) timer.tool_change(in.state().position);
     if (b.has_m(3) || b.has_m(4)) timer.spindle(in.state().spindle_rpm);
@@ -424,6 +438,11 @@ CycleTime estimate_cycle_time(const std::vector<std::string>& program, const Tra
     if (b.has_g(610) || b.has_g(611)) timer.blend(0);
     if (b.has_g(640)) timer.blend(b.has('P') ? b.get('P') : 1e9);  // G64 alone: as fast as the corners allow
     if (in.moved()) timer.move(in.move());
+    if (b.has_g(530) && b.has_linear()) {
+      const bool given[3] = {b.has('X'), b.has('Y'), b.has('Z')};
+      const Vec3 to(given[0] ? b.get('X') : 0, given[1] ? b.get('Y') : 0, given[2] ? b.get('Z') : 0);
+      timer.machine_move(before, to, given, in.state().motion == 0, in.state().feed);
+    }
     if (in.state().ended) break;
   }
   return timer.finish();

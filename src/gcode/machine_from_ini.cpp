@@ -95,6 +95,16 @@ std::string machine_yaml_from_ini(const LinuxcncIni& ini) {
     y << "  max_feed_override: " << num(positive(ini, "DISPLAY", "MAX_FEED_OVERRIDE"))
       << "  # [DISPLAY] MAX_FEED_OVERRIDE\n";
   y << "  tool_change_seconds: 0  # not in the ini: the tool changer's time per M6\n";
+  if (ini.has("EMCIO", "TOOL_CHANGE_POSITION")) {
+    std::istringstream words(ini.text("EMCIO", "TOOL_CHANGE_POSITION"));
+    double p[3];
+    for (double& v : p)
+      if (!(words >> v) || !std::isfinite(v))
+        throw Error(ini.path(), "[EMCIO] TOOL_CHANGE_POSITION = '" + ini.text("EMCIO", "TOOL_CHANGE_POSITION") +
+                                    "' must start with X Y Z");
+    y << "  tool_change_position: [" << num(p[0] * mm) << ", " << num(p[1] * mm) << ", " << num(p[2] * mm)
+      << "]  # machine mm: [EMCIO] TOOL_CHANGE_POSITION\n";
+  }
   y << "  spindle_start_seconds: 0  # not in the ini: the spindle's time to reach its speed\n";
   return y.str();
 }

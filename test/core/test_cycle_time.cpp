@@ -50,6 +50,9 @@ TEST(CycleTime, RapidsRunAtTheAxesLimitsAlongTheirDirection) {
   EXPECT_NEAR(seconds({"G21 G90", "G0 X0 Y0 Z0", "G0 X100"}), rest_to_rest(100, 30.48, 508), 1e-9);
   EXPECT_NEAR(seconds({"G21 G90", "G0 X0 Y0 Z0", "G0 X100 Y100"}),
               rest_to_rest(100 * std::sqrt(2.0), 30.48 * std::sqrt(2.0), 508), 1e-9);
+  // A retract in machine coordinates (G53, the G54 origin set by the program) and the way back down from it.
+  EXPECT_NEAR(seconds({"G21 G90 G61", "G10 L2 P1 X0 Y0 Z-20", "G54 G0 X0 Y0 Z0", "G53 G0 Z80", "G0 Z0"}),
+              2 * rest_to_rest(100, 30.48, 508), 1e-9);
 }
 
 TEST(CycleTime, ExactStopStopsAtTheCornerAndBlendingDoesNot) {
@@ -121,7 +124,7 @@ TEST(CycleTime, TheMachineFileCarriesTheSimulatorsPlanner) {
 TEST(MachineFromIni, TheSimulatorsIniGivesTheMachineFilesNumbersWithTheirSources) {
   const std::string ini_path = "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/axis_mm.ini";
   const std::string ini_text =
-      "[EMC]\nMACHINE = LinuxCNC-HAL-SIM-AXIS\n[DISPLAY]\nMAX_FEED_OVERRIDE = 1.2\n[EMCMOT]\nSERVO_PERIOD = 1000000\n"
+      "[EMC]\nMACHINE = LinuxCNC-HAL-SIM-AXIS\n[EMCIO]\nTOOL_CHANGE_POSITION = 0 0 50.8\n[DISPLAY]\nMAX_FEED_OVERRIDE = 1.2\n[EMCMOT]\nSERVO_PERIOD = 1000000\n"
       "[TRAJ]\nLINEAR_UNITS = mm\nMAX_LINEAR_VELOCITY = 53.34\nMAX_LINEAR_ACCELERATION = 508\n"
       "[AXIS_X]\nMAX_VELOCITY = 30.48\nMAX_ACCELERATION = 508\nMIN_LIMIT = -254\nMAX_LIMIT = 254\n"
       "[AXIS_Y]\nMAX_VELOCITY = 30.48\nMAX_ACCELERATION = 508\nMIN_LIMIT = -254\nMAX_LIMIT = 254\n"
@@ -135,6 +138,8 @@ TEST(MachineFromIni, TheSimulatorsIniGivesTheMachineFilesNumbersWithTheirSources
   EXPECT_DOUBLE_EQ(m.trajectory.servo_period, config.trajectory.servo_period);
   EXPECT_DOUBLE_EQ(m.trajectory.max_feed_override, config.trajectory.max_feed_override);
   EXPECT_EQ(m.envelope.max, config.envelope.max);
+  EXPECT_EQ(m.trajectory.tool_change_position, config.trajectory.tool_change_position);
+  EXPECT_TRUE(m.trajectory.has_tool_change_position);
   EXPECT_NE(yaml.find("[AXIS_X], [AXIS_Y], [AXIS_Z] MAX_VELOCITY"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("[EMCMOT] SERVO_PERIOD"), std::string::npos) << yaml;
   // Inches become millimetres.
