@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
   const gcode::MachineLimits machine = gcode::load_machine_limits(config + "machine.yaml");
   JobOptions options;
   options.tools = &tools;
-  options.max_acceleration = machine.max_acceleration;
+  options.trajectory = machine.trajectory;
   options.link_clearance = machine.clearance_over_stock;
   compare("rest_pocket (casting)", read_job(config + "jobs/rest_pocket.yaml"), options);
   JobSpec dome = read_job(config + "jobs/scanned_dome.yaml");
@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
   for (const char* m : {"machine_xyzac.yaml", "machine.yaml"}) {
     JobOptions o = options;
     o.checks.machine = gcode::load_machine_limits(config + m);
-    o.max_acceleration = o.checks.machine->max_acceleration;
+    o.trajectory = o.checks.machine->trajectory;
     multi_setup(config + "jobs/slotted_block_xyzac.yaml", o, config + m);
   }
   return 0;

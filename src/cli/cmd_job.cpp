@@ -50,7 +50,7 @@ void run(const JobArgs& a) {
   // whether or not programs are written (with --no-limits, when there is a machine file).
   if (!a.no_limits || !a.machine.empty() || std::filesystem::exists(default_config("machine.yaml"))) {
     const gcode::MachineLimits m = gcode::load_machine_limits(machine_file(a.machine));
-    o.max_acceleration = m.max_acceleration;
+    o.trajectory = m.trajectory;
     if (m.clearance_over_stock > 0) o.link_clearance = m.clearance_over_stock;
   }
   // With -o, the setup sheet beside the programs: each operation's toolpaths for its setup's picture.

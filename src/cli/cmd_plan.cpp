@@ -32,6 +32,7 @@
 #include "rosmill/planner/strategy_table.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
+#include "rosmill/gcode/cycle_time.hpp"
 #include "work_offset_option.hpp"
 
 namespace rosmill::core::cli {
@@ -198,8 +199,10 @@ void run(const Options& o) {
     total.moves += s.moves;
     total.cutting_length += s.cutting_length;
     total.rapid_length += s.rapid_length;
-    total.estimated_seconds += s.estimated_seconds;
   }
+  // The program this job posts, timed as the machine's trajectory planner runs it.
+  const double estimated_seconds =
+      gcode::estimate_cycle_time(job, gcode::post_options_for(o.dialect), machine_trajectory(o.machine)).seconds;
   if (o.json) {
     nlohmann::json j = {{"strategy", o.strategy},
                         {"toolpaths", job.size()},
@@ -207,7 +210,7 @@ void run(const Options& o) {
                         {"moves", total.moves},
                         {"cutting_length", total.cutting_length},
                         {"rapid_length", total.rapid_length},
-                        {"estimated_seconds", total.estimated_seconds},
+                        {"estimated_seconds", estimated_seconds},
                         {"seconds", seconds}};
     if (!o.out.empty()) j["output"] = o.out;
     for (const PlanReport& r : reports)
@@ -226,10 +229,10 @@ void run(const Options& o) {
     std::printf("%s\n", j.dump().c_str());
   } else {
     std::printf("%s", prep_report.c_str());
-    std::printf("%s with %s: %zu moves, cutting %.1f mm, rapid %.1f mm, about %.0f s at the tool's feeds "
+    std::printf("%s with %s: %zu moves, cutting %.1f mm, rapid %.1f mm, about %.0f s on the machine "
                 "(planned in %.3f s)\n",
                 o.strategy.c_str(), tool_name.c_str(), total.moves, total.cutting_length, total.rapid_length,
-                total.estimated_seconds, seconds);
+                estimated_seconds, seconds);
   }
 }
 

@@ -36,4 +36,11 @@ inline std::optional<gcode::MachineLimits> machine_to_check(const std::string& g
   return gcode::load_machine_limits(machine_file(given));
 }
 
+// The trajectory planner that times programs: the machine file's (--machine, else config/machine.yaml as above,
+// also with --no-limits); without any machine file, none (the time at the feeds alone).
+inline gcode::TrajectoryLimits machine_trajectory(const std::string& given) {
+  if (given.empty() && !std::filesystem::exists(default_config("machine.yaml"))) return {};
+  return gcode::load_machine_limits(machine_file(given)).trajectory;
+}
+
 }  // namespace rosmill::core::cli

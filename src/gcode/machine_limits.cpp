@@ -67,6 +67,55 @@ Vec3 point3(const YAML::Node& node, const std::string& what, const std::string& 
   return Vec3(number(node[0], what, path), number(node[1], what, path), number(node[2], what, path));
 }
 
+// `trajectory:`: the controller's trajectory planner; every field optional (LinuxCNC's defaults).
+void read_trajectory(const YAML::Node& t, const std::string& path, TrajectoryLimits& out) {
+  const std::string where = path + " trajectory";
+  if (!t.IsMap()) throw Error(where, "must be a map");
+  static const std::set<std::string> known = {"max_velocity", "max_linear_velocity", "max_linear_acceleration",
+                                             "servo_period", "optimization_depth", "arc_blend", "tangent_kink_ratio",
+                                             "max_feed_override", "tool_change_seconds", "spindle_start_seconds",
+                                             "tool_change_position", "spindle_acceleration", "spindle_at_speed_share"};
+  for (const auto& kv : t)
+    if (!known.count(kv.first.Scalar())) throw Error(where, "unknown field '" + kv.first.Scalar() + "'");
+  static const char* axes[] = {"x", "y", "z"};
+  if (const YAML::Node v = t["max_velocity"]) {
+    if (!v.IsMap()) throw Error(where, "field 'max_velocity' must be {x: V, y: V, z: V} (mm/s)");
+    for (int a = 0; a < 3; ++a) out.max_velocity[a] = positive(v, axes[a], where + ".max_velocity");
+  }
+  if (t["max_linear_velocity"]) out.max_linear_velocity = positive(t, "max_linear_velocity", where);
+  if (t["max_linear_acceleration"]) out.max_linear_acceleration = positive(t, "max_linear_acceleration", where);
+  if (t["servo_period"]) out.servo_period = positive(t, "servo_period", where);
+  if (t["optimization_depth"]) {
+    const double d = positive(t, "optimization_depth", where);
+    if (d != std::floor(d) || d > 100000) throw Error(where, "field 'optimization_depth' must be a whole number of segments");
+    out.optimization_depth = int(d);
+  }
+  if (const YAML::Node b = t["arc_blend"]) {
+    try {
+      out.arc_blend = b.as<bool>();
+    } catch (const YAML::Exception&) {
+      throw Error(where, "field 'arc_blend' must be true or false");
+    }
+  }
+  if (t["tangent_kink_ratio"]) out.tangent_kink_ratio = positive(t, "tangent_kink_ratio", where);
+  if (t["max_feed_override"]) out.max_feed_override = positive(t, "max_feed_override", where);
+  if (const YAML::Node p = t["tool_change_position"]) {
+    out.tool_change_position = point3(p, "trajectory.tool_change_position", path);
+    out.has_tool_change_position = true;
+  }
+  if (t["spindle_acceleration"]) out.spindle_acceleration = positive(t, "spindle_acceleration", where);
+  if (t["spindle_at_speed_share"]) {
+    out.spindle_at_speed_share = positive(t, "spindle_at_speed_share", where);
+    if (out.spindle_at_speed_share > 1) throw Error(where, "field 'spindle_at_speed_share' must be at most 1");
+  }
+  for (const char* key : {"tool_change_seconds", "spindle_start_seconds"}) {
+    if (!t[key]) continue;
+    const double v = number(t[key], std::string("trajectory.") + key, path);
+    if (v < 0) throw Error(where, std::string("field '") + key + "' must be >= 0");
+    (std::string(key) == "tool_change_seconds" ? out.tool_change_seconds : out.spindle_start_seconds) = v;
+  }
+}
+
 // `rotary:` of a trunnion table (XYZAC): A about machine X carrying C about the table's Z.
 machine::Trunnion trunnion(const YAML::Node& r, const MachineLimits& m, const std::string& path) {
   if (!r.IsMap()) throw Error(path, "field 'rotary' must be a map");
@@ -150,6 +199,12 @@ MachineLimits parse_machine_limits(const std::string& yaml_text, const std::stri
     for (int a = 0; a < 3; ++a) m.max_acceleration[a] = positive(acc, axes[a], path + " max_acceleration");
   }
   if (const YAML::Node r = root["rotary"]) m.trunnion = trunnion(r, m, path);
+  m.trajectory.max_acceleration = m.max_acceleration;
+  if (const YAML::Node t = root["trajectory"]) read_trajectory(t, path, m.trajectory);
+  if (m.trunnion) {
+    m.trajectory.rotary_velocity = Vec2(m.trunnion->a.velocity, m.trunnion->c.velocity);
+    m.trajectory.rotary_acceleration = Vec2(m.trunnion->a.acceleration, m.trunnion->c.acceleration);
+  }
   return m;
 }
 

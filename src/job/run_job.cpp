@@ -18,6 +18,7 @@
 #include "rosmill/segment/surface_patches.hpp"
 #include "rosmill/stock/fixture_collision.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
+#include "rosmill/gcode/cycle_time.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/indexed.hpp"
 #include "rosmill/verify/verify.hpp"
@@ -509,18 +510,26 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
                       std::to_string(r.gouge_move) + ": no program is written");
     }
     for (const Toolpath& tp : toolpaths) {
-      const ToolpathStats s = toolpath_stats(tp, job.rapid_feed, options.max_acceleration);
+      const ToolpathStats s = toolpath_stats(tp);
       r.cutting_mm += s.cutting_length;
       r.rapid_mm += s.rapid_length;
-      r.time_s += s.estimated_seconds;
+    }
+    // The operation's program as the post writes it, timed as the controller's planner runs it.
+    if (!toolpaths.empty()) {
+      gcode::PostOptions post = gcode::post_options_for(options.dialect);
+      if (trunnion) post.index_safe_z = trunnion->safe_z;
+      r.time_s = gcode::estimate_cycle_time(toolpaths, post, options.trajectory).seconds;
     }
     if (sr.index && !toolpaths.empty()) {
       // The post indexes before the program's first toolpath and wherever A or C change.
       const machine::Index& to = *sr.index;
+      // The retract and the way down are rapids along Z: at the machine's Z speed when the machine file gives it.
+      const double z_speed = options.trajectory.max_velocity.z();
+      const double rapid_feed = z_speed > 0 ? 60 * z_speed : job.rapid_feed;
       if (!indexed_at || indexed_at->a != to.a || indexed_at->c != to.c) {
         const double s = indexing_seconds(*trunnion, indexed_at.value_or(machine::Index{}), to, tool_z,
                                           std::max(toolpaths.front().clearance_z, toolpaths.front().start.z()),
-                                          job.rapid_feed, options.max_acceleration);
+                                          rapid_feed, options.trajectory.max_acceleration);
         report.setups.back().indexing_s += s;
         report.setups.back().time_s += s;
         report.time_s += s;

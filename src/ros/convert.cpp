@@ -8,6 +8,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/value_range.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
+#include "rosmill/gcode/cycle_time.hpp"
 
 namespace rosmill::edge {
 
@@ -449,19 +450,20 @@ PlanParams from_plan_parameters(const msg::PlanParameters& m, const core::Tool& 
   return p;
 }
 
-msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed) {
+msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, const gcode::TrajectoryLimits& trajectory) {
   msg::PlanStatistics s;
   Box3 box;
   for (const core::Toolpath& tp : job) {
-    const ToolpathStats st = toolpath_stats(tp, rapid_feed);
+    const ToolpathStats st = toolpath_stats(tp);
     s.toolpaths += 1;
     s.passes += tp.passes.size();
     s.moves += st.moves;
     s.cutting_length += to_metres(st.cutting_length);
     s.rapid_length += to_metres(st.rapid_length);
-    s.estimated_duration += st.estimated_seconds;
     box.add(tp.bounds());
   }
+  if (!job.empty())
+    s.estimated_duration = gcode::estimate_cycle_time(job, gcode::post_options_for("linuxcnc"), trajectory).seconds;
   s.planning_time = planning_seconds;
   if (!box.empty()) {
     s.bounds_min = to_point_msg(box.min);

@@ -4,6 +4,7 @@
 
 #include "rosmill/cloud/cloud_prep.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/params.hpp"
 
@@ -21,7 +22,8 @@ PlannerSettings planner_settings(const ::ros::NodeHandle& pnh) {
   s.presets = presets_param(pnh);
   s.cloud_input = cloud_input_param(pnh);
   s.option_prefix = pnh.resolveName("") + "/";
-  s.rapid_feed = double_param(pnh, "rapid_feed", 5000.0, 1.0, 1e6);
+  const std::string machine = string_param(pnh, "machine", "");
+  if (!machine.empty()) s.trajectory = gcode::load_machine_limits(machine).trajectory;
   s.tools.get(s.tool_id);  // the default tool must exist
   named_setup(s.setup, "parameter " + pnh.resolveName("setup"));
   check_plan_name(s.strategy, &s.presets, "parameter " + pnh.resolveName("strategy"));
@@ -90,7 +92,7 @@ PlanOutcome ItemPlanner::plan(const msg::PlanItem& item, const PlanInputs& input
   header.frame_id = setup_frames_.publish(settings_.frame_id, out.setup);
   header.stamp = ::ros::Time::now();
   out.job_msg = to_job_msg(out.job, out.setup, header);
-  out.statistics = to_statistics_msg(out.job, (::ros::WallTime::now() - t0).toSec(), settings_.rapid_feed);
+  out.statistics = to_statistics_msg(out.job, (::ros::WallTime::now() - t0).toSec(), settings_.trajectory);
   return out;
 }
 

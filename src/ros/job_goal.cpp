@@ -107,6 +107,7 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
     options.per_operation = goal.per_operation;
     options.dialect = context.dialect;
     options.checks = context.checks;
+    if (context.checks.machine) options.trajectory = context.checks.machine->trajectory;
     if (!goal.output_dir.empty() && context.work_offset) options.work_offset = context.work_offset();
     options.part = received.get();
     if (!goal.output_dir.empty() && goal.output_dir.front() != '/')

@@ -15,21 +15,14 @@ double move_seconds(double length, const Vec3& dir, double feed, const Vec3& max
   return 2.0 * std::sqrt(length / a);                    // a triangle: the feed is never reached
 }
 
-ToolpathStats toolpath_stats(const Toolpath& tp, double rapid_feed, const Vec3& max_acceleration) {
+ToolpathStats toolpath_stats(const Toolpath& tp) {
   ToolpathStats s;
   Vec3 at = tp.start;
   for (const auto& p : tp.passes)
     for (const auto& m : p.moves) {
       const double len = (m.to - at).norm();
-      const Vec3 dir = len > 0 ? Vec3((m.to - at) / len) : Vec3::Zero();
       ++s.moves;
-      if (m.type == MoveType::Rapid) {
-        s.rapid_length += len;
-        s.estimated_seconds += move_seconds(len, dir, rapid_feed, max_acceleration);
-      } else {
-        s.cutting_length += len;
-        s.estimated_seconds += move_seconds(len, dir, m.feed, max_acceleration);
-      }
+      (m.type == MoveType::Rapid ? s.rapid_length : s.cutting_length) += len;
       at = m.to;
     }
   return s;

@@ -24,7 +24,7 @@ inline rosmill::core::job::JobOptions options(const std::string& out = "", const
   o.tools = &package_tools();
   o.out_dir = out;
   o.checks.machine = rosmill::core::gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/" + machine);
-  o.max_acceleration = o.checks.machine->max_acceleration;
+  o.trajectory = o.checks.machine->trajectory;
   return o;
 }
 

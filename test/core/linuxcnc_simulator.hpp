@@ -4,6 +4,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,8 +13,11 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include "rosmill/control/linuxcnc.hpp"
+#include "rosmill/control/program_run.hpp"
 
 namespace sim_test {
 
@@ -65,6 +70,43 @@ class Simulator {
     o.program_dir = programs_;
     o.program_name = "test.ngc";
     return std::make_unique<LinuxcncController>("127.0.0.1", port_, o);
+  }
+
+  // The simulator's machine time in seconds (scripts/linuxcnc-sim clock): servo periods counted at their nominal
+  // length, so a loaded computer that runs the servo thread late does not stretch it. `motion` counts only the
+  // periods in which the trajectory planner had motion to run.
+  struct Clock {
+    double all = NAN, motion = NAN;
+  };
+  Clock clock() const {
+    const std::string out = root_ + "/clock.out";
+    const std::string cmd = ROSMILL_SOURCE_DIR "/scripts/linuxcnc-sim clock " + root_ + "/sim >" + out + " 2>&1";
+    Clock c;
+    if (std::system(cmd.c_str()) != 0 || !(std::istringstream(slurp(out)) >> c.all >> c.motion))
+      throw std::runtime_error("scripts/linuxcnc-sim clock failed: " + slurp(out));
+    return c;
+  }
+
+  // Runs `program` to its end on controller `c` and returns the machine time it took: `all` from its start until
+  // the motion clock last moved, `motion` while the planner had motion to run. linuxcncrsh may report a program idle
+  // while the planner still runs it, so the end is when the motion clock has stood still for `settle_s` (wall).
+  Clock run_timed(rosmill::core::control::Controller& c, const std::vector<std::string>& program,
+                  double settle_s = 2.0) const {
+    const Clock before = clock();
+    const auto s = rosmill::core::control::run_to_end(c, program, rosmill::core::control::SendOptions{}, {}, 120.0);
+    if (s.state != rosmill::core::control::RunState::Finished)
+      throw std::runtime_error("the program did not run to its end: " + s.error);
+    Clock after = clock();
+    for (auto still = std::chrono::steady_clock::now();
+         std::chrono::steady_clock::now() - still < std::chrono::duration<double>(settle_s);) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+      const Clock now = clock();
+      if (now.motion > after.motion) {
+        after = now;
+        still = std::chrono::steady_clock::now();
+      }
+    }
+    return {after.all - before.all, after.motion - before.motion};
   }
 
   // The tool length the simulator's tool table gives tool `id` (its Z column): G43 adds it to machine Z.

@@ -58,12 +58,6 @@ TEST(MachiningTime, TrapezoidalMoveHasTheClosedFormTime) {
   EXPECT_NEAR(move_seconds(100, Vec3(0, 0, 1), 1000, Vec3(508, 508, 100)), 100 / v + v / 100, 1e-12);
   // No acceleration given: the time at the feed alone, as before.
   EXPECT_NEAR(move_seconds(100, Vec3(1, 0, 0), 1000, Vec3::Zero()), 6.0, 1e-12);
-  // A toolpath: a 100 mm rapid and a 100 mm feed, each from rest to rest.
-  Toolpath tp;
-  tp.start = Vec3(0, 0, 10);
-  tp.passes.push_back({"p", {{Vec3(100, 0, 10), MoveType::Rapid, 0}, {Vec3(100, 100, 10), MoveType::Feed, 1000}}});
-  const double vr = 5000.0 / 60;
-  EXPECT_NEAR(toolpath_stats(tp, 5000, accel).estimated_seconds, 100 / vr + vr / 508 + 100 / v + v / 508, 1e-9);
   // The machine file carries the sim's accelerations.
   const gcode::MachineLimits m = gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/machine.yaml");
   EXPECT_EQ(m.max_acceleration, accel);

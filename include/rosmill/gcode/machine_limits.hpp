@@ -6,6 +6,7 @@
 
 #include <optional>
 
+#include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/types.hpp"
 #include "rosmill/machine/trunnion.hpp"
@@ -25,6 +26,9 @@ struct MachineLimits {
   double clearance_over_stock = 0.0;  // rapids end at least this high over the stock top
   // Per axis (mm/s^2; zero where the file gives none): the time estimate's accelerations.
   Vec3 max_acceleration = Vec3::Zero();
+  // The controller's trajectory planner (`trajectory:`; its max_acceleration is the one above, its rotary limits
+  // the trunnion's): what times a program (cycle_time.hpp).
+  TrajectoryLimits trajectory;
   // Machine X and Y over which a job's setups centre the stock in its fixture (where the vise sits on the table):
   // each setup's work offset (G54..G59) is its datum there. The work offset's X and Y unless the file gives it.
   Vec2 fixture_position = Vec2::Zero();

@@ -16,6 +16,7 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/fixture/fixture.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/job/job_spec.hpp"
 #include "rosmill/machine/trunnion.hpp"
@@ -56,8 +57,9 @@ struct JobOptions {
   bool plan_on_stock = true;
   // Links over the material keep this much above it (mm): the machine's clearance over the stock.
   double link_clearance = 2.0;
-  // The machine's axes' accelerations for the time estimate (mm/s^2, toolpath_stats.hpp; zero: feeds alone).
-  Vec3 max_acceleration = Vec3::Zero();
+  // The machine's trajectory planner (the machine file's): every operation's time is its posted program's cycle
+  // time (gcode/cycle_time.hpp). Without limits: the time at the feeds alone.
+  gcode::TrajectoryLimits trajectory;
   // Measure every operation's radial engagement against the stock before it (verify/engagement.hpp), and set a
   // roughing operation's feeds from it by radial chip thinning (cutter/chip_thinning.hpp), capped by the tool and
   // the machine's max_feed: its program and the time estimate then follow the cut's real engagement.

@@ -20,6 +20,7 @@
 #include "rosmill/Tool.h"
 #include "rosmill/ToolpathJob.h"
 #include "rosmill/Toolpath.h"
+#include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
@@ -79,6 +80,7 @@ void set_work_offset(msg::ToolpathJob& msg, const gcode::WorkOffset& offset);
 
 // Planning parameters of a request on top of the tool's; throws Error naming the bad field.
 PlanParams from_plan_parameters(const msg::PlanParameters& msg, const core::Tool& tool, const PlanParams& defaults);
-msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, double rapid_feed_mm_per_min);
+// The estimated duration: the job's LinuxCNC program timed by the machine's trajectory planner (cycle_time.hpp).
+msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, const gcode::TrajectoryLimits& trajectory);
 
 }  // namespace rosmill::edge

@@ -17,6 +17,7 @@
 #include "rosmill/ToolpathJob.h"
 #include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/ros/plan_inputs.hpp"
@@ -35,7 +36,9 @@ struct PlannerSettings {
   PresetTable presets;
   CloudInputOptions cloud_input;
   std::string option_prefix;   // the node's private namespace: where cloud options are named in errors
-  double rapid_feed = 5000.0;  // mm/min, for the time estimate
+  // The machine's trajectory planner (parameter machine: its machine file) that times the plans; without: the
+  // time at the feeds alone.
+  gcode::TrajectoryLimits trajectory;
 };
 
 // The settings from the node's private parameters; an Error names a bad one.
