@@ -19,7 +19,11 @@ using nlohmann::ordered_json;
 
 namespace {
 
-std::string temp(const std::string& name) { return ::testing::TempDir() + "/verify_cli_" + name; }
+// Per test (ctest runs the cases of this file side by side, and they write files of the same names).
+std::string temp(const std::string& name) {
+  return ::testing::TempDir() + "/verify_cli_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+         "_" + name;
+}
 
 std::string write_text(const std::string& name, const std::string& text) {
   const std::string path = temp(name);

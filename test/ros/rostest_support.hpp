@@ -39,6 +39,13 @@ class Latest {
                                            ++count_;
                                          }));
   }
+  // The subscription ends first: roscpp then waits for a callback that is running, which writes the members below
+  // (destroyed before sub_ would be, declared after it). Without this a message arriving as a test ends wrote
+  // into freed memory ("corrupted double-linked list").
+  ~Latest() { sub_.shutdown(); }
+  Latest(const Latest&) = delete;
+  Latest& operator=(const Latest&) = delete;
+
   boost::shared_ptr<const M> wait(double timeout, size_t after_count = 0) {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
     while (ros::ok() && ros::WallTime::now() < end) {
@@ -109,6 +116,10 @@ class InputCount {
               }
             }));
   }
+  ~InputCount() { sub_.shutdown(); }  // before the members its callback writes (as Latest)
+  InputCount(const InputCount&) = delete;
+  InputCount& operator=(const InputCount&) = delete;
+
   // The count, once the node's diagnostic has been heard (it publishes at least once a second).
   size_t now(double timeout = 10.0) {
     const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(timeout);
