@@ -55,5 +55,5 @@ foreach(msg_file ${ROSMILL_MSG_FILES})
 endforeach()
 rosmill_fuzz_target(ros_convert src/ros/convert.cpp ${message_headers})
 target_include_directories(fuzz_ros_convert PRIVATE include ${generated})
-target_link_libraries(fuzz_ros_convert PRIVATE rosmill_plan rosmill_segment rosmill_toolpath ${ROSMILL_ROSTIME})
+target_link_libraries(fuzz_ros_convert PRIVATE rosmill_gcode rosmill_plan rosmill_segment rosmill_toolpath ${ROSMILL_ROSTIME})
 
