@@ -20,8 +20,8 @@ using namespace rosmill::core;
 using namespace rosmill::core::control;
 
 TEST(LinuxcncAdaptive, AShortAdaptiveProgramRunsToItsEnd) {
-  // A 10 x 10 x 2 mm block in a box stock 3 mm larger each way: one level, 3 mm of material all round.
-  const Mesh block = build_mesh(box_corners(Box3::between(Vec3(-5, -5, -2), Vec3(5, 5, 0))));
+  // An 8 x 8 x 2 mm block in a box stock 2.5 mm larger each way: one level, 2.5 mm of material all round.
+  const Mesh block = build_mesh(box_corners(Box3::between(Vec3(-4, -4, -2), Vec3(4, 4, 0))));
   const MeshSurface surface(block);
   PlanParams p;
   p.tool.id = 1;  // the simulator's tool table
@@ -30,7 +30,7 @@ TEST(LinuxcncAdaptive, AShortAdaptiveProgramRunsToItsEnd) {
   p.tool.plunge_feed = 600;
   p.stepover = 0.8;
   p.stepdown = 4;
-  p.stock_margin = 3;
+  p.stock_margin = 2.5;
   p.tolerance = 0.01;
   const gcode::MachineLimits machine = gcode::load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml");
   p.max_feed = machine.max_feed;
