@@ -10,6 +10,7 @@
 
 #include "job_setup.hpp"
 #include "operation_engagement.hpp"
+#include "rosmill/number_text.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/cloud_io.hpp"
@@ -502,13 +503,10 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(*setup, program, job.resolution);
     // A cut into the design, as the independent simulation finds it, is a defect of the plan, never a figure to
     // report beside a program: no program of this job is written.
-    if (r.gouge_mm > 0) {
-      char depth[32];
-      std::snprintf(depth, sizeof depth, "%.3f", r.gouge_mm);
+    if (r.gouge_mm > 0)
       throw Error(where + " (" + op.name + ", setup " + sr.name + ")",
-                  "the verifier finds the cutter " + std::string(depth) + " mm below the design at toolpath move " +
+                  "the verifier finds the cutter " + decimal_text(r.gouge_mm, 3) + " mm below the design at toolpath move " +
                       std::to_string(r.gouge_move) + ": no program is written");
-    }
     for (const Toolpath& tp : toolpaths) {
       const ToolpathStats s = toolpath_stats(tp);
       r.cutting_mm += s.cutting_length;

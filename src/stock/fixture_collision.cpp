@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
+#include "rosmill/number_text.hpp"
 #include "rosmill/toolpath/canon_arc.hpp"
 
 namespace rosmill::core::stock {
@@ -91,9 +91,7 @@ bool sweeps_into(const Vec3& a, const Vec3& b, double radius, double from, doubl
 
 std::string FixtureCollision::message() const {
   const auto point = [](const Vec3& p) {
-    char s[96];
-    std::snprintf(s, sizeof s, "(%.3f, %.3f, %.3f)", p.x(), p.y(), p.z());
-    return std::string(s);
+    return "(" + decimal_text(p.x(), 3) + ", " + decimal_text(p.y(), 3) + ", " + decimal_text(p.z(), 3) + ")";
   };
   return "the " + part + " enters the fixture's " + box + " at move " + std::to_string(source) + " (a " +
          (rapid ? "rapid" : "feed") + " from " + point(from) + " to " + point(to) + " mm)";
