@@ -27,6 +27,17 @@ inline std::string param(const std::string& name) {
   return value;
 }
 
+// Calls a service over a persistent connection. roscpp's one-shot call (ros::service::call) sometimes reports a
+// failure after the server has answered: the server closes the connection as it sends the response, and the client
+// can see the hang-up before it reads the answer (ros/ros_comm issue 1976). A persistent link is closed by the client,
+// after the answer.
+template <typename Service>
+bool call_service(const std::string& name, Service& srv) {
+  ros::NodeHandle nh;
+  ros::ServiceClient client = nh.serviceClient<Service>(name, /*persistent=*/true);
+  return client.call(srv);
+}
+
 // Keeps the last message of a topic; wait() returns it or nullptr after `timeout` seconds.
 template <typename M>
 class Latest {

@@ -21,6 +21,7 @@
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
+using rosmill::rostest::call_service;
 using rosmill::rostest::node_answers;
 using rosmill::rostest::square_job;
 using Client = actionlib::SimpleActionClient<RunProgramAction>;
@@ -30,7 +31,7 @@ namespace {
 
 std_srvs::Trigger trigger(const std::string& name) {
   std_srvs::Trigger srv;
-  EXPECT_TRUE(ros::service::call("/gcode_bridge/" + name, srv)) << name << ": the bridge is gone";
+  EXPECT_TRUE(call_service("/gcode_bridge/" + name, srv)) << name << ": the bridge is gone";
   return srv;
 }
 

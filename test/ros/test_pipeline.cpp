@@ -29,6 +29,7 @@
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
+using rosmill::rostest::call_service;
 using rosmill::rostest::node_answers;
 
 namespace {
@@ -74,7 +75,7 @@ SetSetup set_setup(const std::string& name, const Vec3& direction = Vec3::Zero()
   srv.request.setup = name;
   srv.request.direction = edge::to_direction_msg(direction);
   srv.request.max_angle = max_angle;
-  EXPECT_TRUE(ros::service::call("set_setup", srv)) << "the segmenter is gone";
+  EXPECT_TRUE(call_service("set_setup", srv)) << "the segmenter is gone";
   return srv;
 }
 
@@ -287,7 +288,7 @@ TEST_F(Pipeline, ToolpathsForPlusZAndMinusXDoNotGouge) {
   srv.request.setup = "-X";
   srv.request.source = "mesh";
   const size_t count = job.count();
-  ASSERT_TRUE(ros::service::call("plan", srv));
+  ASSERT_TRUE(call_service("plan", srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   auto x = job.wait(10.0, count);
   ASSERT_TRUE(x);
@@ -356,7 +357,7 @@ void expect_refused_load(const std::string& path, const std::string& expect, con
   load.request.units = units;
   load.request.frame_id = frame_id;
   const ros::WallTime t0 = ros::WallTime::now();
-  ASSERT_TRUE(ros::service::call("load_mesh", load)) << "stl_loader is gone";
+  ASSERT_TRUE(call_service("load_mesh", load)) << "stl_loader is gone";
   EXPECT_FALSE(load.response.success) << path;
   EXPECT_NE(load.response.message.find(expect), std::string::npos) << load.response.message;
   EXPECT_LT((ros::WallTime::now() - t0).toSec(), 10.0) << path << " was not refused at once";
@@ -421,7 +422,7 @@ TEST_F(Pipeline, ARealModelReachesEveryNode) {
   ASSERT_TRUE(ros::param::get("~data", data));
   LoadMesh load;
   load.request.path = data + "/failedinpycam.stl";
-  ASSERT_TRUE(ros::service::call("load_mesh", load));
+  ASSERT_TRUE(call_service("load_mesh", load));
   ASSERT_TRUE(load.response.success) << load.response.message;
   EXPECT_EQ(load.response.triangles, 428u);
   auto s = seg.wait(20.0, s0);
@@ -451,9 +452,9 @@ TEST_F(Pipeline, APartInAnotherFrameIsPlacedWhereItIs) {
   LoadMesh plain, moved;
   plain.request.path = moved.request.path = "primitive:cube";
   moved.request.frame_id = "fixture";
-  ASSERT_TRUE(ros::service::call("load_mesh", plain));
+  ASSERT_TRUE(call_service("load_mesh", plain));
   ASSERT_TRUE(plain.response.success) << plain.response.message;
-  ASSERT_TRUE(ros::service::call("load_mesh", moved));
+  ASSERT_TRUE(call_service("load_mesh", moved));
   ASSERT_TRUE(moved.response.success) << moved.response.message;
   EXPECT_NEAR(moved.response.bounds_min.x - plain.response.bounds_min.x, 0.010, 1e-9);
   EXPECT_NEAR(moved.response.bounds_max.x - plain.response.bounds_max.x, 0.010, 1e-9);

@@ -21,6 +21,7 @@
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
+using rosmill::rostest::call_service;
 using rosmill::rostest::node_pid;
 using rosmill::rostest::peak_rss_mb;
 
@@ -39,7 +40,7 @@ Plan call_plan(const std::string& setup, const std::string& strategy = "", int t
   srv.request.strategy = strategy;
   srv.request.tool_id = tool_id;
   srv.request.source = source;
-  EXPECT_TRUE(ros::service::call("plan", srv)) << "the plan service is gone";
+  EXPECT_TRUE(call_service("plan", srv)) << "the plan service is gone";
   return srv;
 }
 
@@ -180,7 +181,7 @@ TEST_F(PlannerServices, ServicePlansStopAtTheTimeLimit) {
   srv.request.parameters.stepover = 0.00005;  // minutes of work at 0.05 mm over the dome
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
   do {
-    ASSERT_TRUE(ros::service::call("/limited/plan", srv));
+    ASSERT_TRUE(call_service("/limited/plan", srv));
   } while (srv.response.message.find("no mesh") != std::string::npos && ros::WallTime::now() < end);
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("plan_toolpath action"), std::string::npos) << srv.response.message;
@@ -193,7 +194,7 @@ Plan plan_with(const msg::PlanParameters& parameters, const std::string& strateg
   srv.request.source = "mesh";
   srv.request.strategy = strategy;
   srv.request.parameters = parameters;
-  EXPECT_TRUE(ros::service::call("plan", srv)) << "the plan service is gone";
+  EXPECT_TRUE(call_service("plan", srv)) << "the plan service is gone";
   return srv;
 }
 
@@ -276,7 +277,7 @@ TEST_F(PlannerServices, InvalidRequestsGetReasons) {
   negative.request.setup = "+Z";
   negative.request.source = "mesh";
   negative.request.parameters.stepover = -0.001;
-  ASSERT_TRUE(ros::service::call("plan", negative));
+  ASSERT_TRUE(call_service("plan", negative));
   EXPECT_FALSE(negative.response.success);
   EXPECT_NE(negative.response.message.find("stepover"), std::string::npos) << negative.response.message;
 
@@ -284,7 +285,7 @@ TEST_F(PlannerServices, InvalidRequestsGetReasons) {
   too_wide.request.setup = "+Z";
   too_wide.request.source = "mesh";
   too_wide.request.parameters.stepover = 0.050;  // 50 mm with a 6 mm tool
-  ASSERT_TRUE(ros::service::call("plan", too_wide));
+  ASSERT_TRUE(call_service("plan", too_wide));
   EXPECT_FALSE(too_wide.response.success);
   expect_alive();
 }
@@ -424,12 +425,12 @@ TEST_F(PlannerServices, PreviewDoesNotPublish) {
   srv.request.setup = "-X";
   srv.request.source = "mesh";
   srv.request.preview = true;
-  ASSERT_TRUE(ros::service::call("plan", srv));
+  ASSERT_TRUE(call_service("plan", srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   ros::WallDuration(0.5).sleep();  // a publication, if there were one, would be on its way by now
   EXPECT_EQ(published_minus_x(), 0);
   srv.request.preview = false;
-  ASSERT_TRUE(ros::service::call("plan", srv));
+  ASSERT_TRUE(call_service("plan", srv));
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
   while (published_minus_x() == 0 && ros::WallTime::now() < end) ros::WallDuration(0.02).sleep();
   EXPECT_EQ(published_minus_x(), 1);

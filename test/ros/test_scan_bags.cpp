@@ -12,6 +12,7 @@
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
+using rosmill::rostest::call_service;
 using rosmill::rostest::node_answers;
 using rosmill::rostest::param;
 using rosmill::rostest::play_bag;
@@ -26,7 +27,7 @@ Plan plan_cloud(double stepdown_m = 0.0) {
   srv.request.source = "cloud";
   srv.request.parameters.stepdown = stepdown_m;
   srv.request.preview = true;
-  EXPECT_TRUE(ros::service::call("plan", srv)) << "the plan service is gone";
+  EXPECT_TRUE(call_service("plan", srv)) << "the plan service is gone";
   return srv;
 }
 

@@ -36,6 +36,7 @@
 using namespace rosmill;
 using namespace rosmill::edge;
 using rosmill::rostest::Latest;
+using rosmill::rostest::call_service;
 using rosmill::rostest::node_answers;
 using rosmill::rostest::param;
 
@@ -74,7 +75,7 @@ class Cell : public ::testing::Test {
 
   template <class Srv>
   Srv call(const std::string& name, Srv srv = Srv()) {
-    EXPECT_TRUE(ros::service::call("/scan_registrar/" + name, srv)) << name << ": the node is gone";
+    EXPECT_TRUE(call_service("/scan_registrar/" + name, srv)) << name << ": the node is gone";
     return srv;
   }
   std_srvs::Trigger trigger(const std::string& name) { return call<std_srvs::Trigger>(name); }
@@ -289,7 +290,7 @@ TEST_F(Cell, TheBridgeSetsTheWorkOffsetToTheRegisteredPose) {
   const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(20.0);
   bool answered = false;
   do {
-    answered = ros::service::call("/gcode_bridge/start", start);
+    answered = call_service("/gcode_bridge/start", start);
     if (answered && start.response.message.find("no job received") == std::string::npos) break;
     ros::WallDuration(0.05).sleep();
   } while (ros::WallTime::now() < end);
