@@ -20,7 +20,7 @@ using namespace rosmill::core;
 using namespace rosmill::core::control;
 
 TEST(LinuxcncAdaptive, AShortAdaptiveProgramRunsToItsEnd) {
-  // An 8 x 8 x 2 mm block in a box stock 2.5 mm larger each way: one level, 2.5 mm of material all round.
+  // An 8 x 8 x 2 mm block in a box stock 1.5 mm larger each way: one level, 1.5 mm of material all round.
   const Mesh block = build_mesh(box_corners(Box3::between(Vec3(-4, -4, -2), Vec3(4, 4, 0))));
   const MeshSurface surface(block);
   PlanParams p;
@@ -28,9 +28,9 @@ TEST(LinuxcncAdaptive, AShortAdaptiveProgramRunsToItsEnd) {
   p.tool.cutter = Cutter::flat(4);
   p.tool.feed = 1500;
   p.tool.plunge_feed = 600;
-  p.stepover = 0.8;
+  p.stepover = 1.2;
   p.stepdown = 4;
-  p.stock_margin = 2.5;
+  p.stock_margin = 1.5;
   p.tolerance = 0.01;
   const gcode::MachineLimits machine = gcode::load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine.yaml");
   p.max_feed = machine.max_feed;
