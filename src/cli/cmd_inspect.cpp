@@ -3,14 +3,14 @@
 // signed distance to the design (+ excess material, - deficit), the histogram, the largest excess and deficit
 // with their places. --stock-out writes the scan in the design's (workpiece) frame, the units of --scan-units,
 // for a job's `stock: {cloud: FILE}`: the re-scan becomes the stock a rest job starts from.
-#include <algorithm>
+#include <filesystem>
 #include <iostream>
 
 #include "command.hpp"
+#include "rosmill/geometry/outline_from_above.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/inspection.hpp"
-#include "rosmill/verify/deviation_map.hpp"
-#include "rosmill/verify/rgb_image.hpp"
+#include "rosmill/verify/inspection_image.hpp"
 #include "scan_inputs.hpp"
 
 namespace rosmill::core::cli {
@@ -22,34 +22,10 @@ struct InspectArgs : ScanInputs {
   bool registered = false;
 };
 
-// The scan seen from above (+x right, +y up), each pixel in the colour band of its point furthest from the design
-// (the verifier's bands: reds below the design, blues above), the legend beside it.
-void write_image(const std::string& path, const scan::InspectionReport& r, double tolerance) {
-  using namespace verify;
-  Box3 box;
-  for (const Vec3& p : r.points) box.add(p);
-  const double extent = std::max({box.size().x(), box.size().y(), 1e-6});
-  const int map = 600, legend = 260;
-  const double scale = (map - 1) / extent;
-  RgbImage image(map + legend, map, Rgb{255, 255, 255});
-  std::vector<double> worst(size_t(map) * map, 0.0);
-  std::vector<uint8_t> seen(size_t(map) * map, 0);
-  for (size_t i = 0; i < r.points.size(); ++i) {
-    const int x = int((r.points[i].x() - box.min.x()) * scale), y = map - 1 - int((r.points[i].y() - box.min.y()) * scale);
-    const size_t k = size_t(y) * map + size_t(x);
-    if (!seen[k] || std::abs(r.deviations[i]) > std::abs(worst[k])) worst[k] = r.deviations[i];
-    seen[k] = 1;
-  }
-  const std::vector<DeviationBand> bands = deviation_bands(tolerance);
-  for (int y = 0; y < map; ++y)
-    for (int x = 0; x < map; ++x)
-      if (seen[size_t(y) * map + size_t(x)])
-        image.set(x, y, bands[deviation_band(worst[size_t(y) * map + size_t(x)], true, tolerance)].colour);
-  for (size_t b = 0; b < bands.size(); ++b) {
-    image.fill(map + 10, 10 + int(b) * 22, 16, 16, bands[b].colour);
-    image.text(map + 32, 13 + int(b) * 22, bands[b].label, 1, Rgb{0, 0, 0});
-  }
-  write_png(path, image);
+// The map's title names the design, the scan and today.
+picture::MapCaption caption(const InspectArgs& a) {
+  return {"inspection map", std::filesystem::path(a.design).filename().string(),
+          "scan " + std::filesystem::path(a.scan).filename().string(), ""};
 }
 
 CommandRegistration reg([](CLI::App& app) {
@@ -73,7 +49,8 @@ CommandRegistration reg([](CLI::App& app) {
       stock.points = r.points;
       write_cloud(a->stock_out, stock, parse_units(a->scan_units, "--scan-units"));
     }
-    if (!a->image.empty()) write_image(a->image, r, a->tolerance);
+    if (!a->image.empty())
+      verify::write_inspection_png(a->image, r, a->tolerance, outline_from_above(design), caption(*a));
     if (a->json) {
       std::cout << scan::inspection_json(r, a->tolerance, a->registered).dump() << std::endl;
       return;

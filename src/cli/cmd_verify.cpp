@@ -20,6 +20,7 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
+#include "rosmill/geometry/outline_from_above.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
@@ -191,6 +192,7 @@ void run(const VerifyArgs& a) {
     return;
   }
   VerifyResult v;
+  std::vector<Contour> outline;  // a cloud design's: the picture draws the cells it covers
   if (is_cloud_file(a.design)) {
     CloudReadOptions co;
     if (!a.units.empty()) co.units = parse_units(a.units, "--units");
@@ -198,9 +200,15 @@ void run(const VerifyArgs& a) {
   } else {
     StlReadOptions so;
     if (!a.units.empty()) so.units = parse_units(a.units, "--units");
-    v = verify_program(read_stl(a.design, so), program, stock, o);
+    const Mesh design = read_stl(a.design, so);
+    v = verify_program(design, program, stock, o);
+    if (!a.image.empty()) outline = outline_from_above(design);
   }
-  if (!a.image.empty()) write_deviation_png(a.image, v.grid, v.report);
+  if (!a.image.empty()) {
+    const picture::MapCaption caption{"deviation map", std::filesystem::path(a.design).filename().string(),
+                                      "program " + std::filesystem::path(a.program).filename().string(), ""};
+    write_deviation_png(a.image, v.grid, v.report, outline, caption);
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (a.json) std::printf("%s\n", to_json(v.report, v.engagement, seconds).dump().c_str());
   else print_text(a, program, v, seconds);

@@ -18,9 +18,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <memory>
 
 #include "rosmill/error.hpp"
+#include "rosmill/picture/canvas.hpp"
 #include "rosmill/sheet/setup_sheet.hpp"
 
 namespace rosmill::core::sheet {
@@ -260,12 +260,6 @@ void draw_cuts(cairo_t* cr, const Projection& p, const std::vector<const Job*>& 
   }
 }
 
-cairo_status_t append_png(void* closure, const unsigned char* data, unsigned int length) {
-  auto* out = static_cast<std::vector<unsigned char>*>(closure);
-  out->insert(out->end(), data, data + length);
-  return CAIRO_STATUS_SUCCESS;
-}
-
 void check_size(const char* name, int pixels) {
   if (pixels < kMinSize || pixels > kMaxSize)
     throw Error("setup picture", std::string(name) + " " + std::to_string(pixels) + " is outside [" +
@@ -294,30 +288,15 @@ std::vector<unsigned char> setup_picture_png(const Mesh& part_in_setup, const fi
   add_solid(triangles, projection, fixture_mesh.vertices, fixture_mesh.faces, fixture_mesh.normals, kFixtureColour,
             max_side);
 
-  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> surface(
-      cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height), cairo_surface_destroy);
-  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
-    throw Error("setup picture", "cannot create a " + std::to_string(width) + " x " + std::to_string(height) +
-                                     " image: " + cairo_status_to_string(cairo_surface_status(surface.get())));
-  std::unique_ptr<cairo_t, decltype(&cairo_destroy)> context(cairo_create(surface.get()), cairo_destroy);
-  cairo_t* cr = context.get();
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
+  const picture::Canvas canvas(width, height, "setup picture");
+  cairo_t* cr = canvas.cr();
   paint_solids(cr, triangles);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   const double line_width = std::max(1.5, std::min(width, height) / 300.0);  // 2 px in a 900 x 600 picture
   draw_rapids(cr, projection, operations, line_width / 2);
   draw_cuts(cr, projection, operations, line_width);
-  if (cairo_status(cr) != CAIRO_STATUS_SUCCESS)
-    throw Error("setup picture", std::string("drawing failed: ") + cairo_status_to_string(cairo_status(cr)));
-  cairo_surface_flush(surface.get());
-
-  std::vector<unsigned char> png;
-  const cairo_status_t status = cairo_surface_write_to_png_stream(surface.get(), append_png, &png);
-  if (status != CAIRO_STATUS_SUCCESS)
-    throw Error("setup picture", std::string("cannot encode the PNG: ") + cairo_status_to_string(status));
-  return png;
+  return canvas.png();
 }
 
 }  // namespace rosmill::core::sheet

@@ -1,13 +1,16 @@
 #include "rosmill/verify/deviation_image.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+
+#include "rosmill/verify/deviation_map.hpp"
 
 namespace rosmill::core::verify {
 namespace {
 
-constexpr int kMapPixels = 800, kMargin = 16, kLegendWidth = 430, kScale = 2;
-constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kInk{30, 30, 30};
+constexpr int kMapPixels = 800;
+constexpr Rgb kOutline{0, 0, 0};
 
 std::string fmt(const char* f, double a, double b = 0, double c = 0) {
   char buf[96];
@@ -21,7 +24,7 @@ std::vector<std::string> figures(const DeviationGrid& grid, const DeviationRepor
   std::vector<std::string> lines;
   lines.push_back(fmt("%.0f x %.0f cells of %g mm", g.nx, g.ny, g.cell));
   if (r.gouged) {
-    lines.push_back(fmt("max gouge %.4g mm", r.max_gouge_mm));
+    lines.push_back(fmt("max gouge %.4g mm (ringed)", r.max_gouge_mm));
     lines.push_back(fmt("at x %.2f y %.2f z %.3f", r.gouge_at.x(), r.gouge_at.y(), r.gouge_at.z()));
     if (r.gouge_source) lines.push_back(std::string(r.from_gcode ? "line " : "move ") + std::to_string(r.gouge_source));
   } else {
@@ -29,68 +32,84 @@ std::vector<std::string> figures(const DeviationGrid& grid, const DeviationRepor
   }
   lines.push_back(fmt("max rest %.4g mm", r.max_rest_mm));
   lines.push_back(fmt("mean rest %.4g mm", r.mean_rest_mm));
-  if (r.scallop_theory_mm >= 0) lines.push_back(fmt("scallop %.4g (theory %.4g)", r.scallop_mm, r.scallop_theory_mm));
+  if (r.scallop_theory_mm >= 0) lines.push_back(fmt("scallop %.4g mm (theory %.4g)", r.scallop_mm, r.scallop_theory_mm));
   else lines.push_back(fmt("scallop %.4g mm", r.scallop_mm));
   lines.push_back(fmt("unreached %.4g mm2", r.unreached_area_mm2));
   if (r.rapid_cut_cells) lines.push_back(fmt("rapids cut %.0f cells", static_cast<double>(r.rapid_cut_cells)));
   return lines;
 }
 
-}  // namespace
-
-RgbImage deviation_image(const DeviationGrid& grid, const DeviationReport& report) {
+// The cells in blocks of `step` x `step`, each its worst cell's colour; a run of blocks of one colour along a row
+// is one rectangle (a flat floor is a few hundred rectangles, not a million).
+void draw_cells(picture::MapPlot& plot, const DeviationGrid& grid, int step) {
   const stock::GridSpec& g = grid.grid;
-  const int longest = std::max(g.nx, g.ny);
-  const int step = std::max(1, (longest + kMapPixels - 1) / kMapPixels);       // cells a pixel (large grids)
-  const int zoom = step > 1 ? 1 : std::clamp(kMapPixels / longest, 1, 8);     // pixels a cell (small grids)
-  const int w = (g.nx + step - 1) / step * zoom, h = (g.ny + step - 1) / step * zoom;
   const std::vector<DeviationBand> bands = deviation_bands(grid.tolerance);
-  const std::vector<std::string> lines = figures(grid, report);
-  const int line_h = 11 * kScale, legend_h = kMargin + 3 * line_h + static_cast<int>(bands.size()) * line_h +
-                                             line_h + static_cast<int>(lines.size()) * line_h + kMargin;
-  RgbImage img(w + 3 * kMargin + kLegendWidth, std::max(h + 2 * kMargin + 2 * line_h, legend_h), kWhite);
-
-  // The map, row 0 of the grid at the bottom.
-  for (int j = 0; j < g.ny; j += step)
-    for (int i = 0; i < g.nx; i += step) {
-      const long c = worst_cell(grid, i, j, step);
-      const Rgb colour = bands[c < 0 ? bands.size() - 1 : deviation_band(grid.deviation[c], grid.cut[c], grid.tolerance)].colour;
-      img.fill(kMargin + i / step * zoom, kMargin + h - (j / step + 1) * zoom, zoom, zoom, colour);
+  auto band_of = [&](int i, int j) {
+    const long c = worst_cell(grid, i, j, step);
+    return c < 0 ? bands.size() - 1 : deviation_band(grid.deviation[c], grid.cut[c], grid.tolerance);
+  };
+  for (int j = 0; j < g.ny; j += step) {
+    const double y0 = g.y0 + j * g.cell, y1 = g.y0 + std::min(g.ny, j + step) * g.cell;
+    for (int i = 0; i < g.nx;) {
+      const size_t band = band_of(i, j);
+      int end = i + step;
+      while (end < g.nx && band_of(end, j) == band) end += step;
+      plot.fill_rect(g.x0 + i * g.cell, y0, g.x0 + std::min(g.nx, end) * g.cell, y1, bands[band].colour);
+      i = end;
     }
-  img.frame(kMargin - 1, kMargin - 1, w + 2, h + 2, kBlack);
-  img.text(kMargin, kMargin + h + line_h / 2,
-           fmt("x %.4g to %.4g mm, y %.4g", g.x0, g.x0 + g.nx * g.cell, g.y0) + fmt(" to %.4g mm", g.y0 + g.ny * g.cell),
-           kScale, kInk);
-  if (report.gouged) {  // ring the deepest gouge, black outside white so it shows on any colour
-    const double px = kMargin + (report.gouge_at.x() - g.x0) / (g.cell * step) * zoom;
-    const double py = kMargin + h - (report.gouge_at.y() - g.y0) / (g.cell * step) * zoom;
-    img.ring(static_cast<int>(px), static_cast<int>(py), 9, 12, kBlack);
-    img.ring(static_cast<int>(px), static_cast<int>(py), 7, 9, kWhite);
   }
-
-  // The legend and the figures.
-  const int x = w + 2 * kMargin + kMargin;
-  int y = kMargin;
-  img.text(x, y, "deviation (mm)", kScale, kInk);
-  y += line_h;
-  img.text(x, y, "= machined - design", kScale, kInk);
-  y += 2 * line_h;
-  for (const DeviationBand& b : bands) {
-    img.fill(x, y - 2, 28, 2 + 7 * kScale, b.colour);
-    img.frame(x, y - 2, 28, 2 + 7 * kScale, kBlack);
-    img.text(x + 36, y, b.label, kScale, kInk);
-    y += line_h;
-  }
-  y += line_h;
-  for (const std::string& l : lines) {
-    img.text(x, y, l, kScale, kInk);
-    y += line_h;
-  }
-  return img;
 }
 
-void write_deviation_png(const std::string& path, const DeviationGrid& grid, const DeviationReport& report) {
-  write_png(path, deviation_image(grid, report));
+// A cloud design's extent seen from above at the grid's resolution: the cell edges between a cell where the design has a height
+// and one where it has none (or the grid's border), joined into straight runs.
+void draw_cells_outline(picture::MapPlot& plot, const DeviationGrid& grid) {
+  const stock::GridSpec& g = grid.grid;
+  auto part = [&](int i, int j) {
+    return i >= 0 && j >= 0 && i < g.nx && j < g.ny && !std::isnan(grid.design[g.index(i, j)]);
+  };
+  // Along rows: the edge below cell (i, j); along columns: the edge left of cell (i, j).
+  for (int j = 0; j <= g.ny; ++j)
+    for (int i = 0; i < g.nx;) {
+      if (part(i, j) == part(i, j - 1)) { ++i; continue; }
+      int end = i + 1;
+      while (end < g.nx && part(end, j) != part(end, j - 1)) ++end;
+      const double y = g.y0 + j * g.cell;
+      plot.polyline({Vec2(g.x0 + i * g.cell, y), Vec2(g.x0 + end * g.cell, y)}, false, kOutline, 1.5);
+      i = end;
+    }
+  for (int i = 0; i <= g.nx; ++i)
+    for (int j = 0; j < g.ny;) {
+      if (part(i, j) == part(i - 1, j)) { ++j; continue; }
+      int end = j + 1;
+      while (end < g.ny && part(i, end) != part(i - 1, end)) ++end;
+      const double x = g.x0 + i * g.cell;
+      plot.polyline({Vec2(x, g.y0 + j * g.cell), Vec2(x, g.y0 + end * g.cell)}, false, kOutline, 1.5);
+      j = end;
+    }
+}
+
+}  // namespace
+
+picture::MapPicture deviation_picture(const DeviationGrid& grid, const DeviationReport& report,
+                                      const std::vector<Contour>& outline, const picture::MapCaption& caption) {
+  const stock::GridSpec& g = grid.grid;
+  picture::MapLegend legend;
+  legend.heading = {"deviation (mm)", "= machined - design"};
+  legend.bands = deviation_bands(grid.tolerance);
+  legend.figures = figures(grid, report);
+  picture::MapPlot plot(g.x0, g.y0, g.x0 + g.nx * g.cell, g.y0 + g.ny * g.cell, caption, legend, "deviation map",
+                        kMapPixels);
+  const int longest = std::max(g.nx, g.ny);
+  draw_cells(plot, grid, std::max(1, (longest + kMapPixels - 1) / kMapPixels));
+  if (outline.empty()) draw_cells_outline(plot, grid);
+  for (const Contour& c : outline) plot.polyline(c.points, c.closed, kOutline, 1.5);
+  if (report.gouged) plot.ring(report.gouge_at.x(), report.gouge_at.y());
+  return plot.finish();
+}
+
+void write_deviation_png(const std::string& path, const DeviationGrid& grid, const DeviationReport& report,
+                         const std::vector<Contour>& outline, const picture::MapCaption& caption) {
+  deviation_picture(grid, report, outline, caption).canvas.write_png(path);
 }
 
 }  // namespace rosmill::core::verify

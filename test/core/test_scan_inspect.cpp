@@ -17,6 +17,7 @@
 #include "rosmill/scan/inspection.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
 #include "rosmill/scan/surface_sample.hpp"
+#include "rosmill/testing/png_pixels.hpp"
 #include "rosmill/testing/sanitized.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
@@ -119,7 +120,9 @@ TEST(ScanInspect, CommandLineRegisterInspectFuse) {
   double worst = 0;
   for (size_t i = 0; i < stock.points.size(); i += 97) worst = std::max(worst, std::abs(distance.query(stock.points[i]).signed_distance));
   EXPECT_LT(worst, 0.15);
-  EXPECT_GT(std::filesystem::file_size(dir + "/map.png"), 1000u);
+  const rosmill::testing::PngPixels map = rosmill::testing::read_png_pixels(dir + "/map.png");
+  EXPECT_GT(map.width, 800 + 300);  // the map 800 pixels on its longer side, the legend beside
+  EXPECT_GT(map.height, 400);
 
   // Another part is refused, with the reason and a non-zero exit.
   const std::string other = std::string(ROSMILL_TEST_DATA) + "/pycam-textbox.stl";

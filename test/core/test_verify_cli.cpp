@@ -1,7 +1,6 @@
 // `rosmill verify` end to end: the JSON object the issue specifies, the deviation picture as a real PNG, and clear
 // errors for bad inputs.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <chrono>
 #include <fstream>
@@ -10,6 +9,7 @@
 #include "cli_run.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/testing/png_pixels.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/verify/deviation_map.hpp"
 #include "test_verify_programs.hpp"
@@ -46,55 +46,6 @@ std::string gouge_program(int& gouge_line) {
 }
 
 const std::string kTools = "--tool 1=flat:10 --tool 2=ball:6";
-
-uint32_t be32(const std::string& s, size_t at) {
-  return static_cast<uint32_t>(static_cast<unsigned char>(s[at])) << 24 |
-         static_cast<uint32_t>(static_cast<unsigned char>(s[at + 1])) << 16 |
-         static_cast<uint32_t>(static_cast<unsigned char>(s[at + 2])) << 8 | static_cast<unsigned char>(s[at + 3]);
-}
-
-struct Png {
-  uint32_t width = 0, height = 0;
-  std::vector<unsigned char> rgb;  // rows top to bottom
-};
-
-// Reads an 8-bit RGB PNG as the verifier writes it, checking every chunk's CRC.
-Png read_png(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  Png png;
-  EXPECT_EQ(s.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
-  std::string idat;
-  for (size_t at = 8; at + 12 <= s.size();) {
-    const uint32_t n = be32(s, at);
-    const std::string type = s.substr(at + 4, 4);
-    const auto* bytes = reinterpret_cast<const Bytef*>(s.data() + at + 4);
-    EXPECT_EQ(be32(s, at + 8 + n), crc32(crc32(0, nullptr, 0), bytes, n + 4)) << type;
-    if (type == "IHDR") {
-      png.width = be32(s, at + 8);
-      png.height = be32(s, at + 12);
-      EXPECT_EQ(s[at + 16], 8);  // bits
-      EXPECT_EQ(s[at + 17], 2);  // RGB
-    }
-    if (type == "IDAT") idat += s.substr(at + 8, n);
-    at += 12 + n;
-  }
-  std::vector<unsigned char> raw((png.width * 3 + 1) * png.height);
-  uLongf size = raw.size();
-  EXPECT_EQ(uncompress(raw.data(), &size, reinterpret_cast<const Bytef*>(idat.data()), idat.size()), Z_OK);
-  EXPECT_EQ(size, raw.size());
-  for (uint32_t y = 0; y < png.height; ++y) {
-    EXPECT_EQ(raw[y * (png.width * 3 + 1)], 0);  // filter: none
-    png.rgb.insert(png.rgb.end(), raw.begin() + y * (png.width * 3 + 1) + 1, raw.begin() + (y + 1) * (png.width * 3 + 1));
-  }
-  return png;
-}
-
-size_t pixels_of(const Png& png, Rgb c) {
-  size_t n = 0;
-  for (size_t i = 0; i + 2 < png.rgb.size(); i += 3) n += png.rgb[i] == c.r && png.rgb[i + 1] == c.g && png.rgb[i + 2] == c.b;
-  return n;
-}
 
 }  // namespace
 
@@ -172,17 +123,17 @@ TEST(VerifyCli, ImageIsAPngMapWithItsLegend) {
                                  kTools + " --image " + image);
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_NE(run.out.find("line " + std::to_string(gouge_line)), std::string::npos) << run.out;
-  const Png png = read_png(image);
-  // 300 x 300 cells at 2 pixels a cell, a margin, the legend beside.
-  EXPECT_GT(png.width, 600u + 400u);
-  EXPECT_GT(png.height, 600u);
+  const rosmill::testing::PngPixels png = rosmill::testing::read_png_pixels(image);
+  // The 60 mm square at 800 pixels (13.3 a mm), the axes, the title and the legend beside.
+  EXPECT_GT(png.width, 800 + 300);
+  EXPECT_GT(png.height, 800);
   const std::vector<DeviationBand> bands = deviation_bands(0.01);
-  for (const DeviationBand& b : bands) EXPECT_GT(pixels_of(png, b.colour), 28u * 10) << b.label;  // every swatch
-  // The map: the top on the design, a crater of gouge colours about the ball's cap (radius 2.6 mm = 26 pixels).
-  EXPECT_GT(pixels_of(png, bands[4].colour), 600u * 600u * 9 / 10);
-  const size_t gouge = pixels_of(png, bands[1].colour) + pixels_of(png, bands[2].colour) + pixels_of(png, bands[3].colour);
-  EXPECT_GT(gouge, 1000u);
-  EXPECT_LT(gouge, 3000u);
+  for (const DeviationBand& b : bands) EXPECT_GT(png.count(b.colour), 28u * 20) << b.label;  // every swatch
+  // The map: the top on the design, a crater of gouge colours about the ball's cap (radius 2.6 mm = 35 pixels).
+  EXPECT_GT(png.count(bands[4].colour), 800u * 800u * 9 / 10);
+  const size_t gouge = png.count(bands[1].colour) + png.count(bands[2].colour) + png.count(bands[3].colour);
+  EXPECT_GT(gouge, 1800u);
+  EXPECT_LT(gouge, 5400u);
 }
 
 TEST(VerifyCli, BadInputsGiveClearErrors) {

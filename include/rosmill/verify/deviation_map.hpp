@@ -1,24 +1,18 @@
 // The deviation map a machinist looks at: each cell coloured by how far the machined surface is from the design,
 // in bands of decades of the tolerance, gouges in reds and material left in blues. One colour scheme for the
-// picture (deviation_image.hpp) and for the coloured cloud the ROS layer publishes.
+// maps (deviation_image.hpp, inspection_image.hpp) and for the coloured cloud the ROS layer publishes.
 #pragma once
-#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "rosmill/picture/rgb.hpp"
 #include "rosmill/verify/deviation.hpp"
 
 namespace rosmill::core::verify {
 
-struct Rgb {
-  uint8_t r = 0, g = 0, b = 0;
-};
-
+using picture::Rgb;
 // The colour bands, in legend order (deepest gouge first): each with its colour and its label in mm.
-struct DeviationBand {
-  Rgb colour;
-  std::string label;
-};
+using DeviationBand = picture::ColourBand;
 std::vector<DeviationBand> deviation_bands(double tolerance);
 
 // Index into deviation_bands() of a cell: `deviation` machined - design (NaN: no design there), `cut` whether any
