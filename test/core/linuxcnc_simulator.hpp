@@ -74,24 +74,38 @@ class Simulator {
 
   // The simulator's machine time in seconds (scripts/linuxcnc-sim clock): servo periods counted at their nominal
   // length, so a loaded computer that runs the servo thread late does not stretch it. `motion` counts only the
-  // periods in which the trajectory planner had motion to run.
+  // periods in which the trajectory planner had motion to run; `first_motion` and `last_motion` are the clock's
+  // value at the first motion since arm() and at the last motion so far.
   struct Clock {
-    double all = NAN, motion = NAN;
+    double all = NAN, motion = NAN, first_motion = NAN, last_motion = NAN;
   };
   Clock clock() const {
     const std::string out = root_ + "/clock.out";
     const std::string cmd = ROSMILL_SOURCE_DIR "/scripts/linuxcnc-sim clock " + root_ + "/sim >" + out + " 2>&1";
     Clock c;
-    if (std::system(cmd.c_str()) != 0 || !(std::istringstream(slurp(out)) >> c.all >> c.motion))
+    if (std::system(cmd.c_str()) != 0 ||
+        !(std::istringstream(slurp(out)) >> c.all >> c.motion >> c.first_motion >> c.last_motion))
       throw std::runtime_error("scripts/linuxcnc-sim clock failed: " + slurp(out));
     return c;
   }
+  // The next motion is a run's first (scripts/linuxcnc-sim arm); the machine must be at rest.
+  void arm() const {
+    const std::string cmd = ROSMILL_SOURCE_DIR "/scripts/linuxcnc-sim arm " + root_ + "/sim >/dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0) throw std::runtime_error("scripts/linuxcnc-sim arm failed");
+  }
 
-  // Runs `program` to its end on controller `c` and returns the machine time it took: `all` from its start until
-  // the motion clock last moved, `motion` while the planner had motion to run. linuxcncrsh may report a program idle
-  // while the planner still runs it, so the end is when the motion clock has stood still for `settle_s` (wall).
-  Clock run_timed(rosmill::core::control::Controller& c, const std::vector<std::string>& program,
-                  double settle_s = 2.0) const {
+  // Runs `program` to its end on controller `c` and returns the machine time it took: `all` from its first motion
+  // to its last (the latches of scripts/linuxcnc-sim: what happens before the first motion, the program's upload
+  // and opening, and the reading of the status after the last take wall time that a loaded computer stretches;
+  // the machine time between is the program's own), `motion` the periods in which the planner had motion to run.
+  // linuxcncrsh may report a program idle while the planner still runs it, so the end is when the motion clock
+  // has stood still for `settle_s` (wall).
+  struct Run {
+    double all = NAN, motion = NAN;
+  };
+  Run run_timed(rosmill::core::control::Controller& c, const std::vector<std::string>& program,
+                double settle_s = 2.0) const {
+    arm();
     const Clock before = clock();
     const auto s = rosmill::core::control::run_to_end(c, program, rosmill::core::control::SendOptions{}, {}, 120.0);
     if (s.state != rosmill::core::control::RunState::Finished)
@@ -106,7 +120,8 @@ class Simulator {
         still = std::chrono::steady_clock::now();
       }
     }
-    return {after.all - before.all, after.motion - before.motion};
+    if (!(after.first_motion > before.all)) throw std::runtime_error("the program ran without any motion");
+    return {after.last_motion - after.first_motion, after.motion - before.motion};
   }
 
   // The tool length the simulator's tool table gives tool `id` (its Z column): G43 adds it to machine Z.
