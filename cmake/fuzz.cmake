@@ -3,7 +3,7 @@
 # in test/fuzz/<name>.dict; scripts/fuzz runs them. The target `rosmill_fuzz` builds them all.
 # In `scripts/test --sanitize` (and CI) each target also runs for a short fixed time from its seeds, as a test.
 add_custom_target(rosmill_fuzz)
-set(ROSMILL_FUZZ_TEST_SECONDS 10 CACHE STRING "seconds each fuzz target runs as a test")
+set(ROSMILL_FUZZ_TEST_SECONDS 6 CACHE STRING "seconds each fuzz target runs as a test")
 function(rosmill_fuzz_target name)
   add_executable(fuzz_${name} test/fuzz/fuzz_${name}.cpp ${ARGN})
   target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
