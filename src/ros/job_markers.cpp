@@ -16,13 +16,14 @@ namespace {
 constexpr double kTolerance = 0.05;  // mm: within this of the design the part is done (green)
 constexpr double kFull = 2.0;        // mm: this much left and more is red
 
-visualization_msgs::Marker legend_line(const std_msgs::Header& header, int id, const Vec3& at, const std::string& text,
-                                       const std_msgs::ColorRGBA& colour) {
-  visualization_msgs::Marker m = base_marker(header, "legend", id, visualization_msgs::Marker::TEXT_VIEW_FACING);
-  m.pose.position = to_point_msg(at);
-  m.scale.z = 0.004;  // text height, m
+constexpr double kLegendHeight = 4.0;  // mm: the legend's text height
+constexpr double kLegendGap = 10.0;    // mm between the stock and the legend
+constexpr size_t kLegendChars = 36;    // the longest line's characters: every line is padded to it
+
+visualization_msgs::Marker legend_line(const std_msgs::Header& header, int id, const Vec3& left,
+                                       const std::string& text, const std_msgs::ColorRGBA& colour) {
+  visualization_msgs::Marker m = text_from_left(header, "legend", id, left, text, kLegendHeight, kLegendChars);
   m.color = colour;
-  m.text = text;
   return m;
 }
 
@@ -88,9 +89,10 @@ visualization_msgs::MarkerArray JobMarkers::stock(const job::OperationView& view
     m.colors.resize(m.points.size(), material_left_colour(left[f], kTolerance, kFull));
   }
   array.markers.push_back(m);
-  // The legend: beside the stock, one line per colour.
+  // The legend: beside the stock on its +x side (the right of the bundled rviz view, config/rosmill.rviz), one line
+  // per colour from the stock's top down.
   const Box3& b = surface.faces.empty() ? view.part.bbox : surface.bbox;
-  const Vec3 at(b.max.x() + 10.0, b.min.y(), b.max.z());
+  const Vec3 at(b.max.x() + kLegendGap, b.min.y(), b.max.z());
   char full[64], tol[64];
   std::snprintf(full, sizeof full, "red: %.1f mm or more left", kFull);
   std::snprintf(tol, sizeof tol, "green: within %.2f mm of the design", kTolerance);
@@ -102,7 +104,7 @@ visualization_msgs::MarkerArray JobMarkers::stock(const job::OperationView& view
       {"magenta: below the design (gouge)", material_left_colour(-1.0f, kTolerance, kFull)}};
   for (size_t k = 0; k < lines.size(); ++k)
     array.markers.push_back(
-        legend_line(header_, int(k), at - Vec3(0, 0, 6.0 * k), lines[k].first, lines[k].second));
+        legend_line(header_, int(k), at - Vec3(0, 0, 2.0 * kLegendHeight * double(k)), lines[k].first, lines[k].second));
   return array;
 }
 

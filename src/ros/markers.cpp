@@ -53,6 +53,21 @@ visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std
   return m;
 }
 
+double text_width_mm(double height_mm, size_t chars) {
+  return 0.6 * height_mm * static_cast<double>(chars);  // rviz's sans face: no glyph is wider than 0.6 of the height
+}
+
+visualization_msgs::Marker text_from_left(const std_msgs::Header& header, const std::string& ns, int id,
+                                          const Vec3& left, const std::string& text, double height_mm, size_t chars) {
+  visualization_msgs::Marker m = base_marker(header, ns, id, visualization_msgs::Marker::TEXT_VIEW_FACING);
+  const size_t first_line = std::min(text.find('\n'), text.size());
+  m.text = text;
+  if (first_line < chars) m.text.insert(first_line, chars - first_line, ' ');
+  m.pose.position = to_point_msg(left + Vec3(0.5 * text_width_mm(height_mm, chars), 0, 0));
+  m.scale.z = to_metres(height_mm);
+  return m;
+}
+
 void add_facet(visualization_msgs::Marker& triangles, const Mesh& mesh, size_t f) {
   if (mesh.areas[f] <= 0) return;
   for (int i = 0; i < 3; ++i) triangles.points.push_back(to_point_msg(mesh.corner(f, i)));

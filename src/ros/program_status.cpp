@@ -7,6 +7,16 @@
 #include "rosmill/ros/markers.hpp"
 
 namespace rosmill::edge {
+namespace {
+
+constexpr double kStatusHeight = 5.0;  // mm: the status line's text height
+constexpr size_t kStatusChars = 40;    // "running  line 14964 / 14967  100%" and room to spare
+
+// Where the status line begins: 10 mm beside the program's box on its +x side (the right of the bundled rviz view)
+// and 15 mm over it, clear of the part, the tools drawn on it and the stock's legend below.
+Vec3 status_left(const Box3& program) { return Vec3(program.max.x() + 10.0, program.min.y(), program.max.z() + 15.0); }
+
+}  // namespace
 
 uint8_t status_state(control::RunState s) {
   switch (s) {
@@ -77,8 +87,7 @@ ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
                                  .inverse();
     Box3 box;
     for (const core::Toolpath& tp : job) box.add(tp.bounds());
-    const Vec3 centre = 0.5 * (box.min + box.max);
-    p.anchor = to_point_msg(p.machine_to_workpiece * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
+    p.anchor = to_point_msg(p.machine_to_workpiece * status_left(box));
     return p;
   }
   // The program is in the setup frame (the part re-fixtured); the status shows the tool on the part as it sits.
@@ -94,22 +103,19 @@ ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
   p.machine_to_workpiece = workpiece_in_setup.inverse() * program_on_machine.inverse();
   Box3 box;
   for (const core::Toolpath& tp : job) box.add(tp.bounds());
-  const Vec3 centre = 0.5 * (box.min + box.max);
-  p.anchor = to_point_msg(workpiece_in_setup.inverse() * Vec3(centre.x(), centre.y(), box.max.z() + 15.0));
+  p.anchor = to_point_msg(workpiece_in_setup.inverse() * status_left(box));
   return p;
 }
 
 visualization_msgs::MarkerArray status_markers(const msg::ProgramStatus& status, const geometry_msgs::Point& anchor) {
   visualization_msgs::MarkerArray array;
-  visualization_msgs::Marker text =
-      base_marker(status.header, "program", 0, visualization_msgs::Marker::TEXT_VIEW_FACING);
   char line[160];
   std::snprintf(line, sizeof line, "%s  line %u / %u  %.0f%%", status.state_name.c_str(), status.current_line,
                 status.total_lines, 100.0 * status.progress);
-  text.text = line;
-  if (!status.last_error.empty()) text.text += "\n" + status.last_error.substr(0, 120);
-  text.pose.position = anchor;
-  text.scale.z = 0.008;  // text height, m
+  std::string words = line;
+  if (!status.last_error.empty()) words += "\n" + status.last_error.substr(0, 120);
+  visualization_msgs::Marker text =
+      text_from_left(status.header, "program", 0, from_point_msg(anchor), words, kStatusHeight, kStatusChars);
   const bool bad = status.state == msg::ProgramStatus::ERROR || status.state == msg::ProgramStatus::ABORTED;
   text.color = bad ? rgba(1.0f, 0.3f, 0.3f) : rgba(1.0f, 1.0f, 1.0f);
   array.markers.push_back(text);

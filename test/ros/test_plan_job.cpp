@@ -8,10 +8,12 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <mutex>
 #include <set>
+#include <vector>
 
 #include "rosmill/PlanJobAction.h"
 #include "rosmill/geometry/primitives.hpp"
@@ -102,7 +104,9 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
 
   const auto s = stock.wait(10.0);
   ASSERT_TRUE(s);
-  bool mesh = false, legend = false;
+  bool mesh = false;
+  double stock_max_x = -1e300;
+  std::vector<visualization_msgs::Marker> legend;
   for (const auto& marker : s->markers) {
     if (marker.ns == "stock") {
       mesh = true;
@@ -110,11 +114,16 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
       EXPECT_GT(marker.points.size(), 100u);
       EXPECT_EQ(marker.colors.size(), marker.points.size());
       EXPECT_EQ(marker.header.frame_id, "workpiece");
+      for (const auto& q : marker.points) stock_max_x = std::max(stock_max_x, q.x);
     }
-    legend = legend || marker.ns == "legend";
+    if (marker.ns == "legend") legend.push_back(marker);
   }
   EXPECT_TRUE(mesh);
-  EXPECT_TRUE(legend);
+  ASSERT_EQ(legend.size(), 5u);
+  // Beside the stock, never over it: rviz centres a text on its position, and a character is at most 0.6 of the
+  // text's height wide, so each line's left end is 5 mm or more clear of the stock's +x side.
+  for (const auto& line : legend)
+    EXPECT_GE(line.pose.position.x - 0.3 * line.scale.z * double(line.text.size()), stock_max_x + 0.005) << line.text;
   const auto p = paths.wait(10.0);
   ASSERT_TRUE(p);
   std::set<std::string> operations;

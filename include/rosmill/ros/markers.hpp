@@ -24,6 +24,13 @@ std_msgs::ColorRGBA setup_colour(size_t setup);
 visualization_msgs::Marker base_marker(const std_msgs::Header& header, const std::string& ns, int id, int type);
 // Appends facet f's corners (m) to a TRIANGLE_LIST; a degenerate facet adds nothing (it has nothing to draw).
 void add_facet(visualization_msgs::Marker& triangles, const Mesh& mesh, size_t f);
+// A line of text in rviz that begins at `left` (mm) and runs along +x, the right of the bundled rviz view
+// (config/rosmill.rviz): rviz centres a text on its position, so the line is padded with spaces to `chars`
+// characters and placed half that width further along +x, and its left end stays put whatever it says.
+visualization_msgs::Marker text_from_left(const std_msgs::Header& header, const std::string& ns, int id,
+                                          const Vec3& left, const std::string& text, double height_mm, size_t chars);
+// How wide `chars` characters of text `height_mm` high are at most in rviz (mm).
+double text_width_mm(double height_mm, size_t chars);
 // A DELETEALL marker: the first of an array that replaces a whole view.
 visualization_msgs::Marker delete_all_marker(const std_msgs::Header& header);
 

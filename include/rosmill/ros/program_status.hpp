@@ -29,7 +29,7 @@ msg::ProgramStatus to_status_msg(const control::ControllerStatus& status, uint8_
 
 // Where a posted job sits for the status view: the transform from the controller's machine position (mm) to the
 // workpiece frame (minus the work offset, then back from the setup frame the job was planned in) and the anchor
-// of the status text (m, 15 mm above the job's centre).
+// of the status text (m: where its line begins, 10 mm beside the job's extent on +x and 15 mm above its top).
 struct ProgramPlacement {
   Eigen::Isometry3d machine_to_workpiece = Eigen::Isometry3d::Identity();
   geometry_msgs::Point anchor;
@@ -47,8 +47,8 @@ ProgramPlacement program_placement(const msg::ToolpathJob& msg, const Job& job,
                                    const std::optional<gcode::WorkOffset>& g54,
                                    const std::optional<machine::Trunnion>& trunnion = std::nullopt);
 
-// Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") above `anchor` (m) and, when the
-// position is known, a SPHERE at the tool tip.
+// Namespace "program": a TEXT_VIEW_FACING line ("running  line 12 / 40  30%") that begins at `anchor` (m) and,
+// when the position is known, a SPHERE at the tool tip.
 visualization_msgs::MarkerArray status_markers(const msg::ProgramStatus& status, const geometry_msgs::Point& anchor);
 
 }  // namespace rosmill::edge
