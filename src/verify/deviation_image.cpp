@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "formatted.hpp"
 #include "rosmill/verify/deviation_map.hpp"
 
 namespace rosmill::core::verify {
@@ -12,30 +13,24 @@ namespace {
 constexpr int kMapPixels = 800;
 constexpr Rgb kOutline{0, 0, 0};
 
-std::string fmt(const char* f, double a, double b = 0, double c = 0) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, f, a, b, c);
-  return buf;
-}
-
 // The report's figures, a line each (short enough for the legend's width).
 std::vector<std::string> figures(const DeviationGrid& grid, const DeviationReport& r) {
   const stock::GridSpec& g = grid.grid;
   std::vector<std::string> lines;
-  lines.push_back(fmt("%.0f x %.0f cells of %g mm", g.nx, g.ny, g.cell));
+  lines.push_back(formatted("%.0f x %.0f cells of %g mm", g.nx, g.ny, g.cell));
   if (r.gouged) {
-    lines.push_back(fmt("max gouge %.4g mm (ringed)", r.max_gouge_mm));
-    lines.push_back(fmt("at x %.2f y %.2f z %.3f", r.gouge_at.x(), r.gouge_at.y(), r.gouge_at.z()));
+    lines.push_back(formatted("max gouge %.4g mm (ringed)", r.max_gouge_mm));
+    lines.push_back(formatted("at x %.2f y %.2f z %.3f", r.gouge_at.x(), r.gouge_at.y(), r.gouge_at.z()));
     if (r.gouge_source) lines.push_back(std::string(r.from_gcode ? "line " : "move ") + std::to_string(r.gouge_source));
   } else {
     lines.push_back("no gouge");
   }
-  lines.push_back(fmt("max rest %.4g mm", r.max_rest_mm));
-  lines.push_back(fmt("mean rest %.4g mm", r.mean_rest_mm));
-  if (r.scallop_theory_mm >= 0) lines.push_back(fmt("scallop %.4g mm (theory %.4g)", r.scallop_mm, r.scallop_theory_mm));
-  else lines.push_back(fmt("scallop %.4g mm", r.scallop_mm));
-  lines.push_back(fmt("unreached %.4g mm2", r.unreached_area_mm2));
-  if (r.rapid_cut_cells) lines.push_back(fmt("rapids cut %.0f cells", static_cast<double>(r.rapid_cut_cells)));
+  lines.push_back(formatted("max rest %.4g mm", r.max_rest_mm));
+  lines.push_back(formatted("mean rest %.4g mm", r.mean_rest_mm));
+  if (r.scallop_theory_mm >= 0) lines.push_back(formatted("scallop %.4g mm (theory %.4g)", r.scallop_mm, r.scallop_theory_mm));
+  else lines.push_back(formatted("scallop %.4g mm", r.scallop_mm));
+  lines.push_back(formatted("unreached %.4g mm2", r.unreached_area_mm2));
+  if (r.rapid_cut_cells) lines.push_back(formatted("rapids cut %.0f cells", static_cast<double>(r.rapid_cut_cells)));
   return lines;
 }
 

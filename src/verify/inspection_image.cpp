@@ -8,18 +8,13 @@
 #include "rosmill/cloud/cloud_grid.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/verify/deviation_map.hpp"
+#include "formatted.hpp"
 
 namespace rosmill::core::verify {
 namespace {
 
 constexpr int kMapPixels = 800;
 constexpr size_t kBandsOfAScan = 9;  // a scan point is on the part and measured: never "not cut" nor "no design"
-
-std::string fmt(const char* f, double a, double b = 0, double c = 0) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, f, a, b, c);
-  return buf;
-}
 
 // The median nearest-neighbour distance of the scan (mm); 0 for fewer than two points.
 double point_spacing(const std::vector<Vec3>& points) {
@@ -33,15 +28,15 @@ double point_spacing(const std::vector<Vec3>& points) {
 std::vector<std::string> figures(const scan::InspectionReport& r, double tolerance, double spacing) {
   const double n = static_cast<double>(r.points.size());
   std::vector<std::string> lines;
-  lines.push_back(fmt("%.0f points, drawn %.3g mm across", n, spacing));
-  lines.push_back(fmt("largest excess %.4g mm", r.largest_excess.distance));
-  lines.push_back(fmt("  at x %.2f y %.2f z %.3f", r.largest_excess.place.x(), r.largest_excess.place.y(),
+  lines.push_back(formatted("%.0f points, drawn %.3g mm across", n, spacing));
+  lines.push_back(formatted("largest excess %.4g mm", r.largest_excess.distance));
+  lines.push_back(formatted("  at x %.2f y %.2f z %.3f", r.largest_excess.place.x(), r.largest_excess.place.y(),
                       r.largest_excess.place.z()));
-  lines.push_back(fmt("largest deficit %.4g mm", r.largest_deficit.distance));
-  lines.push_back(fmt("  at x %.2f y %.2f z %.3f", r.largest_deficit.place.x(), r.largest_deficit.place.y(),
+  lines.push_back(formatted("largest deficit %.4g mm", r.largest_deficit.distance));
+  lines.push_back(formatted("  at x %.2f y %.2f z %.3f", r.largest_deficit.place.x(), r.largest_deficit.place.y(),
                       r.largest_deficit.place.z()));
-  lines.push_back(fmt("mean %.4g mm, rms %.4g mm", r.mean, r.rms));
-  if (n > 0) lines.push_back(fmt("within +/- %g mm: %.1f %%", tolerance, 100.0 * r.within_tolerance / n));
+  lines.push_back(formatted("mean %.4g mm, rms %.4g mm", r.mean, r.rms));
+  if (n > 0) lines.push_back(formatted("within +/- %g mm: %.1f %%", tolerance, 100.0 * r.within_tolerance / n));
   return lines;
 }
 
