@@ -8,11 +8,18 @@
 // request after request, and a benchmark repeats a job: both should call this once at start-up. The cost is
 // that the process's resident size stays at its high-water mark.
 #pragma once
+#include <cstddef>
 
 namespace rosmill::core {
 
 // Call once, early in main(), before any large allocation. Returns false when the C library refused a setting
 // (the program still works, only slower).
 bool keep_freed_memory();
+
+// Makes the fresh pages of [data, data + bytes) the process's own before they are first written, half on each
+// core: the host-side faults of a virtual machine (see above) run side by side instead of one after the other
+// inside a single thread's zero-fill. For a block about to be filled by one thread (a vector's resize); a hint:
+// small blocks, and kernels older than Linux 5.14 (no MADV_POPULATE_WRITE), are left to fault as they are written.
+void fault_in_on_both_cores(void* data, size_t bytes);
 
 }  // namespace rosmill::core

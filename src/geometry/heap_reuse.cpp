@@ -1,8 +1,11 @@
 #include "rosmill/heap_reuse.hpp"
 
 #include <malloc.h>
+#include <sys/mman.h>
+#include <tbb/parallel_invoke.h>
 
 #include <climits>
+#include <cstdint>
 
 namespace rosmill::core {
 
@@ -14,6 +17,24 @@ bool keep_freed_memory() {
   const bool no_trim = mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
   const bool one_arena = mallopt(M_ARENA_MAX, 1) == 1;
   return no_mmap && no_trim && one_arena;
+}
+
+void fault_in_on_both_cores(void* data, size_t bytes) {
+#ifdef MADV_POPULATE_WRITE
+  constexpr uintptr_t kPage = 4096, kHuge = uintptr_t(2) << 20;
+  if (bytes < 4 * kHuge) return;  // a few milliseconds at most: not worth a second thread
+  const uintptr_t first = (reinterpret_cast<uintptr_t>(data) + kPage - 1) & ~(kPage - 1);
+  const uintptr_t last = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kPage - 1);
+  // The split on a huge-page boundary, so that no 2 MB page is faulted from both sides.
+  const uintptr_t middle = ((first + last) / 2) & ~(kHuge - 1);
+  const auto populate = [](uintptr_t from, uintptr_t to) {
+    if (to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);  // a hint: may fail
+  };
+  tbb::parallel_invoke([&] { populate(first, middle); }, [&] { populate(middle, last); });
+#else
+  (void)data;
+  (void)bytes;
+#endif
 }
 
 }  // namespace rosmill::core

@@ -40,6 +40,9 @@ void add_surface(const IndexedTriangles& m, MeshReport& r) {
   r.volume = signed_volume(m.vertices, m.faces, r.bbox);
 }
 
+// From this many faces on, the report's passes run on both cores.
+constexpr size_t kParallelFaces = 50000;
+
 struct EdgeCounts {
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
 };
@@ -60,11 +63,11 @@ EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
       const uint32_t lo = std::min(from, to), hi = std::max(from, to);
       half[--end[lo]] = hi << 1 | uint32_t(from < to);
     }
-  // Vertex ranges on both cores (from 50,000 faces on), each chunk one task; the counts are integers, so their
+  // Vertex ranges on both cores (from kParallelFaces on), each chunk one task; the counts are integers, so their
   // sum does not depend on the order the chunks end in.
-  const int chunks = faces.size() > 50000 ? 16 : 1;
+  const int chunks = faces.size() > kParallelFaces ? 16 : 1;
   std::atomic<size_t> open{0}, nonmanifold{0}, inconsistent{0};
-  tbb::parallel_for(0, chunks, [&](int k) {
+  const auto count_chunk = [&](int k) {
     EdgeCounts n;
     for (size_t v = nv * size_t(k) / size_t(chunks); v < nv * size_t(k + 1) / size_t(chunks); ++v) {
       uint32_t* first = half.data() + end[v];
@@ -87,7 +90,11 @@ EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
     open += n.open;
     nonmanifold += n.nonmanifold;
     inconsistent += n.inconsistent;
-  }, tbb::simple_partitioner());
+  };
+  if (chunks == 1)
+    count_chunk(0);  // on this thread: no thread pool started for a small mesh
+  else
+    tbb::parallel_for(0, chunks, count_chunk, tbb::simple_partitioner());
   return {open, nonmanifold, inconsistent};
 }
 
@@ -127,8 +134,17 @@ MeshReport report(const IndexedTriangles& triangles) {
   r.triangles = triangles.faces.size();
   r.vertices = nv;
   EdgeCounts edges;
-  // The surface pass (floating point) beside the edge pass (integers): one core each.
-  tbb::parallel_invoke([&] { add_surface(triangles, r); }, [&] { edges = count_edges(triangles.faces, nv); });
+  // The surface pass (floating point) beside the edge pass (integers): one core each. A small mesh stays on this
+  // thread: starting the thread pool (its libraries, a worker) costs more than the passes, and is most of the
+  // start-up of `rosmill info` on a small file.
+  const auto surface = [&] { add_surface(triangles, r); };
+  const auto edge_pass = [&] { edges = count_edges(triangles.faces, nv); };
+  if (triangles.faces.size() > kParallelFaces) {
+    tbb::parallel_invoke(surface, edge_pass);
+  } else {
+    surface();
+    edge_pass();
+  }
   r.open_edges = edges.open;
   r.nonmanifold_edges = edges.nonmanifold;
   r.inconsistent_edges = edges.inconsistent;

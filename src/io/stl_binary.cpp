@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "rosmill/error.hpp"
+#include "rosmill/heap_reuse.hpp"
 #include "rosmill/geometry/vertex_welder.hpp"
 #include "stl_parse.hpp"
 
@@ -90,11 +91,15 @@ void weld_range(const char* data, size_t first, size_t last, const std::string& 
   }
 }
 
-// Loops over vertices and faces on both cores from `grain` items on (a range no longer than its grain is not
-// split: shorter ones stay on the calling thread, whose start costs less than the threads' would), in pieces
-// taken on demand, so that the calling thread goes on while a sleeping worker wakes.
+// Loops over vertices and faces on both cores from `grain` items on, in pieces taken on demand, so that the
+// calling thread goes on while a sleeping worker wakes. A range no longer than its grain stays on the calling
+// thread without touching the thread pool: its first start (libraries, a worker) costs more than such a loop.
 template <typename Body>
 void for_each_item(int64_t first, int64_t last, int64_t grain, const Body& body) {
+  if (last - first <= grain) {
+    for (int64_t i = first; i < last; ++i) body(i);
+    return;
+  }
   tbb::parallel_for(
       tbb::blocked_range<int64_t>(first, last, grain),
       [&](const tbb::blocked_range<int64_t>& r) {
@@ -148,6 +153,8 @@ void parse_binary(const char* data, size_t count, const std::string& name, StlSo
 // second half's vertices in the whole file's order and its faces are renumbered.
 void parse_binary_welded(const char* data, size_t count, const std::string& name, IndexedTriangles& out,
                          size_t& stored_normal_mismatches) {
+  out.faces.reserve(count);
+  fault_in_on_both_cores(out.faces.data(), count * sizeof(Mesh::Face));  // before resize() zero-fills it
   out.faces.resize(count);
   if (count < 32768) {
     FloatWelder welder(count / 2 + 16);  // a closed mesh has about half as many vertices as triangles
