@@ -37,7 +37,8 @@ case "$tool" in
       DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
     fi
     # One merged install space, as catkin's: install/setup.bash (colcon's) brings in the package's environment.
-    build=(colcon build --merge-install --parallel-workers 1
+    # colcon-ros builds a catkin package's `tests` target too unless told not to.
+    build=(colcon build --merge-install --catkin-skip-building-tests
            --cmake-args -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3)
     export MAKEFLAGS="-j$jobs"
     install="$ws/install" ;;
