@@ -3,7 +3,7 @@
 # install's own setup.bash adds (no devel space, no source folder), rospack finds the package there, the installed
 # `rosmill` tool runs, the Python messages import, demo.launch resolves, `roslaunch rosmill bridge.launch` starts the
 # installed node with the installed configuration, rosrun starts the installed planner, and SIGINT stops each
-# within 2 s.
+# by itself (within 10 s, before roslaunch would escalate).
 # Usage: check_install.sh PREFIX [SETUP_DIR]   (SETUP_DIR: where setup.bash is, default PREFIX)
 set -euo pipefail
 prefix="$(cd "$1" && pwd)"
@@ -63,15 +63,15 @@ machine=$("${clean_env[@]}" rosparam get /rosmill/gcode_bridge/machine)
 [ "$machine" = "$prefix/share/rosmill/config/machine.yaml" ] ||
   fail "machine parameter is '$machine', not the install's"
 
-# Every node stops within 2 s of SIGINT (roslaunch escalates to SIGTERM otherwise). Prints the milliseconds taken.
-stop_within_2s() {
+# Every node stops by itself on SIGINT, well before roslaunch would escalate to SIGTERM (15 s after SIGINT): within
+# 10 s, which a loaded machine does not reach by chance (idle, it takes 0.3-0.6 s). Prints the milliseconds taken.
+stop_on_sigint() {
   local name="$1" pid="$2" start ms
   start=$(date +%s%N)
   kill -INT "$pid"
-  for _ in $(seq 1 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.05; done
-  kill -0 "$pid" 2>/dev/null && fail "$name still runs 5 s after SIGINT"
+  for _ in $(seq 1 200); do kill -0 "$pid" 2>/dev/null || break; sleep 0.05; done
+  kill -0 "$pid" 2>/dev/null && fail "$name still runs 10 s after SIGINT"
   ms=$(( ($(date +%s%N) - start) / 1000000 ))
-  [ "$ms" -le 2000 ] || fail "$name took $ms ms to stop after SIGINT (limit 2000)"
   echo "$ms"
 }
 
@@ -85,11 +85,11 @@ for _ in $(seq 1 150); do
   kill -0 "$planner_pid" 2>/dev/null || { cat "$work/planner.log"; fail "the installed planner stopped"; }
   sleep 0.2
 done
-planner_ms=$(stop_within_2s toolpath_planner "$planner_pid")
+planner_ms=$(stop_on_sigint toolpath_planner "$planner_pid")
 
 node_pid=$(pgrep -f "$prefix/lib/rosmill/gcode_bridge" | head -1)
 [ -n "$node_pid" ] || fail "no gcode_bridge process from the install"
-bridge_ms=$(stop_within_2s gcode_bridge "$node_pid")
+bridge_ms=$(stop_on_sigint gcode_bridge "$node_pid")
 kill -INT "$launch_pid"; wait "$launch_pid" 2>/dev/null || true; launch_pid=""
 echo "install check: $prefix works through $setup_dir/setup.bash; after SIGINT the planner stopped in $planner_ms ms," \
      "the bridge in $bridge_ms ms"
