@@ -2,10 +2,11 @@
 
 #include <malloc.h>
 #include <sys/mman.h>
-#include <tbb/parallel_invoke.h>
 
 #include <climits>
 #include <cstdint>
+
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 
@@ -30,7 +31,7 @@ void fault_in_on_both_cores(void* data, size_t bytes) {
   const auto populate = [](uintptr_t from, uintptr_t to) {
     if (to > from) ::madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);  // a hint: may fail
   };
-  tbb::parallel_invoke([&] { populate(first, middle); }, [&] { populate(middle, last); });
+  run_both([&] { populate(first, middle); }, [&] { populate(middle, last); });
 #else
   (void)data;
   (void)bytes;

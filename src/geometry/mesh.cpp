@@ -4,12 +4,10 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 #include <unordered_map>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/geometry/vertex_welder.hpp"
 
 namespace rosmill::core {
@@ -80,12 +78,9 @@ void compute_face_geometry(Mesh& mesh) {
   const size_t n = mesh.faces.size();
   mesh.normals.resize(n);
   mesh.areas.resize(n);
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, n, 20000),
-      [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t f = r.begin(); f < r.end(); ++f) face_geometry(mesh, f);
-      },
-      tbb::auto_partitioner());
+  for_each_piece(size_t(0), n, size_t(20000), [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) face_geometry(mesh, f);
+  });
 }
 
 // Edges by a counting sort of the half-edges on their lower vertex, then on the higher one within each vertex's
@@ -139,7 +134,7 @@ void build_edges(Mesh& mesh) {
   const int chunks = n > 50000 ? 2 * 8 : 1;
   std::vector<uint32_t> chunk_edges(chunks + 1, 0);
   auto chunk_bound = [&](int k) { return nv * size_t(k) / size_t(chunks); };
-  auto each_chunk = [chunks](const auto& work) { tbb::parallel_for(0, chunks, work, tbb::simple_partitioner()); };
+  auto each_chunk = [chunks](const auto& work) { for_each_chunk(chunks, work); };
   each_chunk([&](int k) {
     std::vector<std::pair<uint32_t, uint32_t>> scratch;
     uint32_t count = 0;

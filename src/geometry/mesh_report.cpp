@@ -1,14 +1,11 @@
 #include "rosmill/geometry/mesh_report.hpp"
 
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/partitioner.h>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <atomic>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -94,7 +91,7 @@ EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
   if (chunks == 1)
     count_chunk(0);  // on this thread: no thread pool started for a small mesh
   else
-    tbb::parallel_for(0, chunks, count_chunk, tbb::simple_partitioner());
+    for_each_chunk(chunks, count_chunk);
   return {open, nonmanifold, inconsistent};
 }
 
@@ -140,7 +137,7 @@ MeshReport report(const IndexedTriangles& triangles) {
   const auto surface = [&] { add_surface(triangles, r); };
   const auto edge_pass = [&] { edges = count_edges(triangles.faces, nv); };
   if (triangles.faces.size() > kParallelFaces) {
-    tbb::parallel_invoke(surface, edge_pass);
+    run_both(surface, edge_pass);
   } else {
     surface();
     edge_pass();

@@ -2,8 +2,6 @@
 // case, any white space (spaces, tabs, CR LF), several solids per file. Numbers go straight from the buffer
 // through fast_float; line numbers are counted only when an error is reported.
 #include <fast_float/fast_float.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +9,7 @@
 #include <vector>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "stl_parse.hpp"
 
 namespace rosmill::core::io {
@@ -222,18 +221,15 @@ bool parse_ascii_chunks(const char* data, size_t size, const std::string& name, 
   std::vector<StlSoup> parts(chunks);
   std::vector<char> ok(chunks, 0);
   // One task per chunk, taken by whichever core is free.
-  tbb::parallel_for(
-      0, chunks,
-      [&](int k) {
-        try {
-          bool inside = k > 0;
-          AsciiParser(data, bounds[k], bounds[k + 1], name, parts[k]).run_chunk(inside);
-          ok[k] = inside == (k + 1 < chunks);
-        } catch (const Error&) {
-          ok[k] = 0;
-        }
-      },
-      tbb::simple_partitioner());
+  for_each_chunk(chunks, [&](int k) {
+    try {
+      bool inside = k > 0;
+      AsciiParser(data, bounds[k], bounds[k + 1], name, parts[k]).run_chunk(inside);
+      ok[k] = inside == (k + 1 < chunks);
+    } catch (const Error&) {
+      ok[k] = 0;
+    }
+  });
   size_t corners = 0;
   for (int k = 0; k < chunks; ++k) {
     if (!ok[k]) return false;

@@ -1,10 +1,5 @@
 // Binary STL body: 50-byte records of little-endian float32 normal and corners, then a 16-bit attribute.
 #include <Eigen/Geometry>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
-#include <tbb/partitioner.h>
-
 #include <algorithm>
 #include <cstring>
 #include <exception>
@@ -12,6 +7,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/heap_reuse.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/geometry/vertex_welder.hpp"
 #include "stl_parse.hpp"
 
@@ -100,12 +96,9 @@ void for_each_item(int64_t first, int64_t last, int64_t grain, const Body& body)
     for (int64_t i = first; i < last; ++i) body(i);
     return;
   }
-  tbb::parallel_for(
-      tbb::blocked_range<int64_t>(first, last, grain),
-      [&](const tbb::blocked_range<int64_t>& r) {
-        for (int64_t i = r.begin(); i < r.end(); ++i) body(i);
-      },
-      tbb::auto_partitioner());
+  for_each_piece(first, last, grain, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) body(i);
+  });
 }
 
 constexpr int64_t kParallelVertices = 100000;
@@ -176,7 +169,7 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
     }
   };
   // Exactly two tasks: the merge below numbers the vertices of two welders, one per half.
-  tbb::parallel_invoke([&] { weld_half(0); }, [&] { weld_half(1); });
+  run_both([&] { weld_half(0); }, [&] { weld_half(1); });
   for (const std::exception_ptr& failure : failures)  // the error a sequential read would have met first
     if (failure) std::rethrow_exception(failure);
   stored_normal_mismatches += mismatches[0] + mismatches[1];

@@ -92,3 +92,19 @@ TEST(StlCli, InfoErrorsGoToStderrWithNonZeroStatus) {
   EXPECT_NE(units.status, 0);
   EXPECT_NE(units.out.find("furlong"), std::string::npos) << units.out;
 }
+
+// `info` on a small mesh runs in the front, which loads no thread library (its start-up is most of such a run);
+// a large one goes to rosmill-info, which loads TBB. The two programs give the same report, byte for byte.
+TEST(StlCli, TheFrontLoadsNoThreadLibraryAndReportsAsTheThreadedInfo) {
+  const CliRun libraries = run_command("ldd " ROSMILL_CLI);
+  ASSERT_EQ(libraries.status, 0);
+  EXPECT_EQ(libraries.out.find("libtbb"), std::string::npos) << libraries.out;
+  for (const char* file : {ROSMILL_TEST_DATA "/ktoolcav.stl", ROSMILL_TEST_DATA "/failedinpycam.stl"}) {
+    SCOPED_TRACE(file);
+    const CliRun front = rosmill(std::string("info --json ") + file);
+    const CliRun threaded = run_command(std::string(ROSMILL_CLI "-info info --json ") + file + " 2>/dev/null");
+    ASSERT_EQ(front.status, 0);
+    ASSERT_EQ(threaded.status, 0);
+    EXPECT_EQ(front.out, threaded.out);
+  }
+}
