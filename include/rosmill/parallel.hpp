@@ -27,14 +27,19 @@ void run_both(const F& f, const G& g) {
 #endif
 }
 
+// In both loops below, work that is not split (one chunk, a range no longer than its grain) runs on the calling
+// thread without touching the thread pool: its first start (libraries, a worker) costs more than a small loop.
+
 // body(k) for k in [0, chunks), each chunk one task (the caller sizes the chunks).
 template <class Body>
 void for_each_chunk(int chunks, const Body& body) {
-#ifdef ROSMILL_SEQUENTIAL
-  for (int k = 0; k < chunks; ++k) body(k);
-#else
-  tbb::parallel_for(0, chunks, body, tbb::simple_partitioner());
+#ifndef ROSMILL_SEQUENTIAL
+  if (chunks > 1) {
+    tbb::parallel_for(0, chunks, body, tbb::simple_partitioner());
+    return;
+  }
 #endif
+  for (int k = 0; k < chunks; ++k) body(k);
 }
 
 // body(begin, end) over pieces of [first, last) of at least `grain` items, taken on demand by the cores.
@@ -44,6 +49,10 @@ void for_each_piece(Index first, Index last, Index grain, const Body& body) {
   (void)grain;
   body(first, last);
 #else
+  if (last - first <= grain) {
+    if (last > first) body(first, last);
+    return;
+  }
   tbb::parallel_for(
       tbb::blocked_range<Index>(first, last, grain),
       [&](const tbb::blocked_range<Index>& r) { body(r.begin(), r.end()); }, tbb::auto_partitioner());

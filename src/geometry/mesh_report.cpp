@@ -88,10 +88,7 @@ EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
     nonmanifold += n.nonmanifold;
     inconsistent += n.inconsistent;
   };
-  if (chunks == 1)
-    count_chunk(0);  // on this thread: no thread pool started for a small mesh
-  else
-    for_each_chunk(chunks, count_chunk);
+  for_each_chunk(chunks, count_chunk);
   return {open, nonmanifold, inconsistent};
 }
 

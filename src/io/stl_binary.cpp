@@ -88,14 +88,9 @@ void weld_range(const char* data, size_t first, size_t last, const std::string& 
 }
 
 // Loops over vertices and faces on both cores from `grain` items on, in pieces taken on demand, so that the
-// calling thread goes on while a sleeping worker wakes. A range no longer than its grain stays on the calling
-// thread without touching the thread pool: its first start (libraries, a worker) costs more than such a loop.
+// calling thread goes on while a sleeping worker wakes (a shorter range stays on the calling thread).
 template <typename Body>
 void for_each_item(int64_t first, int64_t last, int64_t grain, const Body& body) {
-  if (last - first <= grain) {
-    for (int64_t i = first; i < last; ++i) body(i);
-    return;
-  }
   for_each_piece(first, last, grain, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) body(i);
   });
