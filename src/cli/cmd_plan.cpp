@@ -219,7 +219,7 @@ void run(const Options& o) {
                          {"max_engagement_deg", r.max_engagement_deg},
                          {"min_turn_radius", r.min_turn_radius},
                          {"levels", r.levels},
-                         {"rings", r.rings},
+                         {"passes", r.passes},
                          {"helices", r.helices},
                          {"ramps", r.ramps},
                          {"lifts", r.lifts},

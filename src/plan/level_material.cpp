@@ -11,6 +11,17 @@ namespace {
 // Samples of the leading half-circle: a sample per 2 degrees, each counting for its 2 degrees.
 constexpr int kArcSamples = 90;
 
+// The sample directions relative to the heading: cos and sin of -90 + (k + 0.5) * 2 degrees.
+struct ArcTable {
+  double c[kArcSamples], s[kArcSamples];
+  ArcTable() {
+    for (int k = 0; k < kArcSamples; ++k) {
+      const double a = -0.5 * M_PI + (k + 0.5) * M_PI / kArcSamples;
+      c[k] = std::cos(a), s[k] = std::sin(a);
+    }
+  }
+};
+
 }  // namespace
 
 LevelMaterial::LevelMaterial(const Vec2& lo, const Vec2& hi, double cell)
@@ -21,10 +32,16 @@ LevelMaterial::LevelMaterial(const Vec2& lo, const Vec2& hi, double cell)
       block_count_(size_t(bx_) * size_t(by_), 0) {}
 
 void LevelMaterial::set(size_t c, uint8_t value) {
-  if (bits_[c] == value) return;
-  const size_t b = size_t((long(c / nx_) / kBlock) * bx_ + long(c % nx_) / kBlock);
-  block_count_[b] += value ? 1 : uint32_t(-1);
+  const bool was = bits_[c] == kMaterial, is = value == kMaterial;
   bits_[c] = value;
+  if (was == is) return;
+  const size_t b = size_t((long(c / nx_) / kBlock) * bx_ + long(c % nx_) / kBlock);
+  block_count_[b] += is ? 1 : uint32_t(-1);
+}
+
+void LevelMaterial::block_of(const Vec2& p, long& bi, long& bj) const {
+  bi = std::clamp(static_cast<long>(std::floor((p.x() - x0_) / block_span())), 0L, bx_ - 1);
+  bj = std::clamp(static_cast<long>(std::floor((p.y() - y0_) / block_span())), 0L, by_ - 1);
 }
 
 bool LevelMaterial::near_material(const Vec2& p, double r) const {
@@ -62,12 +79,11 @@ void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
 
 double LevelMaterial::engagement(const Vec2& p, const Vec2& dir, double r) const {
   if (!near_material(p, r)) return 0;
-  const double heading = std::atan2(dir.y(), dir.x());
+  static const ArcTable table;
+  const Vec2 u = dir.normalized() * r, v(-u.y(), u.x());
   int in = 0;
-  for (int k = 0; k < kArcSamples; ++k) {
-    const double a = heading - 0.5 * M_PI + (k + 0.5) * M_PI / kArcSamples;
-    if (material(p + r * Vec2(std::cos(a), std::sin(a)))) ++in;
-  }
+  for (int k = 0; k < kArcSamples; ++k)
+    if (material(p + table.c[k] * u + table.s[k] * v)) ++in;
   return 180.0 * in / kArcSamples;
 }
 
@@ -82,7 +98,7 @@ bool LevelMaterial::each_within(const Vec2& a, const Vec2& b, double r, const F&
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
       const size_t c = size_t(j) * nx_ + i;
-      if (bits_[c] && segment_distance(Vec2(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_), a, b) <= r &&
+      if (bits_[c] == kMaterial && segment_distance(Vec2(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_), a, b) <= r &&
           !f(c))
         return false;
     }
@@ -104,7 +120,7 @@ void LevelMaterial::cut_along(const Vec2& a, const Vec2& b, double r) {
   const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / std::max(r, cell_))));
   for (int k = 0; k < n; ++k)
     each_within(a + (b - a) * (double(k) / n), a + (b - a) * (double(k + 1) / n), r, [&](size_t c) {
-      set(c, 0);
+      set(c, kAir);
       return true;
     });
 }
@@ -112,6 +128,22 @@ void LevelMaterial::cut_along(const Vec2& a, const Vec2& b, double r) {
 double LevelMaterial::material_area() const {
   size_t n = 0;
   for (uint32_t c : block_count_) n += c;
+  return double(n) * cell_ * cell_;
+}
+
+double LevelMaterial::material_area_off_walls(long margin) const {
+  size_t n = 0;
+  for (long j = 0; j < ny_; ++j)
+    for (long i = 0; i < nx_; ++i) {
+      if (bits_[size_t(j) * nx_ + i] != kMaterial) continue;
+      bool wall = false;
+      for (long dj = -margin; dj <= margin && !wall; ++dj)
+        for (long di = -margin; di <= margin && !wall; ++di) {
+          const long ii = i + di, jj = j + dj;
+          wall = ii >= 0 && jj >= 0 && ii < nx_ && jj < ny_ && bits_[size_t(jj) * nx_ + ii] == kOther;
+        }
+      n += !wall;
+    }
   return double(n) * cell_ * cell_;
 }
 

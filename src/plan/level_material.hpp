@@ -1,8 +1,11 @@
 // The material one roughing level still has to cut, as a bitmap of square cells in XY: a cell is material while
-// its centre lies in the region to clear and no cutter disc that passed at this level covered it. The adaptive
-// strategy asks it the cutter's radial engagement (the angle of its leading half-circle in material) and whether a
-// disc is free of material; it is the planner's own bookkeeping, not the verifier's independent measurement.
+// its centre lies in the region to clear and no cutter disc that passed at this level covered it; air where nothing
+// stood or a cutter disc passed; other cells (the part, what no cutter reaches) are neither. The adaptive strategy
+// asks it the cutter's radial engagement (the angle of its leading half-circle in material), whether a disc is free
+// of material, and where material borders air; it is the planner's own bookkeeping, not the verifier's independent
+// measurement.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -13,14 +16,16 @@ namespace rosmill::core {
 
 class LevelMaterial {
  public:
+  static constexpr uint8_t kOther = 0, kMaterial = 1, kAir = 2;
+
   // Cells of edge `cell` covering [lo, hi]; no material anywhere.
   LevelMaterial(const Vec2& lo, const Vec2& hi, double cell);
-  // Cells whose centre lies inside the region (even-odd over its loops) become `value` (1: material).
+  // Cells whose centre lies inside the region (even-odd over its loops) become `value`.
   void fill(const clip::Paths& region, uint8_t value);
   bool material(const Vec2& p) const {
     const long i = static_cast<long>(std::floor((p.x() - x0_) / cell_));
     const long j = static_cast<long>(std::floor((p.y() - y0_) / cell_));
-    return i >= 0 && j >= 0 && i < nx_ && j < ny_ && bits_[size_t(j) * nx_ + i] != 0;
+    return i >= 0 && j >= 0 && i < nx_ && j < ny_ && bits_[size_t(j) * nx_ + i] == kMaterial;
   }
   // Degrees of the leading half-circle (the half ahead of `dir`) of radius r around p that lies in material:
   // 180 for a full slot, acos(1 - ae / r) for a side cut of width ae, 0 in air.
@@ -31,10 +36,31 @@ class LevelMaterial {
   bool disc_clear(const Vec2& p, double r) const;
   // No material cell centre within r of the segment a-b.
   bool capsule_clear(const Vec2& a, const Vec2& b, double r) const;
-  // Every cell whose centre lies within r of the segment a-b is cut.
+  // Every material cell whose centre lies within r of the segment a-b is cut (becomes air).
   void cut_along(const Vec2& a, const Vec2& b, double r);
   double material_area() const;
+  // The area of the material cells with no other cell (neither material nor air: the walls' side) within
+  // `margin` cells: what is left off the walls, without the skin a cutter's chords leave on them.
+  double material_area_off_walls(long margin) const;
   double cell() const { return cell_; }
+
+  // Cells by index (row after row), for maps of the same grid.
+  long nx() const { return nx_; }
+  long ny() const { return ny_; }
+  uint8_t value(size_t c) const { return bits_[c]; }
+  Vec2 centre(size_t c) const {
+    return {x0_ + (double(long(c) % nx_) + 0.5) * cell_, y0_ + (double(long(c) / nx_) + 0.5) * cell_};
+  }
+  // Blocks of cells, for searches outward from a point: the block holding p (clamped to the grid), how many
+  // blocks there are each way, the edge length of one.
+  void block_of(const Vec2& p, long& bi, long& bj) const;
+  long blocks_x() const { return bx_; }
+  long blocks_y() const { return by_; }
+  double block_span() const { return kBlock * cell_; }
+  // Calls f(cell, centre, normal) for each material cell of block (bi, bj) that borders air among its eight
+  // neighbours; `normal` is the unit direction from the cell toward the air around it (within two cells).
+  template <class F>
+  void edge_cells(long bi, long bj, const F& f) const;
 
  private:
   // Calls f(cell index) for the cells whose centre lies within r of the segment a-b until f returns false.
@@ -49,5 +75,28 @@ class LevelMaterial {
   std::vector<uint32_t> block_count_;
   void set(size_t c, uint8_t value);
 };
+
+template <class F>
+void LevelMaterial::edge_cells(long bi, long bj, const F& f) const {
+  if (bi < 0 || bj < 0 || bi >= bx_ || bj >= by_ || !block_count_[size_t(bj) * bx_ + bi]) return;
+  const long i1 = std::min(nx_, (bi + 1) * kBlock), j1 = std::min(ny_, (bj + 1) * kBlock);
+  for (long j = bj * kBlock; j < j1; ++j)
+    for (long i = bi * kBlock; i < i1; ++i) {
+      const size_t c = size_t(j) * nx_ + i;
+      if (bits_[c] != kMaterial) continue;
+      bool edge = false;
+      double gx = 0, gy = 0;
+      for (long dj = -2; dj <= 2; ++dj)
+        for (long di = -2; di <= 2; ++di) {
+          const long ii = i + di, jj = j + dj;
+          if (ii < 0 || jj < 0 || ii >= nx_ || jj >= ny_ || bits_[size_t(jj) * nx_ + ii] != kAir) continue;
+          const double w = 1.0 / std::hypot(double(di), double(dj));
+          gx += di * w, gy += dj * w;
+          edge = edge || (std::abs(di) <= 1 && std::abs(dj) <= 1);
+        }
+      const double len = std::hypot(gx, gy);
+      if (edge && len > 1e-9) f(c, centre(c), Vec2(gx / len, gy / len));
+    }
+}
 
 }  // namespace rosmill::core

@@ -3,20 +3,22 @@
 // (the job's in-process stock, a stock mesh's section or the stock box) within reach of the cutter, which keeps
 // out of the part grown by the allowance (the waterline's cutter-location loops at that level, waterline.hpp).
 //
-// The cleared area grows in rings, as in contour-parallel pocketing from the inside out (Held, "On the
-// Computational Geometry of Pocket Machining", 1991) but each ring is chosen by its engagement: the cutter's centre
-// runs on the boundary of the cleared area shrunk by R - s (Clipper offsets), smoothed by an opening and a closing
-// of the smallest turn radius, and kept to where it meets material; s starts at the step of a straight side cut at
-// the engagement limit and is cut down until every point of the ring keeps the cutter's leading half-circle in
-// material for at most the limit (measured against the material left, level_material.hpp). So the engagement stays
-// bounded around the curved fronts near an entry and into inner corners, where fixed-stepover offsets bury the tool.
-// Rings run climb milling (material on the cutter's right for an M3 spindle).
+// The path is steered, as in constant-engagement ("adaptive", "dynamic") clearing: the cutter runs in passes with
+// the material on its right (climb milling for an M3 spindle), and at every step of R/10 its heading turns as far
+// into the material as keeps the engagement (the angle of its leading half-circle in material, measured against a
+// bitmap of what is left, level_material.hpp) at the limit less its 2-degree resolution, and never by more than
+// the smallest turn radius allows. So a pass follows the boundary of the cleared area at a constant engagement:
+// it spirals out of an entry, rounds convex material, runs across the front of a channel from wall to wall
+// (trochoidal milling, each pass a step further on), and turns away from an inner corner instead of burying the
+// tool in it. A pass ends where no turn keeps the engagement under the limit out of the part (a wall ahead, a
+// corner) or after a run in air; the next begins in air beside the material nearest where the last began (the
+// upstream end of the same front), reached along the level through cleared air where the way is free, else over
+// the material. A last pass round the walls, opened by the turn radius, takes what the passes left on them where
+// its engagement stays under the limit.
 //
-// A ring's piece is entered from cleared air: straight along the level where the cutter's disc meets no material
-// and stays out of the part, else by an arc lead-in tangent to it, from above over the material on the way. Where
-// no cleared air is in reach (a closed pocket, the first level) the cutter enters by a helix at the deepest point
-// of the material left, or by a ramp along the longest straight way where no helix fits (a slot barely wider than
-// the tool), starting just above the material there. Feeds follow the engagement of each move.
+// Where no pass can begin (a closed pocket, the first level) the cutter enters by a helix where the room for it is
+// deepest, or by a ramp along the longest straight way where no helix fits (a slot barely wider than the tool),
+// starting just above the material there. Feeds follow the engagement of each move.
 #pragma once
 #include "rosmill/plan/plan_report.hpp"
 #include "rosmill/plan/plan_support.hpp"

@@ -17,14 +17,14 @@ struct PlanReport {
   size_t skipped_samples = 0;  // positions left out where the surface skips (Surface::skips)
   double sample_step = 0.0;    // mm
   // Adaptive clearing (adaptive.hpp): the radial engagement it keeps to and the largest its own bookkeeping found
-  // on a move at a level (entries excluded: a helix or ramp cuts with the whole end), the radius its rings are
-  // opened by (their convex turns; not a measured bound on every turn), the rings, entries and lifts it made, and
-  // the area of material it left at the levels (inner corners tighter than the turn radius, gaps narrower than the
-  // tool).
+  // on a move at a level (entries excluded: a helix or ramp cuts with the whole end), the smallest radius its
+  // steered passes turn on (each step turns by at most step / radius), the passes, entries and lifts it made, and
+  // the area of material it left at the levels more than two cells off the walls (inner corners tighter than the
+  // turn radius, gaps narrower than the tool).
   double engagement_limit_deg = 0.0;
   double max_engagement_deg = 0.0;
   double min_turn_radius = 0.0;  // mm
-  size_t rings = 0, helices = 0, ramps = 0, lifts = 0;
+  size_t passes = 0, helices = 0, ramps = 0, lifts = 0;
   double left_area_mm2 = 0.0;
 };
 
