@@ -16,6 +16,7 @@ namespace {
 
 constexpr double kAirDeg = 2.0;       // engagement below this is air: no cut to steer by
 constexpr double kMeasureDeg = 2.0;   // the engagement's resolution: one sample of the half-circle
+constexpr int kHelixPerTurn = 36;     // points of a helix turn
 constexpr int kBisections = 6;        // halvings of the turn that meets the engagement target
 constexpr size_t kMaxSteps = 2000000;  // per level: a bound on the work whatever the geometry
 
@@ -31,10 +32,11 @@ struct Start {
   size_t cell = 0;  // the edge cell it was placed beside
 };
 
-// One step of a steered path: the cutter's next centre, its heading there and its engagement.
+// One step of a steered path: the cutter's next centre, its heading there, and whether its engagement passes the
+// target.
 struct Step {
   Vec2 p, h;
-  double e = 0;
+  bool over = false;
 };
 
 class AdaptivePlanner {
@@ -251,15 +253,14 @@ class AdaptivePlanner {
   // material); then back to the left as far as it takes to stay out of the part with room to turn away from its
   // wall. None when even the turn farthest to the left is over the target or no turn keeps out of the part.
   std::optional<Step> steer(const Vec2& p, const Vec2& h) const {
-    // The engagement at the end of the step, then (while under the target) where the cut measures it along it.
+    // Over the target at the end of the step, or where the cut measures the engagement along it.
     const int n = samples(step_);
     const auto at = [&](double a) {
       Step s;
       s.h = turned(h, a);
       s.p = p + step_ * s.h;
-      s.e = material_->engagement(s.p, s.h, R_);
-      for (int k = 1; k < n && s.e <= target_; ++k)
-        s.e = std::max(s.e, material_->engagement(p + (step_ * k / n) * s.h, s.h, R_));
+      s.over = material_->engaged_over(s.p, s.h, R_, target_);
+      for (int k = 1; k < n && !s.over; ++k) s.over = material_->engaged_over(p + (step_ * k / n) * s.h, s.h, R_, target_);
       return s;
     };
     // Room ahead to turn away from a wall within the turn radius.
@@ -268,15 +269,15 @@ class AdaptivePlanner {
     };
     const double into = -max_turn_;  // to the right
     Step away = at(-into);
-    if (away.e > target_) return std::nullopt;
+    if (away.over) return std::nullopt;
     Step best = at(into);
     double a_ok = -into, a_over = into;
-    if (best.e > target_) {
+    if (best.over) {
       best = away;
       for (int k = 0; k < kBisections; ++k) {
         const double mid = 0.5 * (a_ok + a_over);
         const Step s = at(mid);
-        if (s.e <= target_) best = s, a_ok = mid;
+        if (!s.over) best = s, a_ok = mid;
         else a_over = mid;
       }
     } else {
@@ -285,10 +286,11 @@ class AdaptivePlanner {
     if (clear(best)) return best;
     for (int k = 1; k <= 8; ++k) {
       const Step s = at(a_ok + (-into - a_ok) * k / 8.0);
-      if (s.e <= target_ && clear(s)) return s;
+      if (!s.over && clear(s)) return s;
     }
     return std::nullopt;
   }
+
 
   // Where the next pass begins: at the edge of the material nearest where the last pass began (blocks searched
   // outward from there), the cutter placed in air beside it. A pass that ran across a front from one wall to
@@ -305,8 +307,8 @@ class AdaptivePlanner {
       for (long j = bj - ring; j <= bj + ring; ++j)
         for (long i = bi - ring; i <= bi + ring; ++i) {
           if (std::max(std::abs(i - bi), std::abs(j - bj)) != ring) continue;
-          material_->edge_cells(i, j, [&](size_t c, const Vec2& centre, const Vec2& n) {
-            if (given_up_[c]) return;
+          material_->edge_cells(i, j, [&](size_t c) { return given_up_[c] != 0; },
+                                [&](size_t c, const Vec2& centre, const Vec2& n) {
             edge.push_back({(centre - from).squaredNorm(), normal.size()});
             normal.push_back(n);
             cells_.push_back(c);
@@ -350,14 +352,15 @@ class AdaptivePlanner {
   // cut nearly nothing. The wall pass takes what of it a cutter reaches.
   void give_up_skin() {
     const long nx = material_->nx(), ny = material_->ny();
+    const auto other = [&](long i, long j) {
+      return i >= 0 && j >= 0 && i < nx && j < ny && material_->value(size_t(j) * nx + i) == LevelMaterial::kOther;
+    };
     for (long j = 0; j < ny; ++j)
       for (long i = 0; i < nx; ++i) {
-        if (material_->value(size_t(j) * nx + i) != LevelMaterial::kOther) continue;
-        for (long dj = -2; dj <= 2; ++dj)
-          for (long di = -2; di <= 2; ++di) {
-            const long ii = i + di, jj = j + dj;
-            if (ii >= 0 && jj >= 0 && ii < nx && jj < ny) given_up_[size_t(jj) * nx + ii] = 1;
-          }
+        const size_t c = size_t(j) * nx + i;
+        if (material_->value(c) != LevelMaterial::kMaterial) continue;
+        for (long dj = -2; dj <= 2 && !given_up_[c]; ++dj)
+          for (long di = -2; di <= 2 && !given_up_[c]; ++di) given_up_[c] = other(i + di, j + dj);
       }
   }
 
@@ -458,46 +461,60 @@ class AdaptivePlanner {
   // allowed centres within 0.9 R of that material is deepest (a chamfer distance over the cells, as far as the
   // helix radius). False when no material is left that an entry reaches.
   bool seed() {
-    const long nx = material_->nx(), ny = material_->ny();
-    const size_t n = size_t(nx) * ny;
-    std::vector<float> to_material(n, INFINITY), depth(n, 0);
     const std::vector<uint8_t> closed = closed_material();
-    bool any = false;
-    for (size_t c = 0; c < n; ++c)
-      if (closed[c]) to_material[c] = 0, any = true;
-    if (!any) return false;
-    chamfer(to_material, nx, ny);
+    // The window the entry is sought in: the closed material's box, grown by how far from it a centre may be.
+    const long nx = material_->nx(), ny = material_->ny();
+    long i0 = nx, i1 = -1, j0 = ny, j1 = -1;
+    for (size_t c = 0; c < closed.size(); ++c)
+      if (closed[c] && !given_up_[c]) {
+        const long i = long(c) % nx, j = long(c) / nx;
+        i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
+      }
+    if (i1 < 0) return false;
+    const long grow = static_cast<long>(std::ceil(0.9 * R_ / cell_)) + 2;
+    i0 = std::max(0L, i0 - grow), j0 = std::max(0L, j0 - grow);
+    i1 = std::min(nx - 1, i1 + grow), j1 = std::min(ny - 1, j1 + grow);
+    const long wx = i1 - i0 + 1, wy = j1 - j0 + 1;
+    const size_t n = size_t(wx) * wy;
+    const auto cell_of = [&](size_t w) { return size_t(j0 + long(w) / wx) * nx + size_t(i0 + long(w) % wx); };
+    std::vector<float> to_material(n, INFINITY), depth(n, 0);
+    for (long wj = 0; wj < wy; ++wj)
+      for (long wi = 0; wi < wx; ++wi) {
+        const size_t c = size_t(j0 + wj) * nx + size_t(i0 + wi);
+        if (closed[c] && !given_up_[c]) to_material[size_t(wj) * wx + wi] = 0;
+      }
+    chamfer(to_material, wx, wy);
     const float reach = static_cast<float>(0.9 * R_);
-    LevelMaterial allowed(material_->centre(0) - Vec2::Constant(0.5 * cell_),
-                          material_->centre(n - 1) + Vec2::Constant(0.5 * cell_), cell_);
+    const Vec2 corner = material_->centre(cell_of(0)) - Vec2::Constant(0.5 * cell_);
+    LevelMaterial allowed(corner, corner + Vec2((wx - 0.5) * cell_, (wy - 0.5) * cell_), cell_);  // wx x wy cells
     allowed.fill(allowed_, LevelMaterial::kMaterial);
-    for (size_t c = 0; c < n; ++c)
-      depth[c] = allowed.value(c) == LevelMaterial::kMaterial && to_material[c] <= reach ? INFINITY : 0;
-    chamfer(depth, nx, ny);
+    for (size_t w = 0; w < n; ++w)
+      depth[w] = allowed.value(w) == LevelMaterial::kMaterial && to_material[w] <= reach ? INFINITY : 0;
+    chamfer(depth, wx, wy);
     // The deepest cells (as deep as the helix needs), and of them the one nearest their centroid: the middle of
     // a slot, where a ramp reaches both ends.
     float deepest = 0;
-    for (size_t c = 0; c < n; ++c) deepest = std::max(deepest, std::min<float>(depth[c], helix_));
+    for (size_t w = 0; w < n; ++w) deepest = std::max(deepest, std::min<float>(depth[w], helix_));
+    std::vector<size_t> deep;
     Vec2 sum = Vec2::Zero();
-    double count = 0;
-    for (size_t c = 0; c < n; ++c)
-      if (deepest > 0 && std::min<float>(depth[c], helix_) >= deepest) sum += material_->centre(c), count += 1;
+    for (size_t w = 0; w < n && deepest > 0; ++w)
+      if (std::min<float>(depth[w], helix_) >= deepest) deep.push_back(w), sum += material_->centre(cell_of(w));
     size_t best = kNoCell;
     double nearest = INFINITY;
-    for (size_t c = 0; c < n; ++c)
-      if (count > 0 && std::min<float>(depth[c], helix_) >= deepest) {
-        const double d = (material_->centre(c) - sum / count).squaredNorm();
-        if (d < nearest) nearest = d, best = c;
-      }
+    for (size_t w : deep) {
+      const double d = (material_->centre(cell_of(w)) - sum / double(deep.size())).squaredNorm();
+      if (d < nearest) nearest = d, best = w;
+    }
     if (best == kNoCell) {
-      for (size_t c = 0; c < n; ++c)
-        if (material_->value(c) == LevelMaterial::kMaterial) given_up_[c] = 1;
+      for (size_t c = 0; c < closed.size(); ++c)
+        if (closed[c]) given_up_[c] = 1;
       return false;
     }
-    const Vec2 p = material_->centre(best);
+    const Vec2 p = material_->centre(cell_of(best));
     const double room = std::max(0.0, double(depth[best]) - cell_);
     const double before = material_->material_area();
-    if (std::min(helix_, room) >= std::max(0.05 * R_, 2 * cell_)) helix(p, std::min(helix_, room));
+    if (std::min(helix_, room) >= std::max(0.05 * R_, 2 * cell_) && helix_fits(p, std::min(helix_, room)))
+      helix(p, std::min(helix_, room));
     else if (!ramp(p)) {
       give_up_near(p, 2 * R_);
       return true;
@@ -544,31 +561,55 @@ class AdaptivePlanner {
   // transformations in digital images", 1986): within 8 % of the Euclidean distance.
   void chamfer(std::vector<float>& d, long nx, long ny) const {
     const float a = static_cast<float>(cell_), b = static_cast<float>(cell_ * 4.0 / 3.0);
-    const auto relax = [&](long i, long j, long di, long dj, float w) {
-      const long ii = i + di, jj = j + dj;
-      if (ii < 0 || jj < 0 || ii >= nx || jj >= ny) return;
-      float& here = d[size_t(j) * nx + i];
-      here = std::min(here, d[size_t(jj) * nx + ii] + w);
-    };
-    for (long j = 0; j < ny; ++j)
+    for (long j = 0; j < ny; ++j) {
+      float* row = &d[size_t(j) * nx];
+      const float* up = j > 0 ? row - nx : nullptr;
       for (long i = 0; i < nx; ++i) {
-        relax(i, j, -1, 0, a), relax(i, j, 0, -1, a), relax(i, j, -1, -1, b), relax(i, j, 1, -1, b);
+        float v = row[i];
+        if (i > 0) v = std::min(v, row[i - 1] + a);
+        if (up) {
+          v = std::min(v, up[i] + a);
+          if (i > 0) v = std::min(v, up[i - 1] + b);
+          if (i + 1 < nx) v = std::min(v, up[i + 1] + b);
+        }
+        row[i] = v;
       }
-    for (long j = ny - 1; j >= 0; --j)
+    }
+    for (long j = ny - 1; j >= 0; --j) {
+      float* row = &d[size_t(j) * nx];
+      const float* down = j + 1 < ny ? row + nx : nullptr;
       for (long i = nx - 1; i >= 0; --i) {
-        relax(i, j, 1, 0, a), relax(i, j, 0, 1, a), relax(i, j, 1, 1, b), relax(i, j, -1, 1, b);
+        float v = row[i];
+        if (i + 1 < nx) v = std::min(v, row[i + 1] + a);
+        if (down) {
+          v = std::min(v, down[i] + a);
+          if (i + 1 < nx) v = std::min(v, down[i + 1] + b);
+          if (i > 0) v = std::min(v, down[i - 1] + b);
+        }
+        row[i] = v;
       }
+    }
+  }
+
+
+  // Point k of a helix of radius r around c, kHelixPerTurn a turn.
+  static Vec2 helix_point(const Vec2& c, double r, int k) {
+    return c + r * Vec2(std::cos(2 * M_PI * k / kHelixPerTurn), std::sin(2 * M_PI * k / kHelixPerTurn));
+  }
+
+  // Every point of the helix's circle keeps the cutter out of the part (the depth found on cells is checked).
+  bool helix_fits(const Vec2& c, double r) const {
+    for (int k = 0; k < kHelixPerTurn; ++k)
+      if (!in_part_clearance(helix_point(c, r, k))) return false;
+    return in_part_clearance(c);
   }
 
   void helix(const Vec2& c, double r) {
     ++report_.helices;
-    constexpr int kPerTurn = 36;
-    const auto at = [&](int k) -> Vec2 {
-      return c + r * Vec2(std::cos(2 * M_PI * k / kPerTurn), std::sin(2 * M_PI * k / kPerTurn));
-    };
+    const auto at = [&](int k) { return helix_point(c, r, k); };
     const double top = std::max(top_.highest_under(c, r + R_), z_);
     descend_to(at(0), top);
-    const double drop = 2 * M_PI * r * slope_ / kPerTurn;
+    const double drop = 2 * M_PI * r * slope_ / kHelixPerTurn;
     int k = 0;
     for (double zc = w_->position().z(); zc > z_ + 1e-9;) {
       zc = std::max(z_, zc - drop);
@@ -578,7 +619,7 @@ class AdaptivePlanner {
     // The whole disc is cut once the helix is down; a last turn at the level (still the entry, at the plunge
     // feed: it takes the wedge the last turn down left with the cutter's end) flattens its floor.
     cut(c, c, r + R_);
-    for (int i = 0; i < kPerTurn; ++i) {
+    for (int i = 0; i < kHelixPerTurn; ++i) {
       const Vec2 p = at(++k);
       w_->plunge_to(Vec3(p.x(), p.y(), z_));
     }

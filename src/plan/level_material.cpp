@@ -77,14 +77,29 @@ void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
   }
 }
 
-double LevelMaterial::engagement(const Vec2& p, const Vec2& dir, double r) const {
+int LevelMaterial::arc_in(const Vec2& p, const Vec2& dir, double r, int enough) const {
   if (!near_material(p, r)) return 0;
   static const ArcTable table;
-  const Vec2 u = dir.normalized() * r, v(-u.y(), u.x());
+  // In cell units from the grid's corner; a sample off the grid is no material.
+  const Vec2 u = dir.normalized() * (r / cell_), v(-u.y(), u.x());
+  const double px = (p.x() - x0_) / cell_, py = (p.y() - y0_) / cell_;
   int in = 0;
-  for (int k = 0; k < kArcSamples; ++k)
-    if (material(p + table.c[k] * u + table.s[k] * v)) ++in;
-  return 180.0 * in / kArcSamples;
+  for (int k = 0; k < kArcSamples && in < enough; ++k) {
+    const double x = px + table.c[k] * u.x() + table.s[k] * v.x(), y = py + table.c[k] * u.y() + table.s[k] * v.y();
+    if (!(x >= 0 && y >= 0 && x < double(nx_) && y < double(ny_))) continue;
+    in += bits_[size_t(static_cast<long>(y)) * nx_ + static_cast<long>(x)] == kMaterial;
+  }
+  return in;
+}
+
+double LevelMaterial::engagement(const Vec2& p, const Vec2& dir, double r) const {
+  return 180.0 * arc_in(p, dir, r, kArcSamples) / kArcSamples;
+}
+
+bool LevelMaterial::engaged_over(const Vec2& p, const Vec2& dir, double r, double deg) const {
+  // Over deg once more than deg / (180 / kArcSamples) samples are in.
+  const int most = static_cast<int>(std::floor(deg * kArcSamples / 180.0));
+  return arc_in(p, dir, r, most + 1) > most;
 }
 
 bool LevelMaterial::disc_clear(const Vec2& p, double r) const { return capsule_clear(p, p, r); }

@@ -30,6 +30,8 @@ class LevelMaterial {
   // Degrees of the leading half-circle (the half ahead of `dir`) of radius r around p that lies in material:
   // 180 for a full slot, acos(1 - ae / r) for a side cut of width ae, 0 in air.
   double engagement(const Vec2& p, const Vec2& dir, double r) const;
+  // engagement(p, dir, r) > deg, counting only as far as it takes.
+  bool engaged_over(const Vec2& p, const Vec2& dir, double r, double deg) const;
   // False only when no material lies within r of p (blocks of cells counted: a quick test before finer ones).
   bool near_material(const Vec2& p, double r) const;
   // No material cell centre within r of p.
@@ -58,12 +60,15 @@ class LevelMaterial {
   long blocks_y() const { return by_; }
   double block_span() const { return kBlock * cell_; }
   // Calls f(cell, centre, normal) for each material cell of block (bi, bj) that borders air among its eight
-  // neighbours; `normal` is the unit direction from the cell toward the air around it (within two cells).
-  template <class F>
-  void edge_cells(long bi, long bj, const F& f) const;
+  // neighbours and that skip(cell) does not pass over; `normal` is the unit direction from the cell toward the air
+  // around it (within two cells).
+  template <class Skip, class F>
+  void edge_cells(long bi, long bj, const Skip& skip, const F& f) const;
 
  private:
   // Calls f(cell index) for the cells whose centre lies within r of the segment a-b until f returns false.
+  // Samples of the leading half-circle in material, counted up to `enough`.
+  int arc_in(const Vec2& p, const Vec2& dir, double r, int enough) const;
   template <class F>
   bool each_within(const Vec2& a, const Vec2& b, double r, const F& f) const;
   double x0_, y0_, cell_;
@@ -71,31 +76,40 @@ class LevelMaterial {
   std::vector<uint8_t> bits_;
   // Material cells per block of kBlock x kBlock cells.
   static constexpr long kBlock = 16;
+  // 1 / |(di, dj)| over a 5 x 5 window (0 at its centre).
+  static constexpr double kR1 = 1.0, kR2 = 0.7071067811865476, kR4 = 0.5, kR5 = 0.4472135954999579,
+                          kR8 = 0.3535533905932738;
+  static constexpr double kInverse[5][5] = {{kR8, kR5, kR4, kR5, kR8},
+                                            {kR5, kR2, kR1, kR2, kR5},
+                                            {kR4, kR1, 0.0, kR1, kR4},
+                                            {kR5, kR2, kR1, kR2, kR5},
+                                            {kR8, kR5, kR4, kR5, kR8}};
   long bx_ = 0, by_ = 0;
   std::vector<uint32_t> block_count_;
   void set(size_t c, uint8_t value);
 };
 
-template <class F>
-void LevelMaterial::edge_cells(long bi, long bj, const F& f) const {
+template <class Skip, class F>
+void LevelMaterial::edge_cells(long bi, long bj, const Skip& skip, const F& f) const {
   if (bi < 0 || bj < 0 || bi >= bx_ || bj >= by_ || !block_count_[size_t(bj) * bx_ + bi]) return;
   const long i1 = std::min(nx_, (bi + 1) * kBlock), j1 = std::min(ny_, (bj + 1) * kBlock);
+  const auto air = [&](long i, long j) {
+    return i >= 0 && j >= 0 && i < nx_ && j < ny_ && bits_[size_t(j) * nx_ + i] == kAir;
+  };
   for (long j = bj * kBlock; j < j1; ++j)
     for (long i = bi * kBlock; i < i1; ++i) {
       const size_t c = size_t(j) * nx_ + i;
-      if (bits_[c] != kMaterial) continue;
-      bool edge = false;
+      if (bits_[c] != kMaterial || skip(c)) continue;
+      if (!air(i - 1, j) && !air(i + 1, j) && !air(i, j - 1) && !air(i, j + 1) && !air(i - 1, j - 1) &&
+          !air(i + 1, j - 1) && !air(i - 1, j + 1) && !air(i + 1, j + 1))
+        continue;
+      // The air around, each cell weighted by its inverse distance, within two cells.
       double gx = 0, gy = 0;
       for (long dj = -2; dj <= 2; ++dj)
-        for (long di = -2; di <= 2; ++di) {
-          const long ii = i + di, jj = j + dj;
-          if (ii < 0 || jj < 0 || ii >= nx_ || jj >= ny_ || bits_[size_t(jj) * nx_ + ii] != kAir) continue;
-          const double w = 1.0 / std::hypot(double(di), double(dj));
-          gx += di * w, gy += dj * w;
-          edge = edge || (std::abs(di) <= 1 && std::abs(dj) <= 1);
-        }
-      const double len = std::hypot(gx, gy);
-      if (edge && len > 1e-9) f(c, centre(c), Vec2(gx / len, gy / len));
+        for (long di = -2; di <= 2; ++di)
+          if (air(i + di, j + dj)) gx += di * kInverse[dj + 2][di + 2], gy += dj * kInverse[dj + 2][di + 2];
+      const double len = std::sqrt(gx * gx + gy * gy);
+      if (len > 1e-9) f(c, centre(c), Vec2(gx / len, gy / len));
     }
 }
 
