@@ -220,6 +220,7 @@ void run(const Options& o) {
                          {"min_turn_radius", r.min_turn_radius},
                          {"levels", r.levels},
                          {"passes", r.passes},
+                         {"corner_links", r.corner_links},
                          {"helices", r.helices},
                          {"ramps", r.ramps},
                          {"lifts", r.lifts},

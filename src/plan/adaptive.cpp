@@ -9,6 +9,7 @@
 #include "rosmill/cutter/chip_thinning.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/geometry/dubins.hpp"
 #include "rosmill/plan/levels.hpp"
 
 namespace rosmill::core {
@@ -17,6 +18,7 @@ namespace {
 constexpr double kAirDeg = 2.0;       // engagement below this is air: no cut to steer by
 constexpr double kMeasureDeg = 2.0;   // the engagement's resolution: one sample of the half-circle
 constexpr int kHelixPerTurn = 36;     // points of a helix turn
+constexpr double kWallRoom = 0.5;     // turn radii a pass keeps ahead of it clear of the walls
 constexpr int kBisections = 6;        // halvings of the turn that meets the engagement target
 constexpr size_t kMaxSteps = 2000000;  // per level: a bound on the work whatever the geometry
 
@@ -162,7 +164,7 @@ class AdaptivePlanner {
   // while in air. So the path follows the boundary of the cleared area at a constant engagement: a spiral in open
   // material, an arc across the front of a channel, slowed into inner corners by turning away from them.
   void pass(const Start& start) {
-    reach_air(start.p);
+    reach_air(start.p, start.h);
     last_start_ = start.p;
     ++report_.passes;
     Vec2 p = start.p, h = start.h;
@@ -237,7 +239,7 @@ class AdaptivePlanner {
             const size_t at = (i + end) % n;
             if (material_->engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > target_) break;
           }
-          if (end > 1) reach_air(p[i]);
+          if (end > 1) reach_air(p[i], (p[(i + 1) % n] - p[i]).normalized());
           for (size_t j = 1; j < end; ++j) {
             const size_t at = (i + j) % n;
             if (corner[at] || j + 1 == end) cut_to(p[at]);
@@ -263,9 +265,9 @@ class AdaptivePlanner {
       for (int k = 1; k < n && !s.over; ++k) s.over = material_->engaged_over(p + (step_ * k / n) * s.h, s.h, R_, target_);
       return s;
     };
-    // Room ahead to turn away from a wall within the turn radius.
+    // Room ahead to turn away from a wall within the turn radius (and so to link to the next pass by a curve).
     const auto clear = [&](const Step& s) {
-      return in_part_clearance(s.p) && in_part_clearance(s.p + 0.5 * r_min_ * s.h);
+      return in_part_clearance(s.p) && in_part_clearance(s.p + kWallRoom * r_min_ * s.h);
     };
     const double into = -max_turn_;  // to the right
     Step away = at(-into);
@@ -347,21 +349,18 @@ class AdaptivePlanner {
     return std::nullopt;
   }
 
-  // No pass starts at the skin of material on the walls (within two cells of the cells beyond the target): a pass
-  // along a wall leaves it where its chords fall inside the wall's curve, and chasing it would make passes that
-  // cut nearly nothing. The wall pass takes what of it a cutter reaches.
+  // No pass starts in the strip of material on the walls that the passes leave (they keep kWallRoom turn radii
+  // off a wall to turn away from it; a pass along a wall leaves a skin of cells where its chords fall inside the
+  // wall's curve): chasing it would make short passes that cut nearly nothing. The wall pass takes it.
   void give_up_skin() {
     const long nx = material_->nx(), ny = material_->ny();
-    const auto other = [&](long i, long j) {
-      return i >= 0 && j >= 0 && i < nx && j < ny && material_->value(size_t(j) * nx + i) == LevelMaterial::kOther;
-    };
-    for (long j = 0; j < ny; ++j)
-      for (long i = 0; i < nx; ++i) {
-        const size_t c = size_t(j) * nx + i;
-        if (material_->value(c) != LevelMaterial::kMaterial) continue;
-        for (long dj = -2; dj <= 2 && !given_up_[c]; ++dj)
-          for (long di = -2; di <= 2 && !given_up_[c]; ++di) given_up_[c] = other(i + di, j + dj);
-      }
+    std::vector<float> to_wall(size_t(nx) * ny, INFINITY);
+    for (size_t c = 0; c < to_wall.size(); ++c)
+      if (material_->value(c) == LevelMaterial::kOther) to_wall[c] = 0;
+    chamfer(to_wall, nx, ny);
+    const float skin = static_cast<float>(2 * cell_);
+    for (size_t c = 0; c < to_wall.size(); ++c)
+      if (material_->value(c) == LevelMaterial::kMaterial && to_wall[c] <= skin) given_up_[c] = 1;
   }
 
   // Material cells within r of p are no longer tried as the start of a pass.
@@ -385,10 +384,52 @@ class AdaptivePlanner {
 
   // ---- links
 
-  // To p, whose disc is clear, along the level when the way is free, else from above.
-  void reach_air(const Vec2& p) {
-    if (at_level() && free_way(w_->position().head<2>(), p)) cut_to(p);
-    else descend(p);
+  // To p, whose disc is clear, arriving along h: along the level by the shortest curve of the turn radius that
+  // meets no material and stays out of the part (a Dubins path, geometry/dubins.hpp; a straight line when the
+  // turn radius is 0), else from above.
+  void reach_air(const Vec2& p, const Vec2& h) {
+    if (at_level()) {
+      const Vec2 from = w_->position().head<2>();
+      if (r_min_ <= 0) {
+        if (free_way(from, p)) return cut_to(p);
+      } else if ((p - from).norm() > 1e-9 || (h - heading_).norm() > 1e-9) {
+        for (const DubinsPath& path : dubins_paths(from, heading_, p, h, r_min_)) {
+          if (path.length() > 8 * R_) break;
+          const std::vector<Vec2> way = dubins_points(path, from, heading_, step_);
+          if (!free_curve(from, way)) continue;
+          for (const Vec2& q : way) cut_to(q);
+          heading_ = h;
+          return;
+        }
+        // No curve of the turn radius fits the cleared air: a straight link, turning on the spot at its ends,
+        // rather than a lift.
+        if (free_way(from, p)) {
+          ++report_.corner_links;
+          return cut_to(p);
+        }
+      } else {
+        return;
+      }
+    }
+    descend(p);
+  }
+
+  // Every chord of the way from `from` keeps out of the part and cuts at most at the target engagement (it sets
+  // off from the material the last pass ended against).
+  bool free_curve(const Vec2& from, const std::vector<Vec2>& way) const {
+    Vec2 a = from;
+    for (const Vec2& b : way) {
+      const double len = (b - a).norm();
+      if (len < 1e-12) continue;
+      const Vec2 dir = (b - a) / len;
+      const int n = samples(len);
+      for (int k = 1; k <= n; ++k) {
+        const Vec2 q = a + (b - a) * (double(k) / n);
+        if (!in_part_clearance(q) || material_->engaged_over(q, dir, R_, target_)) return false;
+      }
+      a = b;
+    }
+    return true;
   }
 
   bool at_level() const { return !w_->at_safe() && std::abs(w_->position().z() - z_) < 1e-9; }
@@ -433,6 +474,7 @@ class AdaptivePlanner {
     const int n = samples(len);
     for (int k = 1; k <= n; ++k) e = std::max(e, material_->engagement(a + (p - a) * (double(k) / n), dir, R_));
     w_->feed(Vec3(p.x(), p.y(), z_));
+    heading_ = dir;
     engagement_of_move(e);
     cut(a, p);
   }
@@ -623,6 +665,7 @@ class AdaptivePlanner {
       const Vec2 p = at(++k);
       w_->plunge_to(Vec3(p.x(), p.y(), z_));
     }
+    heading_ = (at(k + 1) - at(k)).normalized();
   }
 
   // Over what stands on the way to p, down to the approach over `top`, and in at the plunge feed to `top`: the
@@ -664,6 +707,7 @@ class AdaptivePlanner {
     // Along the whole way at the level, there and back (the entry's end, at the plunge feed).
     cut(a, b);
     for (const Vec2& q : {a, b, a}) w_->plunge_to(Vec3(q.x(), q.y(), z_));
+    heading_ = (a - b).normalized();
     return true;
   }
 
@@ -696,6 +740,7 @@ class AdaptivePlanner {
   std::vector<size_t> cells_;      // the edge cells a search gathered
   size_t steps_ = 0;               // steps steered at the level
   Vec2 last_start_ = Vec2::Zero();  // where the last pass began
+  Vec2 heading_ = Vec2::UnitX();    // of the cutter's last move at the level
 };
 
 }  // namespace

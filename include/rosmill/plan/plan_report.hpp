@@ -18,13 +18,14 @@ struct PlanReport {
   double sample_step = 0.0;    // mm
   // Adaptive clearing (adaptive.hpp): the radial engagement it keeps to and the largest its own bookkeeping found
   // on a move at a level (entries excluded: a helix or ramp cuts with the whole end), the smallest radius its
-  // steered passes turn on (each step turns by at most step / radius), the passes, entries and lifts it made, and
-  // the area of material it left at the levels more than two cells off the walls (inner corners tighter than the
-  // turn radius, gaps narrower than the tool).
+  // steered passes and their links turn on (each step turns by at most step / radius), the passes, entries, lifts
+  // and links that turn on the spot it made, and the area of material it left at the levels more than two cells
+  // off the walls (inner corners tighter than the turn radius, gaps narrower than the tool).
   double engagement_limit_deg = 0.0;
   double max_engagement_deg = 0.0;
   double min_turn_radius = 0.0;  // mm
   size_t passes = 0, helices = 0, ramps = 0, lifts = 0;
+  size_t corner_links = 0;  // links at the level that turn on the spot: no curve of the turn radius fitted
   double left_area_mm2 = 0.0;
 };
 
