@@ -97,6 +97,28 @@ double measured_level_engagement(const Job& job, const Box3& stock) {
   return worst;
 }
 
+// Vertices between two feed moves along a level where the path turns sharper than `radius`: the turn angle
+// against the shorter of the two moves (a chord of an arc of radius r turns by its length / r).
+size_t sharp_turns(const Job& job, double radius) {
+  size_t sharp = 0;
+  for (const Toolpath& tp : job)
+    for (const ToolpathPass& pass : tp.passes) {
+      Vec3 from = Vec3::Constant(NAN);
+      Vec2 u = Vec2::Zero();  // the last move along the level (zero after any other move)
+      for (const Move& m : pass.moves) {
+        const bool level = m.type == MoveType::Feed && std::abs(m.to.z() - from.z()) < 1e-9;
+        const Vec2 v = level ? Vec2((m.to - from).head<2>()) : Vec2::Zero();
+        if (u.norm() > 1e-9 && v.norm() > 1e-9) {
+          const double turn = std::abs(std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v)));
+          if (std::min(u.norm(), v.norm()) < 0.9 * radius * turn) ++sharp;
+        }
+        if (!level || v.norm() > 1e-9) u = v;
+        from = m.to;
+      }
+    }
+  return sharp;
+}
+
 verify::VerifyResult verified(const Mesh& design, const Job& job, const Box3& stock, double resolution = 0.25) {
   verify::StockSpec spec;
   spec.kind = verify::StockSpec::Kind::Box;
@@ -171,6 +193,8 @@ TEST(Adaptive, OpenAndClosedRegionsClearedAtTheEngagementLimit) {
   EXPECT_EQ(va.report.rapid_cut_cells, 0u);
   // On the top: the allowance (the level at 60.5).
   EXPECT_NEAR(left_on_floor(va, 10, 50, 10, 50, 0), 0.5, 0.01);
+  // Turns within the turn radius but at links that turn on the spot (each has two corners).
+  EXPECT_LE(sharp_turns(a.job, a.report.min_turn_radius), 2 * a.report.corner_links);
 
   const Mesh pocket = pocket_block(80, 60, 20, 20, 60, 15, 45, 10);
   const gcode::MachineLimits machine =
@@ -187,6 +211,7 @@ TEST(Adaptive, OpenAndClosedRegionsClearedAtTheEngagementLimit) {
   const verify::VerifyResult vp = verified(pocket, p.job, block);
   EXPECT_LE(vp.report.max_gouge_mm, 0.0);
   EXPECT_LE(left_on_floor(vp, 20, 60, 15, 45, 3.5), 0.2 + 0.01);
+  EXPECT_LE(sharp_turns(p.job, p.report.min_turn_radius), 2 * p.report.corner_links);
   // The program LinuxCNC's interpreter reads, within the simulator's envelope.
   gcode::ProgramChecks checks;
   checks.machine = machine;
