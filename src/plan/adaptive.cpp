@@ -138,22 +138,22 @@ class AdaptivePlanner {
     z_ = z;
     allowed_ = r.allowed;
     const Vec2 big_lo = lo_ - Vec2::Constant(3 * R_), big_hi = hi_ + Vec2::Constant(3 * R_);
-    material_.emplace(big_lo, big_hi, cell_);
-    material_->fill(clip::subtract(clip::rectangle(big_lo, big_hi), r.material), LevelMaterial::kAir);
-    material_->fill(r.target, LevelMaterial::kMaterial);
-    inside_.emplace(big_lo, big_hi, cell_);
-    inside_->fill(clip::offset(r.allowed, -cell_, arc_), LevelMaterial::kMaterial);
-    given_up_.assign(size_t(material_->nx()) * material_->ny(), 0);
+    material_.reset(big_lo, big_hi, cell_);
+    material_.fill(clip::subtract(clip::rectangle(big_lo, big_hi), r.material), LevelMaterial::kAir);
+    material_.fill(r.target, LevelMaterial::kMaterial);
+    inside_.reset(big_lo, big_hi, cell_);
+    inside_.fill(clip::offset(r.allowed, -cell_, arc_), LevelMaterial::kMaterial);
+    given_up_.assign(size_t(material_.nx()) * material_.ny(), 0);
     give_up_skin();
     steps_ = 0;
     w_->begin_pass("adaptive z " + std::to_string(z));
-    while (steps_ < kMaxSteps && material_->material_area() > 0) {
+    while (steps_ < kMaxSteps && material_.material_area() > 0) {
       const std::optional<Start> start = next_start();
       if (start) pass(*start);
       else if (!seed()) break;
     }
     wall_pass();
-    report_.left_area_mm2 += material_->material_area_off_walls(2);
+    report_.left_area_mm2 += material_.material_area_off_walls(2);
   }
 
   // ---- steered passes
@@ -169,7 +169,7 @@ class AdaptivePlanner {
     ++report_.passes;
     Vec2 p = start.p, h = start.h;
     double air = 0;
-    const double before = material_->material_area();
+    const double before = material_.material_area();
     std::vector<Vec2> in_air;  // steps through air not yet written: dropped if the pass ends in air
     while (steps_ < kMaxSteps) {
       ++steps_;
@@ -177,7 +177,7 @@ class AdaptivePlanner {
       if (!next) break;
       // Air where the step would cut no cell (the engagement may still see the cells a disc's edge leaves, their
       // centres just beyond R).
-      const bool air_step = material_->capsule_clear(p, next->p, R_);
+      const bool air_step = material_.capsule_clear(p, next->p, R_);
       p = next->p, h = next->h;
       if (air_step) {
         air += step_;
@@ -190,7 +190,7 @@ class AdaptivePlanner {
       cut_to(p);
       air = 0;
     }
-    if (material_->material_area() > before - cell_ * cell_) {
+    if (material_.material_area() > before - cell_ * cell_) {
       given_up_[start.cell] = 1;
       give_up_near(start.p, R_ + step_);
     }
@@ -216,7 +216,7 @@ class AdaptivePlanner {
       const size_t pad = static_cast<size_t>(std::ceil(R_ / cell_));
       for (size_t k = 0; k < n; ++k) {
         const Vec2 dir = (p[(k + 1) % n] - p[k]).normalized();
-        if (material_->engagement(p[k], dir, R_ - cell_) > kAirDeg)
+        if (material_.engagement(p[k], dir, R_ - cell_) > kAirDeg)
           for (size_t d = 0; d <= 2 * pad; ++d) keep[(k + n + d - pad) % n] = 1;
       }
       if (std::none_of(keep.begin(), keep.end(), [](uint8_t b) { return b; })) continue;
@@ -232,12 +232,12 @@ class AdaptivePlanner {
         }
         size_t len = 0;
         while (k + len < n && keep[(first + k + len) % n]) ++len;
-        if (material_->disc_clear(p[i], R_)) {
+        if (material_.disc_clear(p[i], R_)) {
           // Up to where the engagement would pass the target (a corner the passes left thick): the rest stays.
           size_t end = 1;
           for (; end <= len; ++end) {
             const size_t at = (i + end) % n;
-            if (material_->engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > target_) break;
+            if (material_.engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > target_) break;
           }
           if (end > 1) reach_air(p[i], (p[(i + 1) % n] - p[i]).normalized());
           for (size_t j = 1; j < end; ++j) {
@@ -261,8 +261,8 @@ class AdaptivePlanner {
       Step s;
       s.h = turned(h, a);
       s.p = p + step_ * s.h;
-      s.over = material_->engaged_over(s.p, s.h, R_, target_);
-      for (int k = 1; k < n && !s.over; ++k) s.over = material_->engaged_over(p + (step_ * k / n) * s.h, s.h, R_, target_);
+      s.over = material_.engaged_over(s.p, s.h, R_, target_);
+      for (int k = 1; k < n && !s.over; ++k) s.over = material_.engaged_over(p + (step_ * k / n) * s.h, s.h, R_, target_);
       return s;
     };
     // Room ahead to turn away from a wall within the turn radius (and so to link to the next pass by a curve).
@@ -301,15 +301,15 @@ class AdaptivePlanner {
   std::optional<Start> next_start() {
     const Vec2 from = at_level() ? last_start_ : w_->position().head<2>();
     long bi = 0, bj = 0;
-    material_->block_of(from, bi, bj);
-    const long rings = std::max({bi, bj, material_->blocks_x() - bi, material_->blocks_y() - bj});
+    material_.block_of(from, bi, bj);
+    const long rings = std::max({bi, bj, material_.blocks_x() - bi, material_.blocks_y() - bj});
     std::vector<std::pair<double, size_t>> edge;
     std::vector<Vec2> normal(0);
     for (long ring = 0; ring <= rings; ++ring) {
       for (long j = bj - ring; j <= bj + ring; ++j)
         for (long i = bi - ring; i <= bi + ring; ++i) {
           if (std::max(std::abs(i - bi), std::abs(j - bj)) != ring) continue;
-          material_->edge_cells(i, j, [&](size_t c) { return given_up_[c] != 0; },
+          material_.edge_cells(i, j, [&](size_t c) { return given_up_[c] != 0; },
                                 [&](size_t c, const Vec2& centre, const Vec2& n) {
             edge.push_back({(centre - from).squaredNorm(), normal.size()});
             normal.push_back(n);
@@ -317,7 +317,7 @@ class AdaptivePlanner {
           });
         }
       // Every cell nearer than this ring's inner side is in: try them nearest first.
-      const double sure = std::max(0.0, (ring - 1) * material_->block_span());
+      const double sure = std::max(0.0, (ring - 1) * material_.block_span());
       std::sort(edge.begin(), edge.end());
       size_t tried = 0;
       for (; tried < edge.size() && (edge[tried].first <= sure * sure || ring == rings); ++tried) {
@@ -338,34 +338,37 @@ class AdaptivePlanner {
   // A start beside edge cell c whose air lies along n: the cutter's disc clear of material and out of the part,
   // a cell off the edge; then the walk back along the front.
   std::optional<Start> start_at(size_t c, const Vec2& n) {
-    const Vec2 m = material_->centre(c);
+    const Vec2 m = material_.centre(c);
     for (double turn : {0.0, 0.5, -0.5}) {
       const Vec2 u = turned(n, turn);
       const Vec2 p = m + (R_ + 2 * cell_) * u;
       const Vec2 h = turned(Vec2(u.y(), -u.x()), -lead_in_);
-      if (!in_part_clearance(p) || !material_->disc_clear(p, R_) || material_->engagement(p, h, R_) > 0) continue;
+      if (!in_part_clearance(p) || !material_.disc_clear(p, R_) || material_.engagement(p, h, R_) > 0) continue;
       return Start{p, h, c};
     }
     return std::nullopt;
   }
 
-  // No pass starts in the strip of material on the walls that the passes leave (they keep kWallRoom turn radii
-  // off a wall to turn away from it; a pass along a wall leaves a skin of cells where its chords fall inside the
-  // wall's curve): chasing it would make short passes that cut nearly nothing. The wall pass takes it.
+  // No pass starts at the skin of material on the walls (within two cells of the cells beyond the target): a pass
+  // along a wall leaves it where its chords fall inside the wall's curve, and chasing it would make passes that
+  // cut nearly nothing. The wall pass takes what of it a cutter reaches.
   void give_up_skin() {
-    const long nx = material_->nx(), ny = material_->ny();
-    std::vector<float> to_wall(size_t(nx) * ny, INFINITY);
-    for (size_t c = 0; c < to_wall.size(); ++c)
-      if (material_->value(c) == LevelMaterial::kOther) to_wall[c] = 0;
-    chamfer(to_wall, nx, ny);
-    const float skin = static_cast<float>(2 * cell_);
-    for (size_t c = 0; c < to_wall.size(); ++c)
-      if (material_->value(c) == LevelMaterial::kMaterial && to_wall[c] <= skin) given_up_[c] = 1;
+    const long nx = material_.nx(), ny = material_.ny();
+    const auto other = [&](long i, long j) {
+      return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == LevelMaterial::kOther;
+    };
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i) {
+        const size_t c = size_t(j) * nx + i;
+        if (material_.value(c) != LevelMaterial::kMaterial) continue;
+        for (long dj = -2; dj <= 2 && !given_up_[c]; ++dj)
+          for (long di = -2; di <= 2 && !given_up_[c]; ++di) given_up_[c] = other(i + di, j + dj);
+      }
   }
 
   // Material cells within r of p are no longer tried as the start of a pass.
   void give_up_near(const Vec2& p, double r) {
-    const double c = material_->cell();
+    const double c = material_.cell();
     for (double y = p.y() - r; y <= p.y() + r; y += c)
       for (double x = p.x() - r; x <= p.x() + r; x += c) {
         const size_t k = cell_index(Vec2(x, y));
@@ -375,11 +378,11 @@ class AdaptivePlanner {
 
   static constexpr size_t kNoCell = size_t(-1);
   size_t cell_index(const Vec2& p) const {
-    const Vec2 o = material_->centre(0) - Vec2::Constant(0.5 * cell_);
+    const Vec2 o = material_.centre(0) - Vec2::Constant(0.5 * cell_);
     const long i = static_cast<long>(std::floor((p.x() - o.x()) / cell_));
     const long j = static_cast<long>(std::floor((p.y() - o.y()) / cell_));
-    if (i < 0 || j < 0 || i >= material_->nx() || j >= material_->ny()) return kNoCell;
-    return size_t(j) * material_->nx() + i;
+    if (i < 0 || j < 0 || i >= material_.nx() || j >= material_.ny()) return kNoCell;
+    return size_t(j) * material_.nx() + i;
   }
 
   // ---- links
@@ -425,7 +428,7 @@ class AdaptivePlanner {
       const int n = samples(len);
       for (int k = 1; k <= n; ++k) {
         const Vec2 q = a + (b - a) * (double(k) / n);
-        if (!in_part_clearance(q) || material_->engaged_over(q, dir, R_, target_)) return false;
+        if (!in_part_clearance(q) || material_.engaged_over(q, dir, R_, target_)) return false;
       }
       a = b;
     }
@@ -437,7 +440,7 @@ class AdaptivePlanner {
   // A straight way along the level on which the cutter meets no material and stays out of the part.
   bool free_way(const Vec2& a, const Vec2& b) const {
     const double len = (b - a).norm();
-    if (len > 8 * R_ || !material_->capsule_clear(a, b, R_)) return false;
+    if (len > 8 * R_ || !material_.capsule_clear(a, b, R_)) return false;
     const int n = std::max(1, static_cast<int>(std::ceil(len / (0.5 * cell_))));
     for (int k = 0; k <= n; ++k)
       if (!in_part_clearance(a + (b - a) * (double(k) / n))) return false;
@@ -446,7 +449,7 @@ class AdaptivePlanner {
 
   // p keeps the cutter out of the part: by the map of cells well inside, else exactly (a ring runs along the
   // wall, on the boundary).
-  bool in_part_clearance(const Vec2& p) const { return inside_->material(p) || clip::contains(allowed_, p); }
+  bool in_part_clearance(const Vec2& p) const { return inside_.material(p) || clip::contains(allowed_, p); }
 
   // Up over what stands on the way, across, down to just above the material under the cutter, and into the air
   // cleared at the level.
@@ -472,7 +475,7 @@ class AdaptivePlanner {
     const Vec2 dir = (p - a) / len;
     double e = 0;
     const int n = samples(len);
-    for (int k = 1; k <= n; ++k) e = std::max(e, material_->engagement(a + (p - a) * (double(k) / n), dir, R_));
+    for (int k = 1; k <= n; ++k) e = std::max(e, material_.engagement(a + (p - a) * (double(k) / n), dir, R_));
     w_->feed(Vec3(p.x(), p.y(), z_));
     heading_ = dir;
     engagement_of_move(e);
@@ -485,7 +488,7 @@ class AdaptivePlanner {
   // The material map and the links' heights lowered where the cutter passed at the level.
   void cut(const Vec2& a, const Vec2& b, double radius = NAN) {
     const double r = std::isnan(radius) ? R_ : radius;
-    material_->cut_along(a, b, r);
+    material_.cut_along(a, b, r);
     top_.lower_along(a, b, r, z_, [&](double d) { return profile_.height(d); });
   }
 
@@ -504,8 +507,22 @@ class AdaptivePlanner {
   // helix radius). False when no material is left that an entry reaches.
   bool seed() {
     const std::vector<uint8_t> closed = closed_material();
+    // On cells of about R / 8 first (the depth need not be finer: the helix is checked point by point), then on
+    // the map's own cells, where a slot barely wider than the tool has room for no coarse cell.
+    const long coarse = std::max(1L, static_cast<long>(std::floor(R_ / 8 / cell_)));
+    std::optional<bool> entered = seed_on(closed, coarse);
+    if (!entered && coarse > 1) entered = seed_on(closed, 1);
+    if (entered) return *entered;
+    for (size_t c = 0; c < closed.size(); ++c)
+      if (closed[c]) given_up_[c] = 1;
+    return false;
+  }
+
+  // seed() on cells of f x f of the map's: whether an entry was made (or a way in given up), none when no centre
+  // has room.
+  std::optional<bool> seed_on(const std::vector<uint8_t>& closed, long f) {
     // The window the entry is sought in: the closed material's box, grown by how far from it a centre may be.
-    const long nx = material_->nx(), ny = material_->ny();
+    const long nx = material_.nx(), ny = material_.ny();
     long i0 = nx, i1 = -1, j0 = ny, j1 = -1;
     for (size_t c = 0; c < closed.size(); ++c)
       if (closed[c] && !given_up_[c]) {
@@ -513,26 +530,30 @@ class AdaptivePlanner {
         i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
       }
     if (i1 < 0) return false;
-    const long grow = static_cast<long>(std::ceil(0.9 * R_ / cell_)) + 2;
+    const long grow = static_cast<long>(std::ceil(0.9 * R_ / cell_)) + 2 * f;
     i0 = std::max(0L, i0 - grow), j0 = std::max(0L, j0 - grow);
     i1 = std::min(nx - 1, i1 + grow), j1 = std::min(ny - 1, j1 + grow);
-    const long wx = i1 - i0 + 1, wy = j1 - j0 + 1;
+    const double cell = f * cell_;
+    const long wx = (i1 - i0) / f + 1, wy = (j1 - j0) / f + 1;
     const size_t n = size_t(wx) * wy;
-    const auto cell_of = [&](size_t w) { return size_t(j0 + long(w) / wx) * nx + size_t(i0 + long(w) % wx); };
-    std::vector<float> to_material(n, INFINITY), depth(n, 0);
-    for (long wj = 0; wj < wy; ++wj)
-      for (long wi = 0; wi < wx; ++wi) {
-        const size_t c = size_t(j0 + wj) * nx + size_t(i0 + wi);
-        if (closed[c] && !given_up_[c]) to_material[size_t(wj) * wx + wi] = 0;
+    std::vector<float>& to_material = scratch_[0];
+    std::vector<float>& depth = scratch_[1];
+    to_material.assign(n, INFINITY);
+    depth.assign(n, 0);
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i) {
+        const size_t c = size_t(j) * nx + size_t(i);
+        if (closed[c] && !given_up_[c]) to_material[size_t((j - j0) / f) * wx + size_t((i - i0) / f)] = 0;
       }
-    chamfer(to_material, wx, wy);
+    chamfer(to_material, wx, wy, cell);
     const float reach = static_cast<float>(0.9 * R_);
-    const Vec2 corner = material_->centre(cell_of(0)) - Vec2::Constant(0.5 * cell_);
-    LevelMaterial allowed(corner, corner + Vec2((wx - 0.5) * cell_, (wy - 0.5) * cell_), cell_);  // wx x wy cells
+    const Vec2 corner = material_.centre(size_t(j0) * nx + size_t(i0)) - Vec2::Constant(0.5 * cell_);
+    LevelMaterial& allowed = window_;
+    allowed.reset(corner, corner + Vec2((wx - 0.5) * cell, (wy - 0.5) * cell), cell);  // wx x wy cells
     allowed.fill(allowed_, LevelMaterial::kMaterial);
     for (size_t w = 0; w < n; ++w)
       depth[w] = allowed.value(w) == LevelMaterial::kMaterial && to_material[w] <= reach ? INFINITY : 0;
-    chamfer(depth, wx, wy);
+    chamfer(depth, wx, wy, cell);
     // The deepest cells (as deep as the helix needs), and of them the one nearest their centroid: the middle of
     // a slot, where a ramp reaches both ends.
     float deepest = 0;
@@ -540,40 +561,36 @@ class AdaptivePlanner {
     std::vector<size_t> deep;
     Vec2 sum = Vec2::Zero();
     for (size_t w = 0; w < n && deepest > 0; ++w)
-      if (std::min<float>(depth[w], helix_) >= deepest) deep.push_back(w), sum += material_->centre(cell_of(w));
+      if (std::min<float>(depth[w], helix_) >= deepest) deep.push_back(w), sum += allowed.centre(w);
     size_t best = kNoCell;
     double nearest = INFINITY;
     for (size_t w : deep) {
-      const double d = (material_->centre(cell_of(w)) - sum / double(deep.size())).squaredNorm();
+      const double d = (allowed.centre(w) - sum / double(deep.size())).squaredNorm();
       if (d < nearest) nearest = d, best = w;
     }
-    if (best == kNoCell) {
-      for (size_t c = 0; c < closed.size(); ++c)
-        if (closed[c]) given_up_[c] = 1;
-      return false;
-    }
-    const Vec2 p = material_->centre(cell_of(best));
-    const double room = std::max(0.0, double(depth[best]) - cell_);
-    const double before = material_->material_area();
+    if (best == kNoCell) return std::nullopt;
+    const Vec2 p = allowed.centre(best);
+    const double room = std::max(0.0, double(depth[best]) - cell);
+    const double before = material_.material_area();
     if (std::min(helix_, room) >= std::max(0.05 * R_, 2 * cell_) && helix_fits(p, std::min(helix_, room)))
       helix(p, std::min(helix_, room));
     else if (!ramp(p)) {
       give_up_near(p, 2 * R_);
       return true;
     }
-    if (material_->material_area() > before - 0.01 * R_ * R_) give_up_near(p, R_);
+    if (material_.material_area() > before - 0.01 * R_ * R_) give_up_near(p, R_);
     return true;
   }
 
   // The material no pass can start into: cells not joined (across edges) to any material that borders air. An
   // entry opens these; what borders air and was given up stays.
   std::vector<uint8_t> closed_material() const {
-    const long nx = material_->nx(), ny = material_->ny();
+    const long nx = material_.nx(), ny = material_.ny();
     const size_t n = size_t(nx) * ny;
     std::vector<uint8_t> closed(n, 0);
     std::vector<size_t> open;
     const auto is = [&](long i, long j, uint8_t v) {
-      return i >= 0 && j >= 0 && i < nx && j < ny && material_->value(size_t(j) * nx + i) == v;
+      return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == v;
     };
     const auto borders_air = [&](long i, long j) {
       for (long dj = -1; dj <= 1; ++dj)
@@ -582,7 +599,7 @@ class AdaptivePlanner {
       return false;
     };
     for (size_t c = 0; c < n; ++c) {
-      if (material_->value(c) != LevelMaterial::kMaterial) continue;
+      if (material_.value(c) != LevelMaterial::kMaterial) continue;
       if (borders_air(long(c) % nx, long(c) / nx)) open.push_back(c);
       else closed[c] = 1;
     }
@@ -601,8 +618,8 @@ class AdaptivePlanner {
 
   // Distances (mm) from the cells at 0 to every other, by a two-pass 3-4 chamfer (Borgefors, "Distance
   // transformations in digital images", 1986): within 8 % of the Euclidean distance.
-  void chamfer(std::vector<float>& d, long nx, long ny) const {
-    const float a = static_cast<float>(cell_), b = static_cast<float>(cell_ * 4.0 / 3.0);
+  void chamfer(std::vector<float>& d, long nx, long ny, double cell) const {
+    const float a = static_cast<float>(cell), b = static_cast<float>(cell * 4.0 / 3.0);
     for (long j = 0; j < ny; ++j) {
       float* row = &d[size_t(j) * nx];
       const float* up = j > 0 ? row - nx : nullptr;
@@ -735,7 +752,10 @@ class AdaptivePlanner {
   // The level being cut.
   double z_ = 0;
   clip::Paths allowed_;
-  std::optional<LevelMaterial> material_, inside_;
+  // The level's maps and scratch space, kept from level to level (fresh pages cost more than the work on them).
+  LevelMaterial material_, inside_;
+  LevelMaterial window_;
+  std::vector<float> scratch_[2];
   std::vector<uint8_t> given_up_;  // material cells no pass starts from any more
   std::vector<size_t> cells_;      // the edge cells a search gathered
   size_t steps_ = 0;               // steps steered at the level

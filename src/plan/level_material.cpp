@@ -24,12 +24,16 @@ struct ArcTable {
 
 }  // namespace
 
-LevelMaterial::LevelMaterial(const Vec2& lo, const Vec2& hi, double cell)
-    : x0_(lo.x()), y0_(lo.y()), cell_(cell),
-      nx_(std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)))),
-      ny_(std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cell)))),
-      bits_(size_t(nx_) * size_t(ny_), 0), bx_((nx_ + kBlock - 1) / kBlock), by_((ny_ + kBlock - 1) / kBlock),
-      block_count_(size_t(bx_) * size_t(by_), 0) {}
+LevelMaterial::LevelMaterial(const Vec2& lo, const Vec2& hi, double cell) { reset(lo, hi, cell); }
+
+void LevelMaterial::reset(const Vec2& lo, const Vec2& hi, double cell) {
+  x0_ = lo.x(), y0_ = lo.y(), cell_ = cell;
+  nx_ = std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)));
+  ny_ = std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cell)));
+  bits_.assign(size_t(nx_) * size_t(ny_), 0);
+  bx_ = (nx_ + kBlock - 1) / kBlock, by_ = (ny_ + kBlock - 1) / kBlock;
+  block_count_.assign(size_t(bx_) * size_t(by_), 0);
+}
 
 void LevelMaterial::set(size_t c, uint8_t value) {
   const bool was = bits_[c] == kMaterial, is = value == kMaterial;
@@ -57,21 +61,34 @@ bool LevelMaterial::near_material(const Vec2& p, double r) const {
 }
 
 void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
-  // Scan lines through the cell centres; the crossings of every loop edge, sorted, bound the inside runs.
-  std::vector<double> xs;
-  for (long j = 0; j < ny_; ++j) {
-    const double y = y0_ + (j + 0.5) * cell_;
-    xs.clear();
+  // Scan lines through the cell centres. Each loop edge adds its crossings to the rows it spans (counted first,
+  // then placed: work by the edges' length, not rows times edges); each row's crossings, sorted, bound the runs
+  // inside.
+  const auto each_crossing = [&](const auto& f) {
     for (const clip::Path& path : region)
       for (size_t k = 0; k < path.size(); ++k) {
         const Vec2 a = clip::from_point(path[k]), b = clip::from_point(path[(k + 1) % path.size()]);
-        if ((a.y() <= y) == (b.y() <= y)) continue;
-        xs.push_back(a.x() + (y - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
+        const double lo = std::min(a.y(), b.y()), hi = std::max(a.y(), b.y());
+        const long j0 = std::max(0L, static_cast<long>(std::floor((lo - y0_) / cell_ - 0.5)));
+        const long j1 = std::min(ny_ - 1, static_cast<long>(std::ceil((hi - y0_) / cell_ - 0.5)));
+        for (long j = j0; j <= j1; ++j) {
+          const double y = y0_ + (j + 0.5) * cell_;
+          if ((a.y() <= y) != (b.y() <= y)) f(j, a.x() + (y - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
+        }
       }
-    std::sort(xs.begin(), xs.end());
-    for (size_t k = 0; k + 1 < xs.size(); k += 2) {
-      const long i0 = std::max(0L, static_cast<long>(std::ceil((xs[k] - x0_) / cell_ - 0.5)));
-      const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor((xs[k + 1] - x0_) / cell_ - 0.5)));
+  };
+  std::vector<size_t> start(size_t(ny_) + 1, 0);
+  each_crossing([&](long j, double) { ++start[j + 1]; });
+  for (long j = 0; j < ny_; ++j) start[j + 1] += start[j];
+  crossings_.resize(start[ny_]);
+  std::vector<size_t> next(start.begin(), start.end() - 1);
+  each_crossing([&](long j, double x) { crossings_[next[j]++] = x; });
+  for (long j = 0; j < ny_; ++j) {
+    const auto first = crossings_.begin() + start[j], last = crossings_.begin() + start[j + 1];
+    std::sort(first, last);
+    for (auto k = first; k + 1 < last; k += 2) {
+      const long i0 = std::max(0L, static_cast<long>(std::ceil((*k - x0_) / cell_ - 0.5)));
+      const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor((*(k + 1) - x0_) / cell_ - 0.5)));
       for (long i = i0; i <= i1; ++i) set(size_t(j) * nx_ + i, value);
     }
   }

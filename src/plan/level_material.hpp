@@ -20,6 +20,9 @@ class LevelMaterial {
 
   // Cells of edge `cell` covering [lo, hi]; no material anywhere.
   LevelMaterial(const Vec2& lo, const Vec2& hi, double cell);
+  LevelMaterial() = default;
+  // As a new map of [lo, hi], in the memory this one holds (fresh pages cost more than the work on them).
+  void reset(const Vec2& lo, const Vec2& hi, double cell);
   // Cells whose centre lies inside the region (even-odd over its loops) become `value`.
   void fill(const clip::Paths& region, uint8_t value);
   bool material(const Vec2& p) const {
@@ -71,8 +74,8 @@ class LevelMaterial {
   int arc_in(const Vec2& p, const Vec2& dir, double r, int enough) const;
   template <class F>
   bool each_within(const Vec2& a, const Vec2& b, double r, const F& f) const;
-  double x0_, y0_, cell_;
-  long nx_, ny_;
+  double x0_ = 0, y0_ = 0, cell_ = 1;
+  long nx_ = 0, ny_ = 0;
   std::vector<uint8_t> bits_;
   // Material cells per block of kBlock x kBlock cells.
   static constexpr long kBlock = 16;
@@ -86,6 +89,7 @@ class LevelMaterial {
                                             {kR8, kR5, kR4, kR5, kR8}};
   long bx_ = 0, by_ = 0;
   std::vector<uint32_t> block_count_;
+  std::vector<double> crossings_;  // fill's scan-line crossings, row after row
   void set(size_t c, uint8_t value);
 };
 

@@ -97,8 +97,8 @@ double measured_level_engagement(const Job& job, const Box3& stock) {
   return worst;
 }
 
-// Vertices between two feed moves along a level where the path turns sharper than `radius`: the turn angle
-// against the shorter of the two moves (a chord of an arc of radius r turns by its length / r).
+// Vertices between two feed moves along a level where the path turns sharper than `radius`: the radius of the
+// circle through the vertex and its two neighbours (a polyline that samples a curve of radius r gives r).
 size_t sharp_turns(const Job& job, double radius) {
   size_t sharp = 0;
   for (const Toolpath& tp : job)
@@ -109,8 +109,9 @@ size_t sharp_turns(const Job& job, double radius) {
         const bool level = m.type == MoveType::Feed && std::abs(m.to.z() - from.z()) < 1e-9;
         const Vec2 v = level ? Vec2((m.to - from).head<2>()) : Vec2::Zero();
         if (u.norm() > 1e-9 && v.norm() > 1e-9) {
-          const double turn = std::abs(std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v)));
-          if (std::min(u.norm(), v.norm()) < 0.9 * radius * turn) ++sharp;
+          const double sin_turn = std::abs(u.x() * v.y() - u.y() * v.x()) / (u.norm() * v.norm());
+          const bool back = u.dot(v) < 0;
+          if (back || (u + v).norm() < 0.9 * radius * 2 * sin_turn) ++sharp;
         }
         if (!level || v.norm() > 1e-9) u = v;
         from = m.to;
