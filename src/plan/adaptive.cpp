@@ -177,7 +177,7 @@ class AdaptivePlanner {
       if (!next) break;
       // Air where the step would cut no cell (the engagement may still see the cells a disc's edge leaves, their
       // centres just beyond R).
-      const bool air_step = material_.capsule_clear(p, next->p, R_);
+      const bool air_step = material_.ahead_clear(p, next->p, R_);
       p = next->p, h = next->h;
       if (air_step) {
         air += step_;
@@ -479,7 +479,9 @@ class AdaptivePlanner {
     w_->feed(Vec3(p.x(), p.y(), z_));
     heading_ = dir;
     engagement_of_move(e);
-    cut(a, p);
+    // The disc at a was cut when the cutter got there (a move, a helix or ramp, or a descent into air).
+    material_.cut_ahead(a, p, R_);
+    top_.lower_along(a, p, R_, z_, [&](double d) { return profile_.height(d); });
   }
 
   // How many points a move of length len is measured at (evenly, its end the last): one a cell.

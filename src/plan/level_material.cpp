@@ -157,6 +157,67 @@ void LevelMaterial::cut_along(const Vec2& a, const Vec2& b, double r) {
     });
 }
 
+template <class F>
+bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& f) const {
+  const Vec2 d = b - a;
+  const double len = d.norm();
+  const Vec2 u = len > 1e-12 ? Vec2(d / len) : Vec2::UnitX(), n(-u.y(), u.x());
+  const long j0 = std::max(0L, static_cast<long>(std::ceil((std::min(a.y(), b.y()) - r - y0_) / cell_ - 0.5)));
+  const long j1 = std::min(ny_ - 1, static_cast<long>(std::floor((std::max(a.y(), b.y()) + r - y0_) / cell_ - 0.5)));
+  // The span of a disc of radius r at c on the row at y (empty: lo > hi).
+  const auto disc = [&](const Vec2& c, double y, double& lo, double& hi) {
+    const double h = r * r - (y - c.y()) * (y - c.y());
+    lo = h < 0 ? INFINITY : c.x() - std::sqrt(h);
+    hi = h < 0 ? -INFINITY : c.x() + std::sqrt(h);
+  };
+  for (long j = j0; j <= j1; ++j) {
+    const double y = y0_ + (j + 0.5) * cell_;
+    // The capsule's span: its two end discs and the band between them, a convex union, so their hull.
+    double lo, hi, blo, bhi;
+    disc(a, y, lo, hi);
+    disc(b, y, blo, bhi);
+    lo = std::min(lo, blo), hi = std::max(hi, bhi);
+    if (len > 1e-12 && std::abs(u.y()) > 1e-12) {
+      // The band: points a + t d + s n with t in [0, 1], |s| <= r; on this row it spans between the crossings
+      // of its four sides.
+      for (double sgn : {-1.0, 1.0}) {
+        const Vec2 o = a + sgn * r * n;  // a long side, o + t d
+        const double t = (y - o.y()) / d.y();
+        if (t >= 0 && t <= 1) lo = std::min(lo, o.x() + t * d.x()), hi = std::max(hi, o.x() + t * d.x());
+      }
+    } else if (len > 1e-12 && std::abs(y - a.y()) <= r) {
+      lo = std::min(lo, std::min(a.x(), b.x())), hi = std::max(hi, std::max(a.x(), b.x()));
+    }
+    if (lo > hi) continue;
+    double alo, ahi;
+    disc(a, y, alo, ahi);
+    const long i0 = std::max(0L, static_cast<long>(std::ceil((lo - x0_) / cell_ - 0.5)));
+    const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor((hi - x0_) / cell_ - 0.5)));
+    for (long i = i0; i <= i1; ++i) {
+      const double x = x0_ + (i + 0.5) * cell_;
+      if (x >= alo && x <= ahi) {  // inside a's disc: on to its far side
+        i = std::max(i, static_cast<long>(std::floor((ahi - x0_) / cell_ - 0.5)));
+        continue;
+      }
+      const size_t c = size_t(j) * nx_ + i;
+      if (bits_[c] == kMaterial && !f(c)) return false;
+    }
+  }
+  return true;
+}
+
+void LevelMaterial::cut_ahead(const Vec2& a, const Vec2& b, double r) {
+  each_ahead(a, b, r, [&](size_t c) {
+    set(c, kAir);
+    return true;
+  });
+}
+
+bool LevelMaterial::ahead_clear(const Vec2& a, const Vec2& b, double r) const {
+  if (!near_material(b, r + (b - a).norm())) return true;
+  return each_ahead(a, b, r, [](size_t) { return false; });
+}
+
 double LevelMaterial::material_area() const {
   size_t n = 0;
   for (uint32_t c : block_count_) n += c;

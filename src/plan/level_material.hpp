@@ -43,6 +43,10 @@ class LevelMaterial {
   bool capsule_clear(const Vec2& a, const Vec2& b, double r) const;
   // Every material cell whose centre lies within r of the segment a-b is cut (becomes air).
   void cut_along(const Vec2& a, const Vec2& b, double r);
+  // The same for a cutter that moves from a to b, its disc at a cut already (when it got there): only the cells
+  // ahead of that disc are visited. ahead_clear: none of them is material.
+  void cut_ahead(const Vec2& a, const Vec2& b, double r);
+  bool ahead_clear(const Vec2& a, const Vec2& b, double r) const;
   double material_area() const;
   // The area of the material cells with no other cell (neither material nor air: the walls' side) within
   // `margin` cells: what is left off the walls, without the skin a cutter's chords leave on them.
@@ -72,6 +76,10 @@ class LevelMaterial {
   // Calls f(cell index) for the cells whose centre lies within r of the segment a-b until f returns false.
   // Samples of the leading half-circle in material, counted up to `enough`.
   int arc_in(const Vec2& p, const Vec2& dir, double r, int enough) const;
+  // Calls f(cell) for the cells whose centre lies within r of the segment a-b but not within r of a, row by row
+  // (the capsule's span of each row less the disc's), until f returns false.
+  template <class F>
+  bool each_ahead(const Vec2& a, const Vec2& b, double r, const F& f) const;
   template <class F>
   bool each_within(const Vec2& a, const Vec2& b, double r, const F& f) const;
   double x0_ = 0, y0_ = 0, cell_ = 1;
