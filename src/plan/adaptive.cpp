@@ -19,6 +19,9 @@ constexpr double kAirDeg = 2.0;       // engagement below this is air: no cut to
 constexpr double kMeasureDeg = 2.0;   // the engagement's resolution: one sample of the half-circle
 constexpr int kHelixPerTurn = 36;     // points of a helix turn
 constexpr double kWallRoom = 0.5;     // turn radii a pass keeps ahead of it clear of the walls
+constexpr double kWalkBack = 4.0;     // cutter radii a start is walked back along its front at most
+constexpr int kMinPassSteps = 3;      // steps (R / 10 each) a pass cuts for at least
+constexpr double kAirTurn = 2 * M_PI / 3;  // the most a pass turns in air between two cuts
 constexpr int kBisections = 6;        // halvings of the turn that meets the engagement target
 constexpr size_t kMaxSteps = 2000000;  // per level: a bound on the work whatever the geometry
 
@@ -49,7 +52,7 @@ class AdaptivePlanner {
     R_ = f_.cutter.radius();
     limit_ = engagement_limit(params, f_);
     r_min_ = std::isnan(options.min_turn_radius) ? 0.2 * R_ : options.min_turn_radius;
-    helix_ = std::isnan(options.helix_radius) ? 0.5 * R_ : options.helix_radius;
+    helix_ = std::isnan(options.helix_radius) ? 0.75 * R_ : options.helix_radius;
     slope_ = options.ramp_slope;
     if (!(r_min_ >= 0 && r_min_ < R_)) throw Error("adaptive", "the turn radius must lie in [0, R)");
     if (!(helix_ > 0) || !(slope_ > 0)) throw Error("adaptive", "the helix radius and ramp slope must be > 0");
@@ -147,10 +150,18 @@ class AdaptivePlanner {
     give_up_skin();
     steps_ = 0;
     w_->begin_pass("adaptive z " + std::to_string(z));
-    while (steps_ < kMaxSteps && material_.material_area() > 0) {
-      const std::optional<Start> start = next_start();
-      if (start) pass(*start);
-      else if (!seed()) break;
+    // Passes of at least kMinPassSteps first; then, where material is left that only shorter passes reach (a
+    // front too tight for the turn radius), those too, from every start again.
+    for (int min_steps : {kMinPassSteps, 1}) {
+      min_steps_ = min_steps;
+      while (steps_ < kMaxSteps && material_.material_area() > 0) {
+        const std::optional<Start> start = next_start();
+        if (start) pass(*start);
+        else if (!seed()) break;
+      }
+      if (material_.material_area_off_walls(2) <= R_ * step_) break;
+      std::fill(given_up_.begin(), given_up_.end(), 0);
+      give_up_skin();
     }
     wall_pass();
     report_.left_area_mm2 += material_.material_area_off_walls(2);
@@ -164,13 +175,12 @@ class AdaptivePlanner {
   // while in air. So the path follows the boundary of the cleared area at a constant engagement: a spiral in open
   // material, an arc across the front of a channel, slowed into inner corners by turning away from them.
   void pass(const Start& start) {
+    begin_attempt();
     reach_air(start.p, start.h);
-    last_start_ = start.p;
-    ++report_.passes;
     Vec2 p = start.p, h = start.h;
-    double air = 0;
-    const double before = material_.material_area();
-    std::vector<Vec2> in_air;  // steps through air not yet written: dropped if the pass ends in air
+    double air = 0, air_turn = 0;
+    int cut = 0;  // steps that cut
+    std::vector<Vec2> in_air;  // steps through air not yet taken: dropped if the pass ends in air
     while (steps_ < kMaxSteps) {
       ++steps_;
       const std::optional<Step> next = steer(p, h);
@@ -178,23 +188,90 @@ class AdaptivePlanner {
       // Air where the step would cut no cell (the engagement may still see the cells a disc's edge leaves, their
       // centres just beyond R).
       const bool air_step = material_.ahead_clear(p, next->p, R_);
+      const double turn = std::atan2(h.x() * next->h.y() - h.y() * next->h.x(), h.dot(next->h));
       p = next->p, h = next->h;
       if (air_step) {
+        // Round a convex corner of the material through air, but no loop: a pass that has turned through more
+        // than kAirTurn or run 2 R in air since it last cut ends there.
         air += step_;
-        if (air > 2 * R_) break;
+        air_turn += turn;
+        if (air > 2 * R_ || std::abs(air_turn) > kAirTurn) break;
         in_air.push_back(p);
         continue;
       }
+      air_turn = 0;
       for (const Vec2& q : in_air) cut_to(q);
       in_air.clear();
       cut_to(p);
       air = 0;
+      ++cut;
     }
-    if (material_.material_area() > before - cell_ * cell_) {
+    // A pass that cuts for fewer than min_steps_ steps and less than R x step of area is not made: it is one of the
+    // small loops that jerk a machine for next to no material; its start is given up and what it would take is left
+    // to later passes, the wall pass, or reported as left. (A small island is still taken: its area counts.)
+    if (cut < min_steps_ && double(attempt_.cut_cells.size()) * cell_ * cell_ < R_ * step_) {
+      undo_attempt();
       given_up_[start.cell] = 1;
       give_up_near(start.p, R_ + step_);
+      return;
+    }
+    commit_attempt();
+    last_start_ = start.p;
+    ++report_.passes;
+  }
+
+  // ---- a pass tried before it is written: its link and moves are kept, the cells it cuts logged, the links'
+  // heights lowered only once it is made.
+
+  struct Attempt {
+    bool active = false;
+    Vec2 at = Vec2::Zero();                   // where the cutter would be
+    std::optional<Vec2> descent;              // a lift and descent to here first
+    std::vector<Vec2> moves;                  // feed moves along the level
+    std::vector<double> engagement;           // of each
+    size_t corner_links = 0;
+    Vec2 heading = Vec2::UnitX();             // the cutter's heading before the attempt
+    std::vector<size_t> cut_cells;
+  };
+
+  void begin_attempt() {
+    attempt_.active = true;
+    attempt_.at = w_->position().head<2>();
+    attempt_.descent.reset();
+    attempt_.moves.clear();
+    attempt_.engagement.clear();
+    attempt_.corner_links = 0;
+    attempt_.heading = heading_;
+    attempt_.cut_cells.clear();
+    material_.log_cuts(&attempt_.cut_cells);
+  }
+
+  void undo_attempt() {
+    material_.log_cuts(nullptr);
+    material_.restore(attempt_.cut_cells);
+    heading_ = attempt_.heading;
+    attempt_.active = false;
+  }
+
+  void commit_attempt() {
+    material_.log_cuts(nullptr);
+    attempt_.active = false;
+    if (attempt_.descent) descend(*attempt_.descent);
+    report_.corner_links += attempt_.corner_links;
+    Vec2 a = w_->position().head<2>();
+    for (size_t k = 0; k < attempt_.moves.size(); ++k) {
+      const Vec2& b = attempt_.moves[k];
+      w_->feed(Vec3(b.x(), b.y(), z_));
+      engagement_of_move(attempt_.engagement[k]);
+      top_.lower_along(a, b, R_, z_, [&](double d) { return profile_.height(d); });
+      a = b;
     }
   }
+
+  // Where the cutter is, or would be in the pass being tried.
+  Vec2 position() const { return attempt_.active ? attempt_.at : Vec2(w_->position().head<2>()); }
+  bool at_level_now() const { return (attempt_.active && attempt_.descent) || at_level(); }
+
 
   // The level's last pass: round the walls (the allowed region opened by the turn radius, climb) wherever
   // material is left within reach of them: the corners and the strips the passes left as they turned away from
@@ -250,26 +327,29 @@ class AdaptivePlanner {
     }
   }
 
-  // The next step from p along h, the material on the right. The heading turns by at most max_turn_: the most to
-  // the right whose engagement stays at the target, by bisection (the engagement grows as the turn goes into the
-  // material); then back to the left as far as it takes to stay out of the part with room to turn away from its
-  // wall. None when even the turn farthest to the left is over the target or no turn keeps out of the part.
-  std::optional<Step> steer(const Vec2& p, const Vec2& h) const {
-    // Over the target at the end of the step, or where the cut measures the engagement along it.
+  // The next step from p along h, the material on the right (sign 1), or walking back along the front a pass
+  // would cut, the material on the left (sign -1). The heading turns by at most max_turn_: the most toward the
+  // material whose engagement stays at the target, by bisection (the engagement grows as the turn goes into the
+  // material); then back away from it as far as it takes to stay out of the part with room to turn away from its
+  // wall. None when even the turn farthest from the material is over the target or no turn keeps out of the part.
+  std::optional<Step> steer(const Vec2& p, const Vec2& h, int sign = 1) const {
+    // Over the target at the end of the step, or where the cut measures the engagement along it (the cut runs
+    // along sign * h).
     const int n = samples(step_);
     const auto at = [&](double a) {
       Step s;
       s.h = turned(h, a);
       s.p = p + step_ * s.h;
-      s.over = material_.engaged_over(s.p, s.h, R_, target_);
-      for (int k = 1; k < n && !s.over; ++k) s.over = material_.engaged_over(p + (step_ * k / n) * s.h, s.h, R_, target_);
+      const Vec2 cut = sign * s.h;
+      s.over = material_.engaged_over(s.p, cut, R_, target_);
+      for (int k = 1; k < n && !s.over; ++k) s.over = material_.engaged_over(p + (step_ * k / n) * s.h, cut, R_, target_);
       return s;
     };
     // Room ahead to turn away from a wall within the turn radius (and so to link to the next pass by a curve).
     const auto clear = [&](const Step& s) {
       return in_part_clearance(s.p) && in_part_clearance(s.p + kWallRoom * r_min_ * s.h);
     };
-    const double into = -max_turn_;  // to the right
+    const double into = -sign * max_turn_;  // toward the material: right of a cut, left walking back
     Step away = at(-into);
     if (away.over) return std::nullopt;
     Step best = at(into);
@@ -344,7 +424,7 @@ class AdaptivePlanner {
       const Vec2 p = m + (R_ + 2 * cell_) * u;
       const Vec2 h = turned(Vec2(u.y(), -u.x()), -lead_in_);
       if (!in_part_clearance(p) || !material_.disc_clear(p, R_) || material_.engagement(p, h, R_) > 0) continue;
-      return Start{p, h, c};
+      return walk_back(Start{p, h, c});
     }
     return std::nullopt;
   }
@@ -354,6 +434,7 @@ class AdaptivePlanner {
   // cut nearly nothing. The wall pass takes what of it a cutter reaches.
   void give_up_skin() {
     const long nx = material_.nx(), ny = material_.ny();
+    constexpr long m = 2;
     const auto other = [&](long i, long j) {
       return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == LevelMaterial::kOther;
     };
@@ -361,9 +442,37 @@ class AdaptivePlanner {
       for (long i = 0; i < nx; ++i) {
         const size_t c = size_t(j) * nx + i;
         if (material_.value(c) != LevelMaterial::kMaterial) continue;
-        for (long dj = -2; dj <= 2 && !given_up_[c]; ++dj)
-          for (long di = -2; di <= 2 && !given_up_[c]; ++di) given_up_[c] = other(i + di, j + dj);
+        for (long dj = -m; dj <= m && !given_up_[c]; ++dj)
+          for (long di = -m; di <= m && !given_up_[c]; ++di)
+            given_up_[c] = di * di + dj * dj <= m * m && other(i + di, j + dj);
       }
+  }
+
+  // From s back along the front the pass would cut (up to kWalkBack radii), past a corner onto the strip of
+  // material a wall keeps, to where the front begins: a wall, air, or a turn over the limit. Then out into air beside
+  // it on the cut's left (the cleared side), heading lead_in_ into the material. So a pass runs the whole front
+  // from where it begins (along a wall's strip, into the corner, down the front) rather than from the middle of it,
+  // which would leave the strip to small passes.
+  Start walk_back(const Start& s) const {
+    Vec2 p = s.p, h = -turned(s.h, lead_in_);
+    bool met = false;  // the walk sets off in air beside the front
+    for (double walked = 0; walked < kWalkBack * R_; walked += step_) {
+      const std::optional<Step> next = steer(p, h, -1);
+      if (!next) break;
+      const bool air = material_.engagement(next->p, -next->h, R_ - cell_) < kAirDeg;
+      if (air && (met || walked > 2 * R_)) break;
+      met = met || !air;
+      p = next->p, h = next->h;
+    }
+    if (!met) return s;
+    const Vec2 cut = -h, left(-cut.y(), cut.x());
+    for (double off = cell_; off <= R_ + 2 * cell_; off += cell_) {
+      const Vec2 q = p + off * left;
+      if (!in_part_clearance(q)) break;
+      if (material_.disc_clear(q, R_) && material_.engagement(q, turned(cut, -lead_in_), R_) == 0)
+        return {q, turned(cut, -lead_in_), s.cell};
+    }
+    return s;
   }
 
   // Material cells within r of p are no longer tried as the start of a pass.
@@ -391,28 +500,36 @@ class AdaptivePlanner {
   // meets no material and stays out of the part (a Dubins path, geometry/dubins.hpp; a straight line when the
   // turn radius is 0), else from above.
   void reach_air(const Vec2& p, const Vec2& h) {
-    if (at_level()) {
-      const Vec2 from = w_->position().head<2>();
+    if (at_level_now()) {
+      const Vec2 from = position();
       if (r_min_ <= 0) {
         if (free_way(from, p)) return cut_to(p);
       } else if ((p - from).norm() > 1e-9 || (h - heading_).norm() > 1e-9) {
-        for (const DubinsPath& path : dubins_paths(from, heading_, p, h, r_min_)) {
+        // The curve ends a step short, on a straight move along h: the pass's first step then turns from a move
+        // as long as itself, no sharper than the rest.
+        const Vec2 q = p - step_ * h;
+        for (const DubinsPath& path : dubins_paths(from, heading_, q, h, r_min_)) {
           if (path.length() > 8 * R_) break;
-          const std::vector<Vec2> way = dubins_points(path, from, heading_, step_);
+          std::vector<Vec2> way = dubins_points(path, from, heading_, step_);
+          way.push_back(p);
           if (!free_curve(from, way)) continue;
           for (const Vec2& q : way) cut_to(q);
-          heading_ = h;
           return;
         }
         // No curve of the turn radius fits the cleared air: a straight link, turning on the spot at its ends,
         // rather than a lift.
         if (free_way(from, p)) {
-          ++report_.corner_links;
+          ++(attempt_.active ? attempt_.corner_links : report_.corner_links);
           return cut_to(p);
         }
       } else {
         return;
       }
+    }
+    if (attempt_.active) {
+      attempt_.descent = p;
+      attempt_.at = p;
+      return;
     }
     descend(p);
   }
@@ -469,18 +586,24 @@ class AdaptivePlanner {
 
   // A feed move along the level to p: its engagement measured before it cuts, its feed from the engagement.
   void cut_to(const Vec2& p) {
-    const Vec2 a = w_->position().head<2>();
+    const Vec2 a = position();
     const double len = (p - a).norm();
     if (len < 1e-9) return;
     const Vec2 dir = (p - a) / len;
     double e = 0;
     const int n = samples(len);
     for (int k = 1; k <= n; ++k) e = std::max(e, material_.engagement(a + (p - a) * (double(k) / n), dir, R_));
-    w_->feed(Vec3(p.x(), p.y(), z_));
     heading_ = dir;
-    engagement_of_move(e);
     // The disc at a was cut when the cutter got there (a move, a helix or ramp, or a descent into air).
     material_.cut_ahead(a, p, R_);
+    if (attempt_.active) {
+      attempt_.moves.push_back(p);
+      attempt_.engagement.push_back(e);
+      attempt_.at = p;
+      return;
+    }
+    w_->feed(Vec3(p.x(), p.y(), z_));
+    engagement_of_move(e);
     top_.lower_along(a, p, R_, z_, [&](double d) { return profile_.height(d); });
   }
 
@@ -761,6 +884,8 @@ class AdaptivePlanner {
   std::vector<uint8_t> given_up_;  // material cells no pass starts from any more
   std::vector<size_t> cells_;      // the edge cells a search gathered
   size_t steps_ = 0;               // steps steered at the level
+  int min_steps_ = kMinPassSteps;  // the fewest cutting steps a pass is made with
+  Attempt attempt_;
   Vec2 last_start_ = Vec2::Zero();  // where the last pass began
   Vec2 heading_ = Vec2::UnitX();    // of the cutter's last move at the level
 };

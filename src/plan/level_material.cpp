@@ -37,6 +37,7 @@ void LevelMaterial::reset(const Vec2& lo, const Vec2& hi, double cell) {
 
 void LevelMaterial::set(size_t c, uint8_t value) {
   const bool was = bits_[c] == kMaterial, is = value == kMaterial;
+  if (log_ && was && !is) log_->push_back(c);
   bits_[c] = value;
   if (was == is) return;
   const size_t b = size_t((long(c / nx_) / kBlock) * bx_ + long(c % nx_) / kBlock);

@@ -48,6 +48,11 @@ class LevelMaterial {
   void cut_ahead(const Vec2& a, const Vec2& b, double r);
   bool ahead_clear(const Vec2& a, const Vec2& b, double r) const;
   double material_area() const;
+  // While a log is set, every material cell cut is added to it; restore() makes them material again.
+  void log_cuts(std::vector<size_t>* log) { log_ = log; }
+  void restore(const std::vector<size_t>& log) {
+    for (size_t c : log) set(c, kMaterial);
+  }
   // The area of the material cells with no other cell (neither material nor air: the walls' side) within
   // `margin` cells: what is left off the walls, without the skin a cutter's chords leave on them.
   double material_area_off_walls(long margin) const;
@@ -98,6 +103,7 @@ class LevelMaterial {
   long bx_ = 0, by_ = 0;
   std::vector<uint32_t> block_count_;
   std::vector<double> crossings_;  // fill's scan-line crossings, row after row
+  std::vector<size_t>* log_ = nullptr;
   void set(size_t c, uint8_t value);
 };
 

@@ -34,7 +34,7 @@ constexpr double kAdaptiveEngagementSlackDeg = 10.0;
 
 struct AdaptiveOptions {
   double min_turn_radius = NAN;  // mm the cutter's centre turns on at least while cutting; NaN: 0.2 R
-  double helix_radius = NAN;     // mm; NaN: 0.5 R (smaller where the material left is narrower)
+  double helix_radius = NAN;     // mm; NaN: 0.75 R (smaller where the material left is narrower)
   double ramp_slope = 0.05;      // descent per unit of travel of a helix or ramp (about 3 degrees)
 };
 
