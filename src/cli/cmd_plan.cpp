@@ -221,6 +221,7 @@ void run(const Options& o) {
                          {"levels", r.levels},
                          {"passes", r.passes},
                          {"corner_links", r.corner_links},
+                         {"short_passes", r.short_passes},
                          {"helices", r.helices},
                          {"ramps", r.ramps},
                          {"lifts", r.lifts},

@@ -218,6 +218,7 @@ class AdaptivePlanner {
     commit_attempt();
     last_start_ = start.p;
     ++report_.passes;
+    if (cut < kMinPassSteps) ++report_.short_passes;
   }
 
   // ---- a pass tried before it is written: its link and moves are kept, the cells it cuts logged, the links'

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "job_test_options.hpp"
@@ -52,6 +53,29 @@ Mesh pocket_block(double L, double W, double H, double x0, double x1, double y0,
   quad({x1, y0, f}, {x0, y0, f}, {x0, y0, H}, {x1, y0, H});
   quad({x0, y1, f}, {x1, y1, f}, {x1, y1, H}, {x0, y1, H});
   quad({x0, y0, f}, {x1, y0, f}, {x1, y1, f}, {x0, y1, f});
+  return build_mesh(c);
+}
+
+// A block [0, S]^2 x [0, H] with a square ring groove `depth` deep between the squares of half-sizes `outer` and
+// `inner` about its centre: a closed channel round an island.
+Mesh ring_groove_block(double S, double H, double outer, double inner, double depth) {
+  Mesh block = pocket_block(S, S, H, S / 2 - outer, S / 2 + outer, S / 2 - outer, S / 2 + outer, depth);
+  // pocket_block's floor is the last two triangles: the groove's floor round the island, the island's walls and
+  // its top take its place.
+  std::vector<Vec3> c;
+  for (size_t t = 0; t + 2 < block.faces.size(); ++t)
+    for (int k = 0; k < 3; ++k) c.push_back(block.corner(t, k));
+  auto quad = [&](const Vec3& a, const Vec3& b, const Vec3& d, const Vec3& e) { c.insert(c.end(), {a, b, d, a, d, e}); };
+  const double f = H - depth, a0 = S / 2 - outer, a1 = S / 2 + outer, b0 = S / 2 - inner, b1 = S / 2 + inner;
+  quad({a0, a0, f}, {a1, a0, f}, {a1, b0, f}, {a0, b0, f});  // floor: four strips
+  quad({a0, b1, f}, {a1, b1, f}, {a1, a1, f}, {a0, a1, f});
+  quad({a0, b0, f}, {b0, b0, f}, {b0, b1, f}, {a0, b1, f});
+  quad({b1, b0, f}, {a1, b0, f}, {a1, b1, f}, {b1, b1, f});
+  quad({b0, b1, f}, {b0, b0, f}, {b0, b0, H}, {b0, b1, H});  // the island's walls, facing out
+  quad({b1, b0, f}, {b1, b1, f}, {b1, b1, H}, {b1, b0, H});
+  quad({b0, b0, f}, {b1, b0, f}, {b1, b0, H}, {b0, b0, H});
+  quad({b1, b1, f}, {b0, b1, f}, {b0, b1, H}, {b1, b1, H});
+  quad({b0, b0, H}, {b1, b0, H}, {b1, b1, H}, {b0, b1, H});  // its top
   return build_mesh(c);
 }
 
@@ -220,6 +244,27 @@ TEST(Adaptive, OpenAndClosedRegionsClearedAtTheEngagementLimit) {
   const gcode::PreparedProgram prepared = gcode::prepare_program(p.job, gcode::post_options_for("linuxcnc"), checks);
   ASSERT_TRUE(prepared.rs274.has_value());
   EXPECT_TRUE(prepared.limits_checked);
+}
+
+// A closed channel twice the tool's width round an island (FreeCAD's benchmark region is one): entered by a helix
+// and cleared to the allowance by passes across its front, each a step further on (trochoidal), with few passes
+// shorter than the stated least and sharp turns only at the links counted as such.
+TEST(Adaptive, ClosedChannelClearedByPassesAcrossItsFront) {
+  const Mesh groove = ring_groove_block(80, 20, 30, 20, 2);
+  PlanParams p = flat(5, 1, 5, 0.2);
+  p.stock_margin = 0;
+  const Planned a = adaptive(groove, p);
+  EXPECT_GE(a.report.helices, 1u);
+  EXPECT_LE(a.report.left_area_mm2, 10.0);
+  EXPECT_LE(a.report.short_passes, a.report.passes / 10);
+  EXPECT_LE(sharp_turns(a.job, a.report.min_turn_radius), 2 * a.report.corner_links);
+  const Box3 block = Box3::between(Vec3(0, 0, 0), Vec3(80, 80, 20));
+  EXPECT_LE(measured_level_engagement(a.job, block), a.report.engagement_limit_deg + kEngagementSlackDeg);
+  const verify::VerifyResult v = verified(groove, a.job, block, 0.25);
+  EXPECT_LE(v.report.max_gouge_mm, 0.0);
+  for (const auto& [x0, x1, y0, y1] : {std::array<double, 4>{10, 70, 10, 20}, {10, 70, 60, 70}, {10, 20, 20, 60},
+                                       {60, 70, 20, 60}})
+    EXPECT_LE(left_on_floor(v, x0, x1, y0, y1, 3), 0.2 + 0.01) << x0 << " " << y0;
 }
 
 // FreeCAD's Adaptive gives no path at small step-overs: 2 % of the diameter still clears the pocket.

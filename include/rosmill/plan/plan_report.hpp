@@ -26,6 +26,7 @@ struct PlanReport {
   double min_turn_radius = 0.0;  // mm
   size_t passes = 0, helices = 0, ramps = 0, lifts = 0;
   size_t corner_links = 0;  // links at the level that turn on the spot: no curve of the turn radius fitted
+  size_t short_passes = 0;  // passes that cut for fewer than 3 steps of R / 10 (made only where no longer one can)
   double left_area_mm2 = 0.0;
 };
 
