@@ -26,10 +26,11 @@
 namespace rosmill::core {
 
 // The most the radial engagement of a move at a level passes the limit by, as the verifier measures it
-// (verify/engagement.hpp, within its own tolerance besides): the planner samples its rings every R/20 on a bitmap of
-// R/20 cells (2 degrees), and a ring that turns into an inner corner tighter than its turn radius takes up to
-// about 8 degrees more there (measured on a closed pocket, test_adaptive). Entries (a helix or ramp down and its
-// turn or pass at the bottom) are plunges at the plunge feed and cut with the cutter's end: not bounded.
+// (verify/engagement.hpp, within its own tolerance besides): the planner measures on a bitmap of R/20 cells (or
+// finer at small limits) with 2-degree samples, so a sliver thinner than a cell that a move meets head-on, or a
+// job's coarser height grid of material, shows more to the verifier (9.4 degrees on the closed channel of
+// test_adaptive, up to 10 on the bundled jobs). Entries (a helix or ramp down and its turn or pass at the bottom)
+// are plunges at the plunge feed and cut with the cutter's end: not bounded.
 constexpr double kAdaptiveEngagementSlackDeg = 10.0;
 
 struct AdaptiveOptions {
