@@ -24,6 +24,9 @@ constexpr int kMinPassSteps = 3;      // steps (R / 10 each) a pass cuts for at 
 constexpr double kAirTurn = 2 * M_PI / 3;  // the most a pass turns in air between two cuts
 constexpr int kBisections = 6;        // halvings of the turn that meets the engagement target
 constexpr size_t kMaxSteps = 2000000;  // per level: a bound on the work whatever the geometry
+constexpr size_t kStepsPerEntry = 1000;  // what an entry's search counts for against kMaxSteps
+constexpr int kMaxFailedEntries = 32;     // per level
+constexpr double kMaxSteerDeg = 90.0;     // the most engagement a pass is steered to, whatever the limit
 
 // h turned by a radians (counter-clockwise).
 Vec2 turned(const Vec2& h, double a) {
@@ -65,7 +68,9 @@ class AdaptivePlanner {
     step_ = std::max(cell_, 0.1 * R_);
     // A step turns the heading by at most step / r_min: the path's curvature stays under 1 / r_min.
     max_turn_ = std::min(0.5 * M_PI, r_min_ > 0 ? step_ / r_min_ : 0.5 * M_PI);
-    target_ = limit_ - kMeasureDeg;
+    // Steered to at most kMaxSteerDeg: past a side cut of half the tool, turning into the material as far as the
+    // limit allows winds a pass round its own track (at a slotting limit of 180, circles of the turn radius).
+    target_ = std::min(limit_, kMaxSteerDeg) - kMeasureDeg;
     // A pass sets off from air toward the front it is to cut at a slant: it meets the front at about the slant
     // plus the cut's own angle, so the slant stays well under the target.
     lead_in_ = std::min(M_PI / 12, 0.25 * target_ * M_PI / 180);
@@ -149,6 +154,7 @@ class AdaptivePlanner {
     given_up_.assign(size_t(material_.nx()) * material_.ny(), 0);
     give_up_skin();
     steps_ = 0;
+    failed_entries_ = 0;
     w_->begin_pass("adaptive z " + std::to_string(z));
     // Passes of at least kMinPassSteps first; then, where material is left that only shorter passes reach (a
     // front too tight for the turn radius), those too, from every start again.
@@ -156,8 +162,12 @@ class AdaptivePlanner {
       min_steps_ = min_steps;
       while (steps_ < kMaxSteps && material_.material_area() > 0) {
         const std::optional<Start> start = next_start();
-        if (start) pass(*start);
-        else if (!seed()) break;
+        if (start) {
+          pass(*start);
+        } else {
+          steps_ += kStepsPerEntry;  // an entry's search is the work of many steps: bounded as they are
+          if (!seed()) break;
+        }
       }
       if (material_.material_area_off_walls(2) <= R_ * step_) break;
       std::fill(given_up_.begin(), given_up_.end(), 0);
@@ -226,13 +236,13 @@ class AdaptivePlanner {
 
   struct Attempt {
     bool active = false;
-    Vec2 at = Vec2::Zero();                   // where the cutter would be
-    std::optional<Vec2> descent;              // a lift and descent to here first
-    std::vector<Vec2> moves;                  // feed moves along the level
-    std::vector<double> engagement;           // of each
-    size_t corner_links = 0;
-    Vec2 heading = Vec2::UnitX();             // the cutter's heading before the attempt
-    std::vector<size_t> cut_cells;
+    Vec2 at = Vec2::Zero();           // where the cutter would be
+    std::optional<Vec2> descent;      // a lift and descent to here first
+    std::vector<Vec2> moves;          // feed moves along the level
+    std::vector<double> engagement;   // of each
+    size_t corner_links = 0;          // links among them that turn on the spot
+    Vec2 heading = Vec2::UnitX();     // the cutter's heading before the attempt
+    std::vector<size_t> cut_cells;    // the material cells it cut, to restore
   };
 
   void begin_attempt() {
@@ -272,7 +282,6 @@ class AdaptivePlanner {
   // Where the cutter is, or would be in the pass being tried.
   Vec2 position() const { return attempt_.active ? attempt_.at : Vec2(w_->position().head<2>()); }
   bool at_level_now() const { return (attempt_.active && attempt_.descent) || at_level(); }
-
 
   // The level's last pass: round the walls (the allowed region opened by the turn radius, climb) wherever
   // material is left within reach of them: the corners and the strips the passes left as they turned away from
@@ -343,7 +352,8 @@ class AdaptivePlanner {
       s.p = p + step_ * s.h;
       const Vec2 cut = sign * s.h;
       s.over = material_.engaged_over(s.p, cut, R_, target_);
-      for (int k = 1; k < n && !s.over; ++k) s.over = material_.engaged_over(p + (step_ * k / n) * s.h, cut, R_, target_);
+      for (int k = 1; k < n && !s.over; ++k)
+        s.over = material_.engaged_over(p + (step_ * k / n) * s.h, cut, R_, target_);
       return s;
     };
     // Room ahead to turn away from a wall within the turn radius (and so to link to the next pass by a curve).
@@ -374,7 +384,6 @@ class AdaptivePlanner {
     return std::nullopt;
   }
 
-
   // Where the next pass begins: at the edge of the material nearest where the last pass began (blocks searched
   // outward from there), the cutter placed in air beside it. A pass that ran across a front from one wall to
   // the other began at the front's upstream end, so the next takes the whole front again a step further on
@@ -385,7 +394,7 @@ class AdaptivePlanner {
     material_.block_of(from, bi, bj);
     const long rings = std::max({bi, bj, material_.blocks_x() - bi, material_.blocks_y() - bj});
     std::vector<std::pair<double, size_t>> edge;
-    std::vector<Vec2> normal(0);
+    std::vector<Vec2> normal;
     for (long ring = 0; ring <= rings; ++ring) {
       for (long j = bj - ring; j <= bj + ring; ++j)
         for (long i = bi - ring; i <= bi + ring; ++i) {
@@ -514,7 +523,7 @@ class AdaptivePlanner {
           std::vector<Vec2> way = dubins_points(path, from, heading_, step_);
           way.push_back(p);
           if (!free_curve(from, way)) continue;
-          for (const Vec2& q : way) cut_to(q);
+          for (const Vec2& w : way) cut_to(w);
           return;
         }
         // No curve of the turn radius fits the cleared air: a straight link, turning on the spot at its ends,
@@ -632,6 +641,9 @@ class AdaptivePlanner {
   // allowed centres within 0.9 R of that material is deepest (a chamfer distance over the cells, as far as the
   // helix radius). False when no material is left that an entry reaches.
   bool seed() {
+    // Every entry searches the level's map: after kMaxFailedEntries entries that took next to nothing, what no pass
+    // reaches is left (reported as left area) rather than searched again and again.
+    if (failed_entries_ >= kMaxFailedEntries) return false;
     const std::vector<uint8_t> closed = closed_material();
     // On cells of about R / 8 first (the depth need not be finer: the helix is checked point by point), then on
     // the map's own cells, where a slot barely wider than the tool has room for no coarse cell.
@@ -702,9 +714,15 @@ class AdaptivePlanner {
       helix(p, std::min(helix_, room));
     else if (!ramp(p)) {
       give_up_near(p, 2 * R_);
+      ++failed_entries_;
       return true;
     }
-    if (material_.material_area() > before - 0.01 * R_ * R_) give_up_near(p, R_);
+    // No entry twice at one place: where it took next to nothing, the material within reach of the centre (and of
+    // the coarse cell it came from) is given up as a place to enter.
+    if (material_.material_area() > before - 0.01 * R_ * R_) {
+      give_up_near(p, 2 * R_);
+      ++failed_entries_;
+    }
     return true;
   }
 
@@ -886,6 +904,7 @@ class AdaptivePlanner {
   std::vector<size_t> cells_;      // the edge cells a search gathered
   size_t steps_ = 0;               // steps steered at the level
   int min_steps_ = kMinPassSteps;  // the fewest cutting steps a pass is made with
+  int failed_entries_ = 0;         // entries at the level that took next to nothing
   Attempt attempt_;
   Vec2 last_start_ = Vec2::Zero();  // where the last pass began
   Vec2 heading_ = Vec2::UnitX();    // of the cutter's last move at the level

@@ -131,8 +131,8 @@ bool LevelMaterial::each_within(const Vec2& a, const Vec2& b, double r, const F&
   for (long j = j0; j <= j1; ++j)
     for (long i = i0; i <= i1; ++i) {
       const size_t c = size_t(j) * nx_ + i;
-      if (bits_[c] == kMaterial && segment_distance(Vec2(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_), a, b) <= r &&
-          !f(c))
+      if (bits_[c] != kMaterial) continue;
+      if (segment_distance(Vec2(x0_ + (i + 0.5) * cell_, y0_ + (j + 0.5) * cell_), a, b) <= r && !f(c))
         return false;
     }
   return true;
