@@ -24,8 +24,6 @@ struct ArcTable {
 
 }  // namespace
 
-LevelMaterial::LevelMaterial(const Vec2& lo, const Vec2& hi, double cell) { reset(lo, hi, cell); }
-
 void LevelMaterial::reset(const Vec2& lo, const Vec2& hi, double cell) {
   x0_ = lo.x(), y0_ = lo.y(), cell_ = cell;
   nx_ = std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)));

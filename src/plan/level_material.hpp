@@ -18,10 +18,8 @@ class LevelMaterial {
  public:
   static constexpr uint8_t kOther = 0, kMaterial = 1, kAir = 2;
 
-  // Cells of edge `cell` covering [lo, hi]; no material anywhere.
-  LevelMaterial(const Vec2& lo, const Vec2& hi, double cell);
-  LevelMaterial() = default;
-  // As a new map of [lo, hi], in the memory this one holds (fresh pages cost more than the work on them).
+  // Cells of edge `cell` covering [lo, hi], no material anywhere: a new map in the memory this one holds (fresh
+  // pages cost more than the work on them).
   void reset(const Vec2& lo, const Vec2& hi, double cell);
   // Cells whose centre lies inside the region (even-odd over its loops) become `value`.
   void fill(const clip::Paths& region, uint8_t value);
@@ -78,13 +76,13 @@ class LevelMaterial {
   void edge_cells(long bi, long bj, const Skip& skip, const F& f) const;
 
  private:
-  // Calls f(cell index) for the cells whose centre lies within r of the segment a-b until f returns false.
   // Samples of the leading half-circle in material, counted up to `enough`.
   int arc_in(const Vec2& p, const Vec2& dir, double r, int enough) const;
   // Calls f(cell) for the cells whose centre lies within r of the segment a-b but not within r of a, row by row
   // (the capsule's span of each row less the disc's), until f returns false.
   template <class F>
   bool each_ahead(const Vec2& a, const Vec2& b, double r, const F& f) const;
+  // Calls f(cell index) for the cells whose centre lies within r of the segment a-b until f returns false.
   template <class F>
   bool each_within(const Vec2& a, const Vec2& b, double r, const F& f) const;
   double x0_ = 0, y0_ = 0, cell_ = 1;

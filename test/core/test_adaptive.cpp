@@ -65,7 +65,9 @@ Mesh ring_groove_block(double S, double H, double outer, double inner, double de
   std::vector<Vec3> c;
   for (size_t t = 0; t + 2 < block.faces.size(); ++t)
     for (int k = 0; k < 3; ++k) c.push_back(block.corner(t, k));
-  auto quad = [&](const Vec3& a, const Vec3& b, const Vec3& d, const Vec3& e) { c.insert(c.end(), {a, b, d, a, d, e}); };
+  auto quad = [&](const Vec3& a, const Vec3& b, const Vec3& d, const Vec3& e) {
+    c.insert(c.end(), {a, b, d, a, d, e});
+  };
   const double f = H - depth, a0 = S / 2 - outer, a1 = S / 2 + outer, b0 = S / 2 - inner, b1 = S / 2 + inner;
   quad({a0, a0, f}, {a1, a0, f}, {a1, b0, f}, {a0, b0, f});  // floor: four strips
   quad({a0, b1, f}, {a1, b1, f}, {a1, a1, f}, {a0, a1, f});
