@@ -6,8 +6,9 @@
 // The path is steered, as in constant-engagement ("adaptive", "dynamic") clearing: the cutter runs in passes with
 // the material on its right (climb milling for an M3 spindle), and at every step of R/10 its heading turns as far
 // into the material as keeps the engagement (the angle of its leading half-circle in material, measured against a
-// bitmap of what is left, level_material.hpp) at the limit less its 2-degree resolution, and never by more than
-// the smallest turn radius allows. So a pass follows the boundary of the cleared area at a constant engagement:
+// bitmap of what is left, level_material.hpp) at the limit less its 2-degree resolution (at most 88 degrees: past a
+// side cut of half the tool a pass would wind round its own track), and never by more than the smallest turn
+// radius allows. So a pass follows the boundary of the cleared area at a constant engagement:
 // it spirals out of an entry, rounds convex material, runs across the front of a channel from wall to wall
 // (trochoidal milling, each pass a step further on), and turns away from an inner corner instead of burying the
 // tool in it. A pass ends where no turn keeps the engagement under the limit out of the part (a wall ahead, a
