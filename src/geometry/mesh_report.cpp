@@ -44,22 +44,59 @@ struct EdgeCounts {
   size_t open = 0, nonmanifold = 0, inconsistent = 0;
 };
 
+void compare_exchange(uint32_t& a, uint32_t& b) {
+  const uint32_t lo = std::min(a, b), hi = std::max(a, b);
+  a = lo, b = hi;
+}
+
+// Sorts eight values by the 19-comparator network for eight inputs (Knuth, The Art of Computer Programming,
+// vol. 3, 5.3.4): no branch on the data. Most vertices' lists hold about six half-edges in no order a branch
+// predictor can learn, so an insertion sort mispredicts at every other step.
+void sort8(uint32_t* v) {
+  compare_exchange(v[0], v[2]), compare_exchange(v[1], v[3]), compare_exchange(v[4], v[6]);
+  compare_exchange(v[5], v[7]);
+  compare_exchange(v[0], v[4]), compare_exchange(v[1], v[5]), compare_exchange(v[2], v[6]);
+  compare_exchange(v[3], v[7]);
+  compare_exchange(v[0], v[1]), compare_exchange(v[2], v[3]), compare_exchange(v[4], v[5]);
+  compare_exchange(v[6], v[7]);
+  compare_exchange(v[2], v[4]), compare_exchange(v[3], v[5]);
+  compare_exchange(v[1], v[4]), compare_exchange(v[3], v[6]);
+  compare_exchange(v[1], v[2]), compare_exchange(v[3], v[4]), compare_exchange(v[5], v[6]);
+}
+
+// The edges of one vertex's sorted list of half-edges.
+void count_sorted(const uint32_t* first, const uint32_t* last, EdgeCounts& n) {
+  for (const uint32_t* i = first; i < last;) {
+    const uint32_t* j = i + 1;
+    while (j < last && (*j >> 1) == (*i >> 1)) ++j;
+    if (j - i == 1) ++n.open;
+    if (j - i > 2) ++n.nonmanifold;
+    if (j - i == 2 && i[0] == i[1]) ++n.inconsistent;
+    i = j;
+  }
+}
+
 // Edges from the half-edges grouped on their lower vertex by a counting sort (the grouping Mesh's edges are built
 // with), each stored as its higher vertex << 1 | direction (1: run from lower to higher). Within a vertex's short
 // list, sorting brings an edge's half-edges together: one of them is an open edge, more than two a non-manifold
 // one, and two with the same direction bit an inconsistently oriented one. Needs vertices < 2^31.
-EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
-  std::vector<uint32_t> end(nv + 1, 0);  // after the scatter: end[v] is where v's list begins
-  for (const Mesh::Face& t : faces)
-    for (int c = 0; c < 3; ++c) ++end[std::min(t[c], t[(c + 1) % 3])];
+//
+// The vertices [first, last) only: the half-edges of their edges alone are held, so a large mesh is counted in
+// slices (count_edges) in the memory of one slice, which the next reuses; fresh pages are dear (heap_reuse.hpp).
+void count_edge_slice(const std::vector<Mesh::Face>& faces, uint32_t first, uint32_t last, EdgeCounts& counts) {
+  const size_t nv = last - first;
+  std::vector<uint32_t> end(nv + 1, 0);  // after the scatter: end[v - first] is where v's list begins
+  const auto each_half = [&](const auto& f) {
+    for (const Mesh::Face& t : faces)
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t from = t[c], to = t[(c + 1) % 3], lo = std::min(from, to);
+        if (lo >= first && lo < last) f(lo - first, std::max(from, to) << 1 | uint32_t(from < to));
+      }
+  };
+  each_half([&](uint32_t v, uint32_t) { ++end[v]; });
   for (size_t v = 1; v <= nv; ++v) end[v] += end[v - 1];
-  std::vector<uint32_t> half(3 * faces.size());
-  for (const Mesh::Face& t : faces)
-    for (int c = 0; c < 3; ++c) {
-      const uint32_t from = t[c], to = t[(c + 1) % 3];
-      const uint32_t lo = std::min(from, to), hi = std::max(from, to);
-      half[--end[lo]] = hi << 1 | uint32_t(from < to);
-    }
+  std::vector<uint32_t> half(end[nv]);
+  each_half([&](uint32_t v, uint32_t h) { half[--end[v]] = h; });
   // Vertex ranges on both cores (from kParallelFaces on), each chunk one task; the counts are integers, so their
   // sum does not depend on the order the chunks end in.
   const int chunks = faces.size() > kParallelFaces ? 16 : 1;
@@ -67,21 +104,18 @@ EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
   const auto count_chunk = [&](int k) {
     EdgeCounts n;
     for (size_t v = nv * size_t(k) / size_t(chunks); v < nv * size_t(k + 1) / size_t(chunks); ++v) {
-      uint32_t* first = half.data() + end[v];
-      uint32_t* last = half.data() + end[v + 1];
-      if (last - first <= 16) {
-        for (uint32_t* i = first + 1; i < last; ++i)  // insertion sort: most lists hold a handful
-          for (uint32_t* j = i; j > first && j[0] < j[-1]; --j) std::swap(j[0], j[-1]);
+      uint32_t* begin = half.data() + end[v];
+      uint32_t* stop = half.data() + end[v + 1];
+      const size_t size = size_t(stop - begin);
+      if (size <= 8) {
+        // Padded with values no half-edge has (vertices < 2^31), which sort last.
+        uint32_t list[8] = {~0u, ~0u, ~0u, ~0u, ~0u, ~0u, ~0u, ~0u};
+        std::copy(begin, stop, list);
+        sort8(list);
+        count_sorted(list, list + size, n);
       } else {
-        std::sort(first, last);
-      }
-      for (uint32_t* i = first; i < last;) {
-        uint32_t* j = i + 1;
-        while (j < last && (*j >> 1) == (*i >> 1)) ++j;
-        if (j - i == 1) ++n.open;
-        if (j - i > 2) ++n.nonmanifold;
-        if (j - i == 2 && i[0] == i[1]) ++n.inconsistent;
-        i = j;
+        std::sort(begin, stop);
+        count_sorted(begin, stop, n);
       }
     }
     open += n.open;
@@ -89,7 +123,20 @@ EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
     inconsistent += n.inconsistent;
   };
   for_each_chunk(chunks, count_chunk);
-  return {open, nonmanifold, inconsistent};
+  counts.open += open, counts.nonmanifold += nonmanifold, counts.inconsistent += inconsistent;
+}
+
+// A large mesh in kEdgeSlices slices of its vertices (about as many half-edges each: a welded file numbers its
+// vertices in the order the faces meet them).
+constexpr int kEdgeSlices = 2;
+
+EdgeCounts count_edges(const std::vector<Mesh::Face>& faces, size_t nv) {
+  EdgeCounts counts;
+  const int slices = faces.size() > kParallelFaces ? kEdgeSlices : 1;
+  for (int k = 0; k < slices; ++k)
+    count_edge_slice(faces, uint32_t(nv * size_t(k) / size_t(slices)), uint32_t(nv * size_t(k + 1) / size_t(slices)),
+                     counts);
+  return counts;
 }
 
 }  // namespace

@@ -28,22 +28,21 @@ template <class Word>
 ExactWelder<Word>::ExactWelder(size_t expected_vertices) {
   size_t slots = 64;
   while (2 * slots < 3 * expected_vertices) slots <<= 1;
-  allocate(slots);
-  keys_.resize(expected_vertices);
+  first_slots_ = slots;
+  keys_.reset(new Key[expected_vertices]);  // default-initialised: not written
+  capacity_ = expected_vertices;
 }
 
 template <class Word>
 void ExactWelder<Word>::allocate(size_t slots) {
-  Slot free{};
-  free.key[0] = kFree;
-  slots_.assign(slots, free);
+  slots_.assign(slots, Slot{0, kAbsent});
   mask_ = slots - 1;
   shift_ = 64 - __builtin_ctzll(slots);
 }
 
 template <class Word>
-size_t ExactWelder<Word>::home(const Key& key) const {
-  return size_t(key_hash(key) >> shift_);
+uint64_t ExactWelder<Word>::hash(const Key& key) const {
+  return key_hash(key);
 }
 
 template <class Word>
@@ -51,9 +50,9 @@ void ExactWelder<Word>::grow() {
   std::vector<Slot> old = std::move(slots_);
   allocate(2 * old.size());
   for (const Slot& s : old) {
-    if (s.key[0] == kFree) continue;
-    size_t i = home(s.key);
-    while (slots_[i].key[0] != kFree) i = (i + 1) & mask_;
+    if (s.id == kAbsent) continue;
+    size_t i = home(hash(keys_[s.id]));
+    while (slots_[i].id != kAbsent) i = (i + 1) & mask_;
     slots_[i] = s;
   }
 }
@@ -61,47 +60,54 @@ void ExactWelder<Word>::grow() {
 template <class Word>
 void ExactWelder<Word>::make_room(size_t more) {
   if (size_ + more >= kAbsent) throw Error("mesh", "more than 4,294,967,294 distinct vertices");
+  if (slots_.empty()) allocate(first_slots_);
   if (3 * (size_ + more) > 2 * slots_.size()) grow();  // at most two thirds full: short probe runs
-  if (size_ + more > keys_.size()) keys_.resize(std::max(2 * keys_.size(), size_ + more));
+  if (size_ + more > capacity_) {
+    capacity_ = std::max(2 * capacity_, size_ + more);
+    std::unique_ptr<Key[]> grown(new Key[capacity_]);
+    std::copy(keys_.get(), keys_.get() + size_, grown.get());
+    keys_ = std::move(grown);
+  }
 }
 
 template <class Word>
-uint32_t ExactWelder<Word>::find(const Key& key, size_t i) const {
-  for (;; i = (i + 1) & mask_) {
+uint32_t ExactWelder<Word>::find(const Key& key, uint64_t h) const {
+  const uint32_t tag = uint32_t(h);
+  for (size_t i = home(h);; i = (i + 1) & mask_) {
     const Slot& s = slots_[i];
-    if (same_key(s.key, key)) return s.id;
-    if (s.key[0] == kFree) return kAbsent;
+    if (s.id == kAbsent) return kAbsent;
+    if (s.tag == tag && same_key(keys_[s.id], key)) return s.id;
   }
 }
 
 template <class Word>
 void ExactWelder<Word>::add_many(const Key* keys, size_t n, uint32_t* ids) {
-  size_t at[kBatch];
+  uint64_t hashes[kBatch];
   for (size_t start = 0; start < n; start += kBatch) {
     const size_t m = std::min(kBatch, n - start);
     make_room(m);
     // The table's fields in locals: the probing loop then keeps them in registers.
     Slot* const slots = slots_.data();
     const size_t mask = mask_;
-    Key* const stored = keys_.data();
+    Key* const stored = keys_.get();
     uint32_t size = uint32_t(size_);
     for (size_t k = 0; k < m; ++k) {
-      at[k] = home(keys[start + k]);
-      __builtin_prefetch(&slots[at[k]]);
+      hashes[k] = hash(keys[start + k]);
+      __builtin_prefetch(&slots[home(hashes[k])]);
     }
     for (size_t k = 0; k < m; ++k) {
       const Key& key = keys[start + k];
-      for (size_t i = at[k];; i = (i + 1) & mask) {
+      const uint32_t tag = uint32_t(hashes[k]);
+      for (size_t i = home(hashes[k]);; i = (i + 1) & mask) {
         Slot& s = slots[i];
-        if (same_key(s.key, key)) {
-          ids[start + k] = s.id;
-          break;
-        }
-        if (s.key[0] == kFree) {
-          s.key = key;
-          s.id = size;
+        if (s.id == kAbsent) {
+          s = Slot{tag, size};
           stored[size] = key;
           ids[start + k] = size++;
+          break;
+        }
+        if (s.tag == tag && same_key(stored[s.id], key)) {
+          ids[start + k] = s.id;
           break;
         }
       }
@@ -112,14 +118,18 @@ void ExactWelder<Word>::add_many(const Key* keys, size_t n, uint32_t* ids) {
 
 template <class Word>
 void ExactWelder<Word>::find_many(const Key* keys, size_t n, uint32_t* ids) const {
-  size_t at[kBatch];
+  if (slots_.empty()) {  // nothing added yet
+    std::fill(ids, ids + n, kAbsent);
+    return;
+  }
+  uint64_t hashes[kBatch];
   for (size_t start = 0; start < n; start += kBatch) {
     const size_t m = std::min(kBatch, n - start);
     for (size_t k = 0; k < m; ++k) {
-      at[k] = home(keys[start + k]);
-      __builtin_prefetch(&slots_[at[k]]);
+      hashes[k] = hash(keys[start + k]);
+      __builtin_prefetch(&slots_[home(hashes[k])]);
     }
-    for (size_t k = 0; k < m; ++k) ids[start + k] = find(keys[start + k], at[k]);
+    for (size_t k = 0; k < m; ++k) ids[start + k] = find(keys[start + k], hashes[k]);
   }
 }
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 #include <exception>
-#include <optional>
 
 #include "rosmill/error.hpp"
 #include "rosmill/heap_reuse.hpp"
@@ -107,12 +106,13 @@ void write_positions(const FloatWelder& welder, Vec3* vertices) {
 // The second half's vertex ids in the whole file's numbering: a vertex the first half also has keeps the first
 // half's id, the others follow the first half's vertices in their own order. That is exactly the numbering of
 // one pass over the whole file (first appearance), and no key is inserted again.
-std::vector<uint32_t> merged_ids(const FloatWelder& first, const FloatWelder& second, size_t& vertex_count) {
+void merge_ids(const FloatWelder& first, const FloatWelder& second, std::vector<uint32_t>& ids,
+               size_t& vertex_count) {
   if (first.size() + second.size() >= FloatWelder::kAbsent)
     throw Error("mesh", "more than 4,294,967,294 distinct vertices");
   const int64_t n = int64_t(second.size());
   constexpr int64_t kChunk = 4096;  // keys looked up together (the welder prefetches their slots at once)
-  std::vector<uint32_t> ids(static_cast<size_t>(n));
+  ids.resize(static_cast<size_t>(n));
   for_each_item(0, (n + kChunk - 1) / kChunk, 1, [&](int64_t k) {
     const int64_t c = k * kChunk;
     first.find_many(second.keys() + c, size_t(std::min(kChunk, n - c)), ids.data() + c);
@@ -121,7 +121,6 @@ std::vector<uint32_t> merged_ids(const FloatWelder& first, const FloatWelder& se
   for (uint32_t& id : ids)
     if (id == FloatWelder::kAbsent) id = next++;
   vertex_count = next;
-  return ids;
 }
 
 }  // namespace
@@ -137,7 +136,7 @@ void parse_binary(const char* data, size_t count, const std::string& name, StlSo
 }
 
 // Files of 32k triangles and more are welded in two halves side by side (below that the threads' start costs
-// more than they save), each half in its own welder, built by its own thread; then merged_ids() numbers the
+// more than they save), each half in its own welder, built by its own thread; then merge_ids() numbers the
 // second half's vertices in the whole file's order and its faces are renumbered.
 void parse_binary_welded(const char* data, size_t count, const std::string& name, IndexedTriangles& out,
                          size_t& stored_normal_mismatches) {
@@ -152,13 +151,18 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
     return;
   }
   const size_t half = count / 2;
-  std::optional<FloatWelder> welders[2];
+  // The heap's order, so that the vertices below are carved from memory the tables had (fresh pages are dear,
+  // heap_reuse.hpp): both welders' keys and the merge's ids first, then the tables, side by side at the top,
+  // made by the first keys added and released before the vertices are written.
+  const size_t expected = count / 4 + count / 16;  // a quarter of the triangles' count, and the seam
+  FloatWelder welders[2] = {FloatWelder(expected), FloatWelder(expected)};
+  std::vector<uint32_t> ids;
+  ids.reserve(expected);
   size_t mismatches[2] = {0, 0};
   std::exception_ptr failures[2];
   auto weld_half = [&](int k) {
     try {
-      welders[k].emplace(count / 4 + count / 16);  // a quarter of the triangles' count, and the seam
-      weld_range(data, k == 0 ? 0 : half, k == 0 ? half : count, name, *welders[k], out.faces.data(), mismatches[k]);
+      weld_range(data, k == 0 ? 0 : half, k == 0 ? half : count, name, welders[k], out.faces.data(), mismatches[k]);
     } catch (...) {
       failures[k] = std::current_exception();
     }
@@ -169,10 +173,14 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
     if (failure) std::rethrow_exception(failure);
   stored_normal_mismatches += mismatches[0] + mismatches[1];
 
-  const FloatWelder& first = *welders[0];
-  const FloatWelder& second = *welders[1];
+  FloatWelder& first = welders[0];
+  FloatWelder& second = welders[1];
   size_t vertex_count = 0;
-  const std::vector<uint32_t> ids = merged_ids(first, second, vertex_count);
+  merge_ids(first, second, ids, vertex_count);
+  first.release_table();
+  second.release_table();
+  out.vertices.reserve(vertex_count);
+  fault_in_on_both_cores(out.vertices.data(), vertex_count * sizeof(Vec3));  // before resize() zero-fills it
   out.vertices.resize(vertex_count);
   write_positions(first, out.vertices.data());
   for_each_item(0, int64_t(ids.size()), kParallelVertices, [&](int64_t v) {

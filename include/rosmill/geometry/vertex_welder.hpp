@@ -5,15 +5,18 @@
 // float64 words for anything parsed into doubles. -0 is folded to +0 first, so the two zeros weld; keys are
 // never NaN (callers refuse non-finite coordinates before welding).
 //
-// A flat open-addressing table of (key, vertex id) slots, at most two thirds full: no allocation per corner, a
-// hit compares the key inside its slot (one cache line), and add_many() prefetches the slots of a batch before
-// probing them, so the table's cache misses overlap. This is the hot loop of STL loading (about 6 corners per
-// vertex).
+// A flat open-addressing table of (hash tag, vertex id) slots, at most two thirds full: no allocation per corner,
+// a probe compares 32 bits of the key's hash inside its slot and reads the key itself only when they agree, and
+// add_many() prefetches the slots of a batch before probing them, so the table's cache misses overlap. This is
+// the hot loop of STL loading (about 6 corners per vertex). A slot is 8 bytes, not the key's 12 or 24 and an id:
+// the table of a 2M-triangle file is then 8 MB rather than 16, and fresh memory is what a large load pays most
+// for on a virtual machine (heap_reuse.hpp).
 #pragma once
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -27,7 +30,9 @@ class ExactWelder {
   using Key = std::array<Word, 3>;
   static constexpr uint32_t kAbsent = 0xffffffffu;
 
-  // `expected_vertices` sizes the table (it grows when exceeded).
+  // `expected_vertices` sizes the keys and the table (both grow when exceeded). The keys are allocated here, the
+  // table when the first key is added: a caller that makes several welders, then adds to them, has their tables
+  // side by side on the heap, to be released together (release_table).
   explicit ExactWelder(size_t expected_vertices = 1024);
 
   // The vertex id of each of `n` keys, adding the new ones.
@@ -37,17 +42,19 @@ class ExactWelder {
 
   size_t size() const { return size_; }
   // The distinct keys, indexed by vertex id: keys()[0, size()).
-  const Key* keys() const { return keys_.data(); }
+  const Key* keys() const { return keys_.get(); }
+  // Frees the table once no key is to be added or found any more; the keys stay.
+  void release_table() { std::vector<Slot>().swap(slots_); }
 
  private:
   struct Slot {
-    Key key;      // kFree in key[0] when the slot is free
-    uint32_t id;
+    uint32_t tag;  // the key's hash's low 32 bits (the slot's index is taken from its top bits)
+    uint32_t id;   // kAbsent when the slot is free
   };
-  static constexpr Word kFree = Word(~Word(0));  // a NaN pattern: never a key
 
-  size_t home(const Key& key) const;
-  uint32_t find(const Key& key, size_t home) const;
+  uint64_t hash(const Key& key) const;
+  size_t home(uint64_t hash) const { return size_t(hash >> shift_); }
+  uint32_t find(const Key& key, uint64_t hash) const;
   void allocate(size_t slots);
   void grow();
   void make_room(size_t more);
@@ -55,8 +62,12 @@ class ExactWelder {
   std::vector<Slot> slots_;
   size_t mask_ = 0;
   int shift_ = 0;  // the table index is the hash's top bits
-  std::vector<Key> keys_;  // sized ahead of size_ (no reallocation inside the probing loop)
+  // Room for `capacity_` keys ahead of size_ (no reallocation inside the probing loop), left unwritten until a
+  // key is stored: its pages are first touched by the thread that welds, not all at once by the one that made it.
+  std::unique_ptr<Key[]> keys_;
+  size_t capacity_ = 0;
   size_t size_ = 0;
+  size_t first_slots_ = 0;  // the table's size when it is made
 };
 
 using FloatWelder = ExactWelder<uint32_t>;   // binary STL corners
