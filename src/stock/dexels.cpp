@@ -97,7 +97,7 @@ Dexels mesh_dexels(const Mesh& mesh, const GridSpec& g, const std::string& where
 Dexels cloud_dexels(const PointCloud& cloud, double table_z, const GridSpec& g, int fill_cells) {
   if (cloud.points.empty()) throw Error("stock cloud", "the cloud has no points");
   if (!std::isfinite(table_z)) throw Error("stock cloud", "the table height is not a number");
-  const std::vector<float> top = scanned_top(cloud, g);
+  std::vector<float> top = scanned_top(cloud, g);
   // A hole: the nearest cells with a top on both sides along a row or a column, within fill_cells.
   auto filled = [&](int i, int j) {
     double sum = 0;
@@ -113,11 +113,27 @@ Dexels cloud_dexels(const PointCloud& cloud, double table_z, const GridSpec& g, 
     }
     return n ? static_cast<float>(sum / n) : NAN;
   };
+  // In rounds, each reading the cells the rounds before filled, until none changes: a scan sparser than the grid
+  // both ways (a scanner's 2 mm pitch on a 0.5 mm grid) has cells with no point in their row nor their column; the
+  // first round fills the rows and columns through the points, the next the cells between them. A cell outside the
+  // scanned outline has no top on its outer side, in any round.
+  std::vector<float> next;
+  for (int round = 0; round <= fill_cells; ++round) {
+    next = top;
+    bool changed = false;
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const size_t c = g.index(i, j);
+        if (!std::isnan(top[c])) continue;
+        next[c] = filled(i, j);
+        changed = changed || !std::isnan(next[c]);
+      }
+    top.swap(next);
+    if (!changed) break;
+  }
   const float table = static_cast<float>(table_z);
   return build(g, [&](size_t c, std::vector<Span>& out) {
-    const int i = static_cast<int>(c % g.nx), j = static_cast<int>(c / g.nx);
-    const float z = std::isnan(top[c]) ? filled(i, j) : top[c];
-    if (z > table) out.push_back({table, z});
+    if (top[c] > table) out.push_back({table, top[c]});
   });
 }
 

@@ -44,7 +44,10 @@ std::vector<float> scanned_top(const PointCloud& cloud, const GridSpec& g) {
   std::vector<size_t> first(g.cells() + 1, 0);
   for (size_t k = 0; k < cloud.points.size(); ++k) {
     const Vec3& p = cloud.points[k];
-    const double fi = std::floor((p.x() - g.x0) / g.cell), fj = std::floor((p.y() - g.y0) / g.cell);
+    // A point on the grid's far edge (the cloud's own bounds make the grid: its highest x and y lie there) is in
+    // the last cell, not off the grid.
+    const auto index = [](double u, int n) { return u >= n && u <= n + 1e-9 ? n - 1.0 : std::floor(u); };
+    const double fi = index((p.x() - g.x0) / g.cell, g.nx), fj = index((p.y() - g.y0) / g.cell, g.ny);
     if (!(fi >= 0 && fj >= 0 && fi < g.nx && fj < g.ny)) continue;
     cell_of[k] = g.index(static_cast<int>(fi), static_cast<int>(fj));
     ++first[cell_of[k] + 1];

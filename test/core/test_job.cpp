@@ -163,9 +163,9 @@ TEST(Job, CastStockFromAMesh) {
   std::filesystem::remove_all(dir);
 }
 
-// The example jobs run as they are, from any folder. A casting or a scanned block holds less material than the
-// box around the part, and roughing that plans on the stock cuts clearly less air from it; the roughing's
-// air-cutting share from each is printed.
+// The example jobs run as they are, from any folder. A casting holds less material than the box around the part
+// (the scanned block as much), and roughing that plans on the stock cuts clearly less air from it than roughing
+// planned without it; the roughing's air-cutting share from each is printed.
 TEST(Job, ExampleJobsRunFromAnyFolder) {
   const std::string dir = ::testing::TempDir() + "rosmill_job_examples";
   for (const char* name : {"box_cube", "cast_cone", "scanned_dome", "rest_pocket"}) {
@@ -209,7 +209,13 @@ TEST(Job, ExampleJobsRunFromAnyFolder) {
     std::printf("%s: roughing air-cutting share %.3f planned on its own stock (%.3f planned without it), %.3f from "
                 "the box\n", name, real.operations[0].air_cut_share, before.operations[0].air_cut_share,
                 box.operations[0].air_cut_share);
-    EXPECT_LT(real.stock_mm3, box.stock_mm3) << name;
+    if (std::string(name) == "scanned_dome") {
+      // The scanned block is as large as the box: its top, 55 + 2 sin(x / 15) cos(y / 20) mm over 110 x 110 mm
+      // (config/jobs/data/README.md), averages 55 mm (the wave's integral over the square is 0): 665,500 mm3.
+      EXPECT_NEAR(real.stock_mm3, 110.0 * 110.0 * 55.0, 0.005 * 110.0 * 110.0 * 55.0);
+    } else {
+      EXPECT_LT(real.stock_mm3, box.stock_mm3) << name;
+    }
     // Half the air or less where the stock is far from the part (a cone from a cylinder, a scanned block); the
     // pocket's casting is near-net (2 mm all round), so there is less air to save: still less than before.
     const double bound = std::string(name) == "rest_pocket" ? 1.0 : 0.5;

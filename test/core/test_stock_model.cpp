@@ -159,6 +159,37 @@ TEST(StockModel, ScannedCloudOfTheDomeGivesItsVolume) {
   EXPECT_EQ(outside, 0u);
 }
 
+// A scanner's pitch coarser than the grid both ways (2 mm against 0.5 mm cells): most cells hold no point, and
+// three of every four rows and columns hold none either. Every cell inside the scanned square is stock, at the
+// scanned height; none outside it.
+TEST(StockModel, ScanSparserThanTheGridBothWaysLeavesNoHoles) {
+  PointCloud cloud;
+  for (int j = 0; j <= 20; ++j)
+    for (int i = 0; i <= 20; ++i) {
+      const double x = -20 + 2.0 * i, y = -20 + 2.0 * j;
+      cloud.points.emplace_back(x, y, 30 + 0.1 * x);  // a slope: 28 to 32 mm
+    }
+  cloud.recompute_bbox();
+  const InProcessStock stock = InProcessStock::from_cloud(cloud, 0.0, 0.5);
+  const Dexels& d = stock.material();
+  size_t holes = 0, outside = 0;
+  for (int j = 0; j < d.grid.ny; ++j)
+    for (int i = 0; i < d.grid.nx; ++i) {
+      const size_t c = d.grid.index(i, j);
+      const bool in = std::abs(d.grid.cx(i)) < 20 && std::abs(d.grid.cy(j)) < 20;
+      const bool stocked = d.begin(c) != d.end(c);
+      holes += in && !stocked;
+      outside += !in && std::max(std::abs(d.grid.cx(i)), std::abs(d.grid.cy(j))) > 20.5 && stocked;
+      if (in && stocked) {
+        EXPECT_NEAR(d.begin(c)->hi, 30 + 0.1 * d.grid.cx(i), 0.1) << d.grid.cx(i);
+      }
+    }
+  EXPECT_EQ(holes, 0u);
+  EXPECT_EQ(outside, 0u);
+  // 40 x 40 mm at 30 mm on average, within the half cell the outline's cells may add or leave all round.
+  EXPECT_NEAR(stock.volume(), 40.0 * 40.0 * 30.0, 4 * 40.0 * 0.5 * 32.0);
+}
+
 TEST(StockModel, RefusesGridsBeyondTheBoundBeforeAllocating) {
   Box3 box;
   box.add(Vec3(0, 0, 0));

@@ -47,8 +47,9 @@ Dexels box_dexels(const Box3& box, const GridSpec& grid);
 Dexels mesh_dexels(const Mesh& mesh, const GridSpec& grid, const std::string& where = "stock mesh");
 
 // Raw stock a scanner saw from above, in the workpiece frame: in each cell from `table_z` up to the highest point
-// of the cell. A cell without points takes the mean top of the nearest cells with points on both sides of it along
-// x or along y within `fill_cells` (a hole in the scan); the cells outside the scanned outline stay empty.
+// of the cell. A cell without points takes the mean top of the nearest cells with a top on both sides of it along
+// x or along y within `fill_cells` (a hole in the scan), in rounds that read the cells earlier rounds filled (a
+// scan sparser than the grid both ways); the cells outside the scanned outline stay empty.
 Dexels cloud_dexels(const PointCloud& cloud, double table_z, const GridSpec& grid, int fill_cells = 3);
 
 }  // namespace rosmill::core::stock
