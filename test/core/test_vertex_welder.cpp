@@ -39,12 +39,20 @@ TEST(VertexWelder, FindManyReadsWithoutInserting) {
   FloatWelder welder;
   const std::vector<FloatWelder::Key> present = {float_key(1, 0, 0), float_key(0, 1, 0)};
   std::vector<uint32_t> ids(2);
+  // Before its first key a welder has no table yet: nothing is found.
+  welder.find_many(present.data(), present.size(), ids.data());
+  EXPECT_EQ(ids, (std::vector<uint32_t>{FloatWelder::kAbsent, FloatWelder::kAbsent}));
   welder.add_many(present.data(), present.size(), ids.data());
   const std::vector<FloatWelder::Key> asked = {float_key(0, 1, 0), float_key(0, 0, 1), float_key(-0.0f, 1, 0)};
   std::vector<uint32_t> found(asked.size());
   welder.find_many(asked.data(), asked.size(), found.data());
   EXPECT_EQ(found, (std::vector<uint32_t>{1, FloatWelder::kAbsent, 1}));
   EXPECT_EQ(welder.size(), 2u);
+  // Its table released, the keys stay.
+  welder.release_table();
+  ASSERT_EQ(welder.size(), 2u);
+  EXPECT_EQ(welder.keys()[0], present[0]);
+  EXPECT_EQ(welder.keys()[1], present[1]);
 }
 
 TEST(VertexWelder, GrowsFarBeyondItsExpectedSize) {
