@@ -151,8 +151,8 @@ void parse_binary_welded(const char* data, size_t count, const std::string& name
     return;
   }
   const size_t half = count / 2;
-  // The heap's order, so that the vertices below are carved from memory the tables had (fresh pages are dear,
-  // heap_reuse.hpp): both welders' keys and the merge's ids first, then the tables, side by side at the top,
+  // The heap's order, so that the vertices below reuse the memory the tables had (most of it: fresh pages are
+  // dear, heap_reuse.hpp): both welders' keys and the merge's ids first, then the tables, side by side at the top,
   // made by the first keys added and released before the vertices are written.
   const size_t expected = count / 4 + count / 16;  // a quarter of the triangles' count, and the seam
   FloatWelder welders[2] = {FloatWelder(expected), FloatWelder(expected)};

@@ -9,8 +9,8 @@
 // a probe compares 32 bits of the key's hash inside its slot and reads the key itself only when they agree, and
 // add_many() prefetches the slots of a batch before probing them, so the table's cache misses overlap. This is
 // the hot loop of STL loading (about 6 corners per vertex). A slot is 8 bytes, not the key's 12 or 24 and an id:
-// the table of a 2M-triangle file is then 8 MB rather than 16, and fresh memory is what a large load pays most
-// for on a virtual machine (heap_reuse.hpp).
+// a table of a million slots (half of a 2M-triangle file) is then 8 MB rather than 16, and fresh memory is what a
+// large load pays most for on a virtual machine (heap_reuse.hpp).
 #pragma once
 #include <array>
 #include <cstddef>
