@@ -269,14 +269,7 @@ class AdaptivePlanner {
     attempt_.active = false;
     if (attempt_.descent) descend(*attempt_.descent);
     report_.corner_links += attempt_.corner_links;
-    Vec2 a = w_->position().head<2>();
-    for (size_t k = 0; k < attempt_.moves.size(); ++k) {
-      const Vec2& b = attempt_.moves[k];
-      w_->feed(Vec3(b.x(), b.y(), z_));
-      engagement_of_move(attempt_.engagement[k]);
-      top_.lower_along(a, b, R_, z_, [&](double d) { return profile_.height(d); });
-      a = b;
-    }
+    for (size_t k = 0; k < attempt_.moves.size(); ++k) write_feed(attempt_.moves[k], attempt_.engagement[k]);
   }
 
   // Where the cutter is, or would be in the pass being tried.
@@ -612,6 +605,12 @@ class AdaptivePlanner {
       attempt_.at = p;
       return;
     }
+    write_feed(p, e);
+  }
+
+  // The feed move to p written, at the feed of its engagement e; the links' heights lowered along it.
+  void write_feed(const Vec2& p, double e) {
+    const Vec2 a = w_->position().head<2>();
     w_->feed(Vec3(p.x(), p.y(), z_));
     engagement_of_move(e);
     top_.lower_along(a, p, R_, z_, [&](double d) { return profile_.height(d); });
