@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <tuple>
+#include <tuple>
 
 #include "adaptive_regions.hpp"
 #include "level_material.hpp"
@@ -23,6 +25,7 @@ constexpr double kWalkBack = 4.0;     // cutter radii a start is walked back alo
 constexpr int kMinPassSteps = 3;      // steps (R / 10 each) a pass cuts for at least
 constexpr double kAirTurn = 2 * M_PI / 3;  // the most a pass turns in air between two cuts
 constexpr int kBisections = 6;        // halvings of the turn that meets the engagement target
+constexpr int kEscapeSteps = 2;       // steps turning away a pass keeps open after each step
 constexpr size_t kMaxSteps = 2000000;  // per level: a bound on the work whatever the geometry
 constexpr size_t kStepsPerEntry = 1000;  // what an entry's search counts for against kMaxSteps
 constexpr int kMaxFailedEntries = 32;     // per level
@@ -174,6 +177,7 @@ class AdaptivePlanner {
       give_up_skin();
     }
     wall_pass();
+    take_pins();
     report_.left_area_mm2 += material_.material_area_off_walls(2);
   }
 
@@ -330,6 +334,41 @@ class AdaptivePlanner {
     }
   }
 
+  // The pins the passes left off the walls: islands of material too small for a pass of their own (a pass that
+  // would cut less than R x step is not made), which a roughed face would keep as spikes a step-down high. Each,
+  // nearest first, is taken by a short straight move into it from the cleared air beside it, that air reached
+  // as a pass's start is.
+  void take_pins() {
+    std::vector<std::vector<size_t>> pins = material_.islands_off_walls(2);
+    while (!pins.empty()) {
+      const Vec2 from = position();
+      std::vector<Vec2> centres(pins.size(), Vec2::Zero());
+      size_t next = 0;
+      for (size_t k = 0; k < pins.size(); ++k) {
+        for (size_t c : pins[k]) centres[k] += material_.centre(c);
+        centres[k] /= double(pins[k].size());
+        if ((centres[k] - from).squaredNorm() < (centres[next] - from).squaredNorm()) next = k;
+      }
+      take_pin(pins[next], centres[next]);
+      pins.erase(pins.begin() + long(next));
+    }
+  }
+
+  // A pin whose cells lie within half a radius of c: from the side whose way to c meets no other material.
+  void take_pin(const std::vector<size_t>& pin, const Vec2& c) {
+    double reach = 0;
+    for (size_t k : pin) reach = std::max(reach, (material_.centre(k) - c).norm());
+    if (reach > 0.5 * R_ || !in_part_clearance(c)) return;  // not a pin: left, and reported as left
+    for (int d = 0; d < 8; ++d) {
+      const Vec2 u(std::cos(d * M_PI / 4), std::sin(d * M_PI / 4));
+      const Vec2 side = c - (R_ + reach + 2 * cell_) * u;
+      if (!in_part_clearance(side) || !material_.disc_clear(side, R_) || !free_curve(side, {c})) continue;
+      reach_air(side, u);
+      cut_to(c);
+      return;
+    }
+  }
+
   // The next step from p along h, the material on the right (sign 1), or walking back along the front a pass
   // would cut, the material on the left (sign -1). The heading turns by at most max_turn_: the most toward the
   // material whose engagement stays at the target, by bisection (the engagement grows as the turn goes into the
@@ -354,21 +393,37 @@ class AdaptivePlanner {
       return in_part_clearance(s.p) && in_part_clearance(s.p + kWallRoom * r_min_ * s.h);
     };
     const double into = -sign * max_turn_;  // toward the material: right of a cut, left walking back
+    // A step leaves a way out: turning away as fast as the turn radius allows for kEscapeSteps more steps keeps
+    // the engagement at the target. Without it a pass that meets a front from air (nothing to steer by, so it
+    // turns fully into the material) or runs into a concave bay of it is turned into the material faster than it
+    // can turn back, and ends a few steps in, its start given up: many short passes linked by loops through air.
+    const auto escapes = [&](const Step& s) {
+      Vec2 q = s.p, g = s.h;
+      for (int k = 0; k < kEscapeSteps; ++k) {
+        g = turned(g, -into), q += step_ * g;
+        if (material_.engaged_over(q, sign * g, R_, target_)) return false;
+      }
+      return true;
+    };
     Step away = at(-into);
     if (away.over) return std::nullopt;
-    Step best = at(into);
-    double a_ok = -into, a_over = into;
-    if (best.over) {
-      best = away;
+    // The turn farthest from a_ok (which passes `fine`) toward a_over (which does not) that passes, by bisection.
+    const auto bisect = [&](double a_ok, Step ok, double a_over, const auto& fine) {
       for (int k = 0; k < kBisections; ++k) {
         const double mid = 0.5 * (a_ok + a_over);
         const Step s = at(mid);
-        if (!s.over) best = s, a_ok = mid;
+        if (fine(s)) ok = s, a_ok = mid;
         else a_over = mid;
       }
-    } else {
-      a_ok = into;
-    }
+      return std::pair{a_ok, ok};
+    };
+    // The turn farthest into the material under the target; when the way out from there is closed, the farthest
+    // that keeps it open (tried only then: a pass along a front nearly always has one).
+    double a_ok = into;
+    Step best = at(into);
+    if (best.over) std::tie(a_ok, best) = bisect(-into, away, into, [](const Step& s) { return !s.over; });
+    if (!escapes(best) && escapes(away))
+      std::tie(a_ok, best) = bisect(-into, away, a_ok, [&](const Step& s) { return !s.over && escapes(s); });
     if (clear(best)) return best;
     for (int k = 1; k <= 8; ++k) {
       const Step s = at(a_ok + (-into - a_ok) * k / 8.0);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "rosmill/plan/material_top.hpp"
 
@@ -223,20 +224,46 @@ double LevelMaterial::material_area() const {
   return double(n) * cell_ * cell_;
 }
 
+bool LevelMaterial::off_walls(long i, long j, long margin) const {
+  for (long dj = -margin; dj <= margin; ++dj)
+    for (long di = -margin; di <= margin; ++di) {
+      const long ii = i + di, jj = j + dj;
+      if (ii >= 0 && jj >= 0 && ii < nx_ && jj < ny_ && bits_[size_t(jj) * nx_ + ii] == kOther) return false;
+    }
+  return true;
+}
+
 double LevelMaterial::material_area_off_walls(long margin) const {
   size_t n = 0;
   for (long j = 0; j < ny_; ++j)
-    for (long i = 0; i < nx_; ++i) {
-      if (bits_[size_t(j) * nx_ + i] != kMaterial) continue;
-      bool wall = false;
-      for (long dj = -margin; dj <= margin && !wall; ++dj)
-        for (long di = -margin; di <= margin && !wall; ++di) {
-          const long ii = i + di, jj = j + dj;
-          wall = ii >= 0 && jj >= 0 && ii < nx_ && jj < ny_ && bits_[size_t(jj) * nx_ + ii] == kOther;
-        }
-      n += !wall;
-    }
+    for (long i = 0; i < nx_; ++i) n += bits_[size_t(j) * nx_ + i] == kMaterial && off_walls(i, j, margin);
   return double(n) * cell_ * cell_;
+}
+
+std::vector<std::vector<size_t>> LevelMaterial::islands_off_walls(long margin) const {
+  std::vector<std::vector<size_t>> islands;
+  std::vector<uint8_t> seen(bits_.size(), 0);
+  std::vector<size_t> open;
+  for (size_t c = 0; c < bits_.size(); ++c) {
+    if (seen[c] || bits_[c] != kMaterial || !off_walls(long(c) % nx_, long(c) / nx_, margin)) continue;
+    std::vector<size_t> island;
+    seen[c] = 1, open.push_back(c);
+    while (!open.empty()) {
+      const size_t k = open.back();
+      open.pop_back();
+      island.push_back(k);
+      const long i = long(k) % nx_, j = long(k) / nx_;
+      for (const auto& [di, dj] : {std::pair{1L, 0L}, {-1L, 0L}, {0L, 1L}, {0L, -1L}}) {
+        const long ii = i + di, jj = j + dj;
+        if (ii < 0 || jj < 0 || ii >= nx_ || jj >= ny_) continue;
+        const size_t n = size_t(jj) * nx_ + ii;
+        if (seen[n] || bits_[n] != kMaterial || !off_walls(ii, jj, margin)) continue;
+        seen[n] = 1, open.push_back(n);
+      }
+    }
+    islands.push_back(std::move(island));
+  }
+  return islands;
 }
 
 }  // namespace rosmill::core

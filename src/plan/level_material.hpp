@@ -54,6 +54,8 @@ class LevelMaterial {
   // The area of the material cells with no other cell (neither material nor air: the walls' side) within
   // `margin` cells: what is left off the walls, without the skin a cutter's chords leave on them.
   double material_area_off_walls(long margin) const;
+  // Those cells, grouped into islands joined across edges.
+  std::vector<std::vector<size_t>> islands_off_walls(long margin) const;
   double cell() const { return cell_; }
 
   // Cells by index (row after row), for maps of the same grid.
@@ -76,6 +78,8 @@ class LevelMaterial {
   void edge_cells(long bi, long bj, const Skip& skip, const F& f) const;
 
  private:
+  // No other cell within `margin` cells of cell (i, j).
+  bool off_walls(long i, long j, long margin) const;
   // Samples of the leading half-circle in material, counted up to `enough`.
   int arc_in(const Vec2& p, const Vec2& dir, double r, int enough) const;
   // Calls f(cell) for the cells whose centre lies within r of the segment a-b but not within r of a, row by row

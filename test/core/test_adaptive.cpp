@@ -204,6 +204,25 @@ TEST(Adaptive, CubeRoughingLeavesTheAllowanceAdaptiveAndZigzag) {
   }
 }
 
+// A pass that meets the material from air, with nothing to steer by, turns into it as fast as its turn radius lets
+// it; at a concave front it was turned in faster than it could turn back and ended a few steps in, its start given
+// up: many short passes linked by loops through air. Each step now keeps a way out. The cast cone (a casting, the
+// cylinder, around the cone: a ring of material at each level) had 32 % of its roughing's feed length in air; 9 %
+// now, none of the allowance cut (the cone's slope keeps a staircase of more).
+TEST(Adaptive, PassesKeepAWayOutOfTheMaterialTheyMeet) {
+  job::JobSpec spec = job::read_job(ROSMILL_SOURCE_DIR "/config/jobs/cast_cone.yaml");
+  ASSERT_EQ(spec.operations.front().strategy, "rough");
+  spec.operations.front().strategy = "adaptive";
+  spec.operations.resize(1);
+  const job::JobReport r = job::run_job(spec, job_test::options());
+  const job::OperationReport& op = r.operations.at(0);
+  EXPECT_LT(op.air_cut_share, 0.15);
+  EXPECT_LE(op.gouge_mm, 0.0);
+  EXPECT_GE(op.min_left_mm, 0.5 - 0.5 * 0.5);  // within the stock's cell
+  ASSERT_TRUE(op.engagement_measured);
+  EXPECT_LE(op.engagement.max_deg, std::acos(1 - 4.0 / 5.0) * 180 / M_PI + kEngagementSlackDeg);
+}
+
 // An open region (the cube's stock margin, entered from the air beside it) and a closed pocket (a helix): cleared
 // to the allowance, no gouge, the engagement at the levels within the limit as the verifier measures it.
 TEST(Adaptive, OpenAndClosedRegionsClearedAtTheEngagementLimit) {
