@@ -12,6 +12,7 @@
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/dubins.hpp"
+#include "rosmill/geometry/region_lookup.hpp"
 #include "rosmill/plan/levels.hpp"
 
 namespace rosmill::core {
@@ -152,8 +153,7 @@ class AdaptivePlanner {
     material_.reset(big_lo, big_hi, cell_);
     material_.fill(clip::subtract(clip::rectangle(big_lo, big_hi), r.material), LevelMaterial::kAir);
     material_.fill(r.target, LevelMaterial::kMaterial);
-    inside_.reset(big_lo, big_hi, cell_);
-    inside_.fill(clip::offset(r.allowed, -cell_, arc_), LevelMaterial::kMaterial);
+    allowed_lookup_ = RegionLookup(r.allowed, 4 * cell_);
     given_up_.assign(size_t(material_.nx()) * material_.ny(), 0);
     give_up_skin();
     steps_ = 0;
@@ -375,18 +375,22 @@ class AdaptivePlanner {
   // material); then back away from it as far as it takes to stay out of the part with room to turn away from its
   // wall. None when even the turn farthest from the material is over the target or no turn keeps out of the part.
   std::optional<Step> steer(const Vec2& p, const Vec2& h, int sign = 1) const {
-    // Over the target at the end of the step, or where the cut measures the engagement along it (the cut runs
-    // along sign * h).
-    const int n = samples(step_);
+    // Over the target at the end of the step (the cut runs along sign * h).
     const auto at = [&](double a) {
       Step s;
       s.h = turned(h, a);
       s.p = p + step_ * s.h;
-      const Vec2 cut = sign * s.h;
-      s.over = material_.engaged_over(s.p, cut, R_, target_);
-      for (int k = 1; k < n && !s.over; ++k)
-        s.over = material_.engaged_over(p + (step_ * k / n) * s.h, cut, R_, target_);
+      s.over = material_.engaged_over(s.p, sign * s.h, R_, target_);
       return s;
+    };
+    // Under the target at the samples along the step before its end too: a turn under it at the end can still pass
+    // it on the way (a sliver met head-on). Tried only on the turn the end's bisection found, and bisected again
+    // when it fails: most steps pass.
+    const int n = samples(step_);
+    const auto along_ok = [&](const Step& s) {
+      for (int k = 1; k < n; ++k)
+        if (material_.engaged_over(p + (step_ * k / n) * s.h, sign * s.h, R_, target_)) return false;
+      return true;
     };
     // Room ahead to turn away from a wall within the turn radius (and so to link to the next pass by a curve).
     const auto clear = [&](const Step& s) {
@@ -405,8 +409,8 @@ class AdaptivePlanner {
       }
       return true;
     };
-    Step away = at(-into);
-    if (away.over) return std::nullopt;
+    const Step away = at(-into);
+    if (away.over || !along_ok(away)) return std::nullopt;
     // The turn farthest from a_ok (which passes `fine`) toward a_over (which does not) that passes, by bisection.
     const auto bisect = [&](double a_ok, Step ok, double a_over, const auto& fine) {
       for (int k = 0; k < kBisections; ++k) {
@@ -422,12 +426,14 @@ class AdaptivePlanner {
     double a_ok = into;
     Step best = at(into);
     if (best.over) std::tie(a_ok, best) = bisect(-into, away, into, [](const Step& s) { return !s.over; });
+    const auto under = [&](const Step& s) { return !s.over && along_ok(s); };
+    if (!along_ok(best)) std::tie(a_ok, best) = bisect(-into, away, a_ok, under);
     if (!escapes(best) && escapes(away))
-      std::tie(a_ok, best) = bisect(-into, away, a_ok, [&](const Step& s) { return !s.over && escapes(s); });
+      std::tie(a_ok, best) = bisect(-into, away, a_ok, [&](const Step& s) { return under(s) && escapes(s); });
     if (clear(best)) return best;
     for (int k = 1; k <= 8; ++k) {
       const Step s = at(a_ok + (-into - a_ok) * k / 8.0);
-      if (!s.over && clear(s)) return s;
+      if (under(s) && clear(s)) return s;
     }
     return std::nullopt;
   }
@@ -622,9 +628,8 @@ class AdaptivePlanner {
     return true;
   }
 
-  // p keeps the cutter out of the part: by the map of cells well inside, else exactly (a ring runs along the
-  // wall, on the boundary).
-  bool in_part_clearance(const Vec2& p) const { return inside_.material(p) || clip::contains(allowed_, p); }
+  // p keeps the cutter out of the part (on the boundary too: a ring runs along the wall).
+  bool in_part_clearance(const Vec2& p) const { return allowed_lookup_.contains(p); }
 
   // Up over what stands on the way, across, down to just above the material under the cutter, and into the air
   // cleared at the level.
@@ -951,7 +956,8 @@ class AdaptivePlanner {
   double z_ = 0;
   clip::Paths allowed_;
   // The level's maps and scratch space, kept from level to level (fresh pages cost more than the work on them).
-  LevelMaterial material_, inside_;
+  LevelMaterial material_;
+  RegionLookup allowed_lookup_;  // allowed_, for the many tests of where the cutter may go
   LevelMaterial window_;
   std::vector<float> scratch_[2];
   std::vector<uint8_t> given_up_;  // material cells no pass starts from any more
