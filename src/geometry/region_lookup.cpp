@@ -1,5 +1,8 @@
 #include "rosmill/geometry/region_lookup.hpp"
 
+#include "rosmill/geometry/grid_flood.hpp"
+#include "rosmill/geometry/segment_distance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -11,13 +14,6 @@ constexpr double kOnEdge = 1e-6;  // mm: a point this close to an edge is on it 
 
 double orient(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
-}
-
-double distance_to(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
 }
 
 // Whether the segment from c to p crosses the edge a-b; an end of the edge exactly on the line c-p counts on one
@@ -82,7 +78,7 @@ RegionLookup::RegionLookup(const clip::Paths& region, double cell) : cell_(cell)
     centre_in_[c] = clip::contains(region, centre);
     // A centre on the boundary is no reference for the crossings: that cell asks the region itself.
     for (uint32_t k = first_[c]; k < first_[c + 1]; ++k)
-      if (distance_to(centre, edges_[edge_ids_[k]].a, edges_[edge_ids_[k]].b) <= kOnEdge) state_[c] = kExact;
+      if (segment_distance(centre, edges_[edge_ids_[k]].a, edges_[edge_ids_[k]].b) <= kOnEdge) state_[c] = kExact;
   }
   if (std::find(state_.begin(), state_.end(), kExact) != state_.end()) region_ = region;
   classify_open_cells(region);
@@ -96,19 +92,8 @@ void RegionLookup::classify_open_cells(const clip::Paths& region) {
   for (size_t start = 0; start < state_.size(); ++start) {
     if (seen[start] || state_[start] >= kCrossed) continue;
     group.clear();
-    seen[start] = 1, open.push_back(start);
-    while (!open.empty()) {
-      const size_t c = open.back();
-      open.pop_back();
-      group.push_back(c);
-      const long i = long(c) % nx_, j = long(c) / nx_;
-      for (const auto& [di, dj] : {std::pair{1L, 0L}, {-1L, 0L}, {0L, 1L}, {0L, -1L}}) {
-        const long ii = i + di, jj = j + dj;
-        if (ii < 0 || jj < 0 || ii >= nx_ || jj >= ny_) continue;
-        const size_t n = size_t(jj) * size_t(nx_) + size_t(ii);
-        if (!seen[n] && state_[n] < kCrossed) seen[n] = 1, open.push_back(n);
-      }
-    }
+    flood_cells(nx_, ny_, start, seen, open, [&](size_t c) { return state_[c] < kCrossed; },
+                [&](size_t c) { group.push_back(c); });
     const uint8_t state = clip::contains(region, centre_of(start)) ? kIn : kOut;
     for (size_t c : group) state_[c] = state;
   }
@@ -128,7 +113,7 @@ bool RegionLookup::contains(const Vec2& p) const {
   bool in = centre_in_[c];
   for (uint32_t k = first_[c]; k < first_[c + 1]; ++k) {
     const Edge& e = edges_[edge_ids_[k]];
-    if (distance_to(p, e.a, e.b) <= kOnEdge) return true;
+    if (segment_distance(p, e.a, e.b) <= kOnEdge) return true;
     if (crosses(centre, p, e.a, e.b)) in = !in;
   }
   return in;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "rosmill/geometry/grid_flood.hpp"
+#include "rosmill/geometry/segment_distance.hpp"
 #include "rosmill/plan/material_top.hpp"
 
 namespace rosmill::core {
@@ -253,23 +255,11 @@ std::vector<std::vector<size_t>> LevelMaterial::islands_off_walls(long margin) c
   std::vector<std::vector<size_t>> islands;
   std::vector<uint8_t> seen(bits_.size(), 0);
   std::vector<size_t> open;
+  const auto in = [&](size_t c) { return bits_[c] == kMaterial && off_walls(long(c) % nx_, long(c) / nx_, margin); };
   for (size_t c = 0; c < bits_.size(); ++c) {
-    if (seen[c] || bits_[c] != kMaterial || !off_walls(long(c) % nx_, long(c) / nx_, margin)) continue;
+    if (seen[c] || !in(c)) continue;
     std::vector<size_t> island;
-    seen[c] = 1, open.push_back(c);
-    while (!open.empty()) {
-      const size_t k = open.back();
-      open.pop_back();
-      island.push_back(k);
-      const long i = long(k) % nx_, j = long(k) / nx_;
-      for (const auto& [di, dj] : {std::pair{1L, 0L}, {-1L, 0L}, {0L, 1L}, {0L, -1L}}) {
-        const long ii = i + di, jj = j + dj;
-        if (ii < 0 || jj < 0 || ii >= nx_ || jj >= ny_) continue;
-        const size_t n = size_t(jj) * nx_ + ii;
-        if (seen[n] || bits_[n] != kMaterial || !off_walls(ii, jj, margin)) continue;
-        seen[n] = 1, open.push_back(n);
-      }
-    }
+    flood_cells(nx_, ny_, c, seen, open, in, [&](size_t k) { island.push_back(k); });
     islands.push_back(std::move(island));
   }
   return islands;

@@ -7,13 +7,6 @@
 
 namespace rosmill::core {
 
-double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
-
 void MaterialTop::check(const std::string& where) const {
   if (!(cell > 0) || !std::isfinite(cell) || !std::isfinite(x0) || !std::isfinite(y0))
     throw Error(where, "the material grid needs a positive cell and a finite corner");

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rosmill/geometry/segment_distance.hpp"
 #include "rosmill/number_text.hpp"
 #include "rosmill/toolpath/canon_arc.hpp"
 
@@ -14,13 +15,6 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double point_rect_distance(const Vec2& p, const Vec2& lo, const Vec2& hi) {
   return (lo - p).cwiseMax(p - hi).cwiseMax(Vec2::Zero()).norm();
-}
-
-double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
 }
 
 // Whether the segment a-b crosses the rectangle (Liang and Barsky's clipping of the segment's parameter).
@@ -45,7 +39,7 @@ double segment_rect_distance(const Vec2& a, const Vec2& b, const Vec2& lo, const
   if (segment_meets_rect(a, b, lo, hi)) return 0.0;
   double d = std::min(point_rect_distance(a, lo, hi), point_rect_distance(b, lo, hi));
   for (int c = 0; c < 4; ++c)
-    d = std::min(d, point_segment_distance(Vec2(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y()), a, b));
+    d = std::min(d, segment_distance(Vec2(c & 1 ? hi.x() : lo.x(), c & 2 ? hi.y() : lo.y()), a, b));
   return d;
 }
 

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "rosmill/geometry/segment_distance.hpp"
 #include "rosmill/geometry/types.hpp"
 
 namespace rosmill::core {
@@ -70,9 +71,6 @@ struct MaterialTop {
   template <class F>
   void cells_near(const Vec2& a, const Vec2& b, double reach, const F& f) const;
 };
-
-// Distance from p to the segment a-b.
-double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b);
 
 template <class F>
 void MaterialTop::cells_near(const Vec2& a, const Vec2& b, double reach, const F& f) const {
