@@ -4,7 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <tuple>
-#include <tuple>
+#include <utility>
 
 #include "adaptive_regions.hpp"
 #include "level_material.hpp"
@@ -340,21 +340,25 @@ class AdaptivePlanner {
   // as a pass's start is.
   void take_pins() {
     std::vector<std::vector<size_t>> pins = material_.islands_off_walls(2);
+    std::vector<Vec2> centres;
+    for (const std::vector<size_t>& pin : pins) {
+      Vec2 sum = Vec2::Zero();
+      for (size_t c : pin) sum += material_.centre(c);
+      centres.push_back(sum / double(pin.size()));
+    }
     while (!pins.empty()) {
       const Vec2 from = position();
-      std::vector<Vec2> centres(pins.size(), Vec2::Zero());
       size_t next = 0;
-      for (size_t k = 0; k < pins.size(); ++k) {
-        for (size_t c : pins[k]) centres[k] += material_.centre(c);
-        centres[k] /= double(pins[k].size());
+      for (size_t k = 1; k < pins.size(); ++k)
         if ((centres[k] - from).squaredNorm() < (centres[next] - from).squaredNorm()) next = k;
-      }
       take_pin(pins[next], centres[next]);
       pins.erase(pins.begin() + long(next));
+      centres.erase(centres.begin() + long(next));
     }
   }
 
-  // A pin whose cells lie within half a radius of c: from the side whose way to c meets no other material.
+  // A pin whose cells lie within half a radius of c: from the first of eight sides whose way to c keeps out of the
+  // part and cuts at the target engagement at most.
   void take_pin(const std::vector<size_t>& pin, const Vec2& c) {
     double reach = 0;
     for (size_t k : pin) reach = std::max(reach, (material_.centre(k) - c).norm());

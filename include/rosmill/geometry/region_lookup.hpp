@@ -17,7 +17,7 @@ namespace rosmill::core {
 class RegionLookup {
  public:
   RegionLookup() = default;
-  // `cell`: the grid's cell edge (mm); a few edges a cell keeps the queries fast.
+  // `cell`: the grid's cell edge (mm); cells that hold a few edges each keep the queries fast.
   RegionLookup(const clip::Paths& region, double cell);
   bool contains(const Vec2& p) const;
 
