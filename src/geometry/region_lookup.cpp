@@ -1,11 +1,11 @@
 #include "rosmill/geometry/region_lookup.hpp"
 
-#include "rosmill/geometry/grid_flood.hpp"
-#include "rosmill/geometry/segment_distance.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <utility>
+
+#include "rosmill/geometry/grid_flood.hpp"
+#include "rosmill/geometry/segment_distance.hpp"
 
 namespace rosmill::core {
 namespace {

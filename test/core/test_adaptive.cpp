@@ -184,7 +184,9 @@ TEST(RoughingLevels, FlatFacesGetALevelAtTheirHeightPlusTheAllowance) {
 }
 
 // Roughing the cube (step-down 3, allowance 0.5) left 2 mm on its top before the levels at flat faces: zigzag and
-// adaptive now leave the allowance on the top and the sides, as the job's stock model finds it.
+// adaptive now leave the allowance on the top and the sides, as the job's stock model finds it. (Adaptive's level
+// on the top once left a pin there, 0.5 x 1 mm and 2 mm high, between the spiral's last turns: the pins a level's
+// passes leave are now taken at its end.)
 TEST(Adaptive, CubeRoughingLeavesTheAllowanceAdaptiveAndZigzag) {
   for (const char* strategy : {"rough", "adaptive"}) {
     const job::JobSpec spec = job::parse_job(
