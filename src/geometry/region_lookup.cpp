@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "rosmill/geometry/grid_flood.hpp"
+#include "rosmill/error.hpp"
 #include "rosmill/geometry/segment_distance.hpp"
 
 namespace rosmill::core {
@@ -36,6 +38,10 @@ RegionLookup::RegionLookup(const clip::Paths& region, double cell) : cell_(cell)
   x0_ = lo.x() - cell, y0_ = lo.y() - cell;
   nx_ = static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)) + 2;
   ny_ = static_cast<long>(std::ceil((hi.y() - lo.y()) / cell)) + 2;
+  // Cells are indexed in 32 bits (the edges' lists); a grid that large would not fit in memory anyway.
+  if (!(double(nx_) * double(ny_) < 1e9))
+    throw Error("region lookup", "a grid of " + std::to_string(nx_) + " x " + std::to_string(ny_) + " cells of " +
+                                     std::to_string(cell) + " mm over the region is too large (at most 1e9 cells)");
   state_.assign(size_t(nx_) * size_t(ny_), kOut);
   // The cells each edge touches, as (cell, edge) pairs gathered and then grouped by cell.
   std::vector<std::pair<uint32_t, uint32_t>> touched;

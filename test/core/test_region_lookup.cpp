@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
+#include <string>
 
+#include "rosmill/error.hpp"
 #include "rosmill/geometry/clip_region.hpp"
 #include "rosmill/geometry/region_lookup.hpp"
 #include "rosmill/testing/sanitized.hpp"
@@ -81,7 +84,15 @@ TEST(RegionLookup, BoundaryAndVerticesOnCellCentresCountAsInside) {
   EXPECT_EQ(disagreements(diamond, 1.0, 100000, 2.0, 19), 0u);
 }
 
-TEST(RegionLookup, EmptyRegionHoldsNothing) {
+TEST(RegionLookup, EmptyRegionHoldsNothingAndAGridTooLargeIsRefused) {
   const RegionLookup none(clip::Paths{}, 1.0);
   EXPECT_FALSE(none.contains(Vec2(0, 0)));
+  EXPECT_FALSE(RegionLookup(pocketed_block(), 1.0).contains(Vec2(NAN, 5)));
+  // A kilometre square at 0.01 mm: refused before anything is allocated, saying the grid's size.
+  try {
+    RegionLookup(clip::rectangle(Vec2(0, 0), Vec2(1e6, 1e6)), 0.01);
+    FAIL() << "no error";
+  } catch (const rosmill::core::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("too large"), std::string::npos) << e.what();
+  }
 }
