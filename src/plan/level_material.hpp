@@ -80,8 +80,9 @@ class LevelMaterial {
  private:
   // No other cell within `margin` cells of cell (i, j).
   bool off_walls(long i, long j, long margin) const;
-  // Samples of the leading half-circle in material, counted up to `enough`.
-  int arc_in(const Vec2& p, const Vec2& dir, double r, int enough) const;
+  // Samples of the leading half-circle in material, counted up to `enough`; with `decide`, only as far as it
+  // takes to tell whether `enough` are in (the count returned is then below it exactly when fewer are).
+  int arc_in(const Vec2& p, const Vec2& dir, double r, int enough, bool decide) const;
   // Calls f(cell) for the cells whose centre lies within r of the segment a-b but not within r of a, row by row
   // (the capsule's span of each row less the disc's), until f returns false.
   template <class F>
@@ -91,6 +92,7 @@ class LevelMaterial {
   bool each_within(const Vec2& a, const Vec2& b, double r, const F& f) const;
   double x0_ = 0, y0_ = 0, cell_ = 1;
   long nx_ = 0, ny_ = 0;
+  bool index32_ = true;  // every cell's index fits 32 bits (the half-circle's fast path indexes in 32 bits)
   std::vector<uint8_t> bits_;
   // Material cells per block of kBlock x kBlock cells.
   static constexpr long kBlock = 16;
@@ -113,8 +115,10 @@ template <class Skip, class F>
 void LevelMaterial::edge_cells(long bi, long bj, const Skip& skip, const F& f) const {
   if (bi < 0 || bj < 0 || bi >= bx_ || bj >= by_ || !block_count_[size_t(bj) * bx_ + bi]) return;
   const long i1 = std::min(nx_, (bi + 1) * kBlock), j1 = std::min(ny_, (bj + 1) * kBlock);
+  // A block two cells or more inside the grid's edges (nearly all) reads its cells' neighbours unchecked.
+  const bool inner = bi * kBlock >= 2 && bj * kBlock >= 2 && i1 + 2 <= nx_ && j1 + 2 <= ny_;
   const auto air = [&](long i, long j) {
-    return i >= 0 && j >= 0 && i < nx_ && j < ny_ && bits_[size_t(j) * nx_ + i] == kAir;
+    return (inner || (i >= 0 && j >= 0 && i < nx_ && j < ny_)) && bits_[size_t(j) * nx_ + i] == kAir;
   };
   for (long j = bj * kBlock; j < j1; ++j)
     for (long i = bi * kBlock; i < i1; ++i) {

@@ -67,13 +67,18 @@ struct MaterialTop {
   void lower_along(const Vec2& a, const Vec2& b, double radius, double z, const Lift& lift);
 
  private:
-  // Calls f(index, distance of the cell centre to the segment) for the cells whose centre is within `reach`.
+  // Calls f(index, distance of the cell centre to the segment) for the cells whose centre is within `reach` and
+  // that wanted(index) passes (asked first: it is cheaper than the distance).
+  template <class Wanted, class F>
+  void cells_near(const Vec2& a, const Vec2& b, double reach, const Wanted& wanted, const F& f) const;
   template <class F>
-  void cells_near(const Vec2& a, const Vec2& b, double reach, const F& f) const;
+  void cells_near(const Vec2& a, const Vec2& b, double reach, const F& f) const {
+    cells_near(a, b, reach, [](size_t) { return true; }, f);
+  }
 };
 
-template <class F>
-void MaterialTop::cells_near(const Vec2& a, const Vec2& b, double reach, const F& f) const {
+template <class Wanted, class F>
+void MaterialTop::cells_near(const Vec2& a, const Vec2& b, double reach, const Wanted& wanted, const F& f) const {
   if (nx <= 0 || ny <= 0) return;
   const auto clamp_index = [](double u, int n) { return u < 0 ? 0 : u > n - 1 ? n - 1 : static_cast<int>(u); };
   const int i0 = clamp_index(std::floor((std::min(a.x(), b.x()) - reach - x0) / cell), nx);
@@ -82,8 +87,10 @@ void MaterialTop::cells_near(const Vec2& a, const Vec2& b, double reach, const F
   const int j1 = clamp_index(std::ceil((std::max(a.y(), b.y()) + reach - y0) / cell), ny);
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
+      const size_t c = static_cast<size_t>(j) * nx + i;
+      if (!wanted(c)) continue;
       const double d = segment_distance(Vec2(x0 + (i + 0.5) * cell, y0 + (j + 0.5) * cell), a, b);
-      if (d <= reach) f(static_cast<size_t>(j) * nx + i, d);
+      if (d <= reach) f(c, d);
     }
 }
 
@@ -97,7 +104,10 @@ double MaterialTop::clear_height(const Vec2& p, double radius, const Lift& lift)
 template <class Lift>
 void MaterialTop::lower_along(const Vec2& a, const Vec2& b, double radius, double z, const Lift& lift) {
   const double corner = 0.5 * cell * std::sqrt(2.0);  // centre to corner of a cell
-  cells_near(a, b, radius - corner, [&](size_t c, double d) {
+  // A cell at or below z stays: the cutter's bottom is nowhere below its tip (lift >= 0). Along a level's
+  // overlapping moves most cells under a move were lowered by the last, so this skips most distances.
+  const auto above = [&](size_t c) { return top[c] > z; };
+  cells_near(a, b, radius - corner, above, [&](size_t c, double d) {
     top[c] = std::min(top[c], static_cast<float>(z + lift(d + corner)));
   });
 }
