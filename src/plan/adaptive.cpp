@@ -6,6 +6,8 @@
 #include <tuple>
 #include <utility>
 
+#include <tbb/task_group.h>
+
 #include "adaptive_regions.hpp"
 #include "level_material.hpp"
 #include "rosmill/cutter/chip_thinning.hpp"
@@ -88,13 +90,23 @@ class AdaptivePlanner {
 
   Job plan(const Surface& surface, const PlanProgress& progress) {
     const std::vector<double> levels = level_heights(surface);
-    std::vector<std::vector<Loop>> loops;
+    std::vector<std::vector<Loop>> loops(levels.size());
     PlanParams loose = params_;
     // The walls need not be found closer than the offsets' own arcs: a roughing leaves at most this much more.
     loose.tolerance = std::max(f_.tolerance, 0.5 * arc_);
-    WaterlineOptions wo;
-    wo.levels = levels;
-    waterline_on(surface, loose, wo, {}, &loops);
+    const WaterlineWalls part_walls(surface, loose, levels.size());
+    // The walls of levels [from, to).
+    const auto walls = [&](size_t from, size_t to) {
+      if (from >= to) return;
+      std::vector<std::vector<Loop>> found =
+          part_walls.loops(std::vector<double>(levels.begin() + long(from), levels.begin() + long(to)));
+      std::move(found.begin(), found.end(), loops.begin() + long(from));
+    };
+    // The first level's walls first; the other levels' are found on the other core while the first level is
+    // planned (one core: a pass follows the last), and are waited for only after it.
+    walls(0, 1);
+    tbb::task_group others;
+    others.run([&] { walls(1, levels.size()); });
     check_cancel(progress, 0.2);
     init_top();
     tp_.strategy = "adaptive";
@@ -102,9 +114,11 @@ class AdaptivePlanner {
     MoveWriter w(tp_, f_);
     w_ = &w;
     for (size_t i = 0; i < levels.size(); ++i) {
+      if (i == 1) others.wait();
       level(levels[i], loops[i], loose.tolerance);
       check_cancel(progress, 0.2 + 0.8 * double(i + 1) / levels.size());
     }
+    others.wait();
     w.retract();
     report_.levels = levels.size();
     return {tp_};

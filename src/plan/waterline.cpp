@@ -220,28 +220,47 @@ std::vector<double> default_levels(const PlanFrame& f, const HeightGrid& g) {
 
 }  // namespace
 
-Job waterline_on(const Surface& surface, const PlanParams& params, const WaterlineOptions& options,
-                 const PlanProgress& progress, std::vector<std::vector<Loop>>* loops_out) {
-  const PlanFrame f = make_frame(surface, params);
-  const double step = std::min(0.25 * f.cutter.radius(), 0.5);
+struct WaterlineWalls::Grid {
+  HeightGrid g;
+};
+
+WaterlineWalls::WaterlineWalls(const Surface& surface, const PlanParams& params, size_t levels,
+                               const PlanProgress& progress)
+    : surface_(surface), f_(make_frame(surface, params)) {
+  const double step = std::min(0.25 * f_.cutter.radius(), 0.5);
   // The grid's nodes are dropped once; each level walks every cell (about a tenth of a drop each) and bisects
   // where the contour crosses.
-  const double reach = 2 * (f.cutter.radius() + f.allowance + 2 * step);
-  const double cells = step_count(f.part.size().x() + reach, step) * step_count(f.part.size().y() + reach, step);
-  const double n_levels = options.levels.empty() ? step_count(f.part.size().z(), f.stepdown) : options.levels.size();
+  const double reach = 2 * (f_.cutter.radius() + f_.allowance + 2 * step);
+  const double cells = step_count(f_.part.size().x() + reach, step) * step_count(f_.part.size().y() + reach, step);
+  const double n_levels = levels > 0 ? double(levels) : step_count(f_.part.size().z(), f_.stepdown);
   check_plan_work("waterline", {cells * (1 + n_levels / 10), cells,
-                                count_text(cells, "grid nodes") + " x " + count_text(n_levels, "levels")}, f);
-  const HeightGrid grid = height_grid(surface, f, step);
+                                count_text(cells, "grid nodes") + " x " + count_text(n_levels, "levels")}, f_);
+  grid_ = std::make_unique<const Grid>(Grid{height_grid(surface, f_, step)});
   check_cancel(progress, 0.2);
-  const std::vector<double> levels = options.levels.empty() ? default_levels(f, grid) : options.levels;
+}
+
+WaterlineWalls::~WaterlineWalls() = default;
+
+std::vector<std::vector<Loop>> WaterlineWalls::loops(const std::vector<double>& levels, const PlanProgress& progress,
+                                                     double from, double to) const {
   std::vector<std::vector<Loop>> loops(levels.size());
-  parallel_blocks(levels.size(), progress, 0.2, 0.95,
-                  [&](size_t i) { loops[i] = LevelContour(surface, f, grid, levels[i]).loops(); });
+  parallel_blocks(levels.size(), progress, from, to,
+                  [&](size_t i) { loops[i] = LevelContour(surface_, f_, grid_->g, levels[i]).loops(); });
+  return loops;
+}
+
+std::vector<double> WaterlineWalls::default_levels() const { return core::default_levels(f_, grid_->g); }
+
+Job waterline_on(const Surface& surface, const PlanParams& params, const WaterlineOptions& options,
+                 const PlanProgress& progress, std::vector<std::vector<Loop>>* loops_out) {
+  const WaterlineWalls walls(surface, params, options.levels.size(), progress);
+  const std::vector<double> levels = options.levels.empty() ? walls.default_levels() : options.levels;
+  std::vector<std::vector<Loop>> loops = walls.loops(levels, progress, 0.2, 0.95);
 
   Toolpath tp;
   tp.strategy = "waterline";
   tp.tool = params.tool;
-  MoveWriter w(tp, f);
+  MoveWriter w(tp, walls.frame());
   for (size_t i = 0; i < levels.size(); ++i) {
     w.begin_pass("z " + std::to_string(levels[i]));
     for (const Loop& loop : loops[i]) {

@@ -7,6 +7,7 @@
 // counts as material only when its CL height is above the level by more than 1e-6 mm, so a level at the height
 // of a flat face gives the loops around what stands above it, not noise on the face.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "rosmill/plan/plan_support.hpp"
@@ -19,6 +20,29 @@ struct WaterlineOptions {
 
 // Loops of one level in CL coordinates (closed: the last point is not repeated).
 using Loop = std::vector<Vec3>;
+
+// A part's walls level by level over one grid of dropped CL heights: the drops made once, then the loops of any
+// levels asked for, each call's levels on both cores. Adaptive clearing asks for its first level alone and for
+// the others while it plans the first.
+class WaterlineWalls {
+ public:
+  // Checks the work (the grid and `levels` levels, 0: one every step-down) against the plan's bounds; drops the
+  // grid.
+  WaterlineWalls(const Surface& surface, const PlanParams& params, size_t levels, const PlanProgress& progress = {});
+  ~WaterlineWalls();
+  // The loops of each level, in the order given; progress reported from `from` to `to`.
+  std::vector<std::vector<Loop>> loops(const std::vector<double>& levels, const PlanProgress& progress = {},
+                                       double from = 0, double to = 1) const;
+  // A level every step-down below the highest CL height, down to the part's floor plus the allowance.
+  std::vector<double> default_levels() const;
+  const PlanFrame& frame() const { return f_; }
+
+ private:
+  struct Grid;
+  const Surface& surface_;
+  PlanFrame f_;
+  std::unique_ptr<const Grid> grid_;
+};
 
 Job waterline_on(const Surface& surface, const PlanParams& params, const WaterlineOptions& options,
                  const PlanProgress& progress = {}, std::vector<std::vector<Loop>>* loops_out = nullptr);
