@@ -215,7 +215,7 @@ class AdaptivePlanner {
       if (!next) break;
       // Air where the step would cut no cell (the engagement may still see the cells a disc's edge leaves, their
       // centres just beyond R).
-      const bool air_step = material_.ahead_clear(p, next->p, R_);
+      const bool air_step = material_.ahead_clear(p, next->p, R_, Vec2(next->h.y(), -next->h.x()));
       const double turn = std::atan2(h.x() * next->h.y() - h.y() * next->h.x(), h.dot(next->h));
       p = next->p, h = next->h;
       if (air_step) {
@@ -428,7 +428,14 @@ class AdaptivePlanner {
       return true;
     };
     const Step away = at(-into);
-    if (away.over || !along_ok(away)) return std::nullopt;
+    if (away.over) return std::nullopt;
+    // The turn farthest from the material is the fallback of every search below; its samples along the step are
+    // tried only when a search may fall back on it (most steps find a turn into the material that passes).
+    std::optional<bool> away_along;
+    const auto away_ok = [&] {
+      if (!away_along) away_along = along_ok(away);
+      return *away_along;
+    };
     // The turn farthest from a_ok (which passes `fine`) toward a_over (which does not) that passes, by bisection.
     const auto bisect = [&](double a_ok, Step ok, double a_over, const auto& fine) {
       for (int k = 0; k < kBisections; ++k) {
@@ -445,8 +452,11 @@ class AdaptivePlanner {
     Step best = at(into);
     if (best.over) std::tie(a_ok, best) = bisect(-into, away, into, [](const Step& s) { return !s.over; });
     const auto under = [&](const Step& s) { return !s.over && along_ok(s); };
-    if (!along_ok(best)) std::tie(a_ok, best) = bisect(-into, away, a_ok, under);
-    if (!escapes(best) && escapes(away))
+    if (!along_ok(best)) {
+      if (!away_ok()) return std::nullopt;
+      std::tie(a_ok, best) = bisect(-into, away, a_ok, under);
+    }
+    if (!escapes(best) && escapes(away) && away_ok())
       std::tie(a_ok, best) = bisect(-into, away, a_ok, [&](const Step& s) { return under(s) && escapes(s); });
     if (clear(best)) return best;
     for (int k = 1; k <= 8; ++k) {

@@ -219,7 +219,7 @@ void LevelMaterial::cut_along(const Vec2& a, const Vec2& b, double r) {
 }
 
 template <class F>
-bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& f) const {
+bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& f, double first_y) const {
   const Vec2 d = b - a;
   const double len = d.norm();
   const Vec2 u = len > 1e-12 ? Vec2(d / len) : Vec2::UnitX(), n(-u.y(), u.x());
@@ -231,7 +231,8 @@ bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& 
     lo = h < 0 ? INFINITY : c.x() - std::sqrt(h);
     hi = h < 0 ? -INFINITY : c.x() + std::sqrt(h);
   };
-  for (long j = j0; j <= j1; ++j) {
+  // Row j's cells: false once f returns false.
+  const auto row = [&](long j) {
     const double y = y0_ + (j + 0.5) * cell_;
     // The capsule's span: its two end discs and the band between them, a convex union, so their hull.
     double alo, ahi, blo, bhi;
@@ -249,7 +250,7 @@ bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& 
     } else if (len > 1e-12 && std::abs(y - a.y()) <= r) {
       lo = std::min(lo, std::min(a.x(), b.x())), hi = std::max(hi, std::max(a.x(), b.x()));
     }
-    if (lo > hi) continue;
+    if (lo > hi) return true;
     const long i0 = first_index((lo - x0_) / cell_ - 0.5, nx_), i1 = last_index((hi - x0_) / cell_ - 0.5, nx_ - 1);
     for (long i = i0; i <= i1; ++i) {
       const double x = x0_ + (i + 0.5) * cell_;
@@ -260,6 +261,18 @@ bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& 
       const size_t c = size_t(j) * nx_ + i;
       if (bits_[c] == kMaterial && !f(c)) return false;
     }
+    return true;
+  };
+  if (std::isnan(first_y)) {
+    for (long j = j0; j <= j1; ++j)
+      if (!row(j)) return false;
+    return true;
+  }
+  // From the row nearest first_y outward, one row up and one down in turn.
+  const long js = std::clamp(last_index((first_y - y0_) / cell_, ny_ - 1), j0, std::max(j0, j1));
+  for (long k = 0; js + k <= j1 || js - 1 - k >= j0; ++k) {
+    if (js + k <= j1 && !row(js + k)) return false;
+    if (js - 1 - k >= j0 && !row(js - 1 - k)) return false;
   }
   return true;
 }
@@ -271,9 +284,11 @@ void LevelMaterial::cut_ahead(const Vec2& a, const Vec2& b, double r) {
   });
 }
 
-bool LevelMaterial::ahead_clear(const Vec2& a, const Vec2& b, double r) const {
+bool LevelMaterial::ahead_clear(const Vec2& a, const Vec2& b, double r, const Vec2& side) const {
   if (!near_material(b, r + (b - a).norm())) return true;
-  return each_ahead(a, b, r, [](size_t) { return false; });
+  // Searched from the rows where material is likeliest (the side the cut has it on, at the front): most steps
+  // meet some, and the search stops at the first.
+  return each_ahead(a, b, r, [](size_t) { return false; }, (b + r * side).y());
 }
 
 double LevelMaterial::material_area() const {

@@ -44,7 +44,8 @@ class LevelMaterial {
   // The same for a cutter that moves from a to b, its disc at a cut already (when it got there): only the cells
   // ahead of that disc are visited. ahead_clear: none of them is material.
   void cut_ahead(const Vec2& a, const Vec2& b, double r);
-  bool ahead_clear(const Vec2& a, const Vec2& b, double r) const;
+  // `side`: the unit direction from the path to the side the material most likely lies on (a hint only).
+  bool ahead_clear(const Vec2& a, const Vec2& b, double r, const Vec2& side) const;
   double material_area() const;
   // While a log is set, every material cell cut is added to it; restore() makes them material again.
   void log_cuts(std::vector<size_t>* log) { log_ = log; }
@@ -85,8 +86,9 @@ class LevelMaterial {
   int arc_in(const Vec2& p, const Vec2& dir, double r, int enough, bool decide) const;
   // Calls f(cell) for the cells whose centre lies within r of the segment a-b but not within r of a, row by row
   // (the capsule's span of each row less the disc's), until f returns false.
+  // Rows are visited from the bottom up, or, given first_y, from the row nearest it outward.
   template <class F>
-  bool each_ahead(const Vec2& a, const Vec2& b, double r, const F& f) const;
+  bool each_ahead(const Vec2& a, const Vec2& b, double r, const F& f, double first_y = NAN) const;
   // Calls f(cell index) for the cells whose centre lies within r of the segment a-b until f returns false.
   template <class F>
   bool each_within(const Vec2& a, const Vec2& b, double r, const F& f) const;
