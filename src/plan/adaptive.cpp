@@ -51,6 +51,9 @@ struct Start {
 struct Step {
   Vec2 p, h;
   bool over = false;
+  // The way out was tried from here and is open: the next step turned fully away, the first of that way, is
+  // under the target (and stays so, as cutting only takes material away).
+  bool escapes = false;
 };
 
 class AdaptivePlanner {
@@ -209,10 +212,12 @@ class AdaptivePlanner {
     double air = 0, air_turn = 0;
     int cut = 0;  // steps that cut
     std::vector<Vec2> in_air;  // steps through air not yet taken: dropped if the pass ends in air
+    bool escapes = false;
     while (steps_ < kMaxSteps) {
       ++steps_;
-      const std::optional<Step> next = steer(p, h);
+      const std::optional<Step> next = steer(p, h, 1, escapes);
       if (!next) break;
+      escapes = next->escapes;
       // Air where the step would cut no cell (the engagement may still see the cells a disc's edge leaves, their
       // centres just beyond R).
       const bool air_step = material_.ahead_clear(p, next->p, R_, Vec2(next->h.y(), -next->h.x()));
@@ -392,7 +397,9 @@ class AdaptivePlanner {
   // material whose engagement stays at the target, by bisection (the engagement grows as the turn goes into the
   // material); then back away from it as far as it takes to stay out of the part with room to turn away from its
   // wall. None when even the turn farthest from the material is over the target or no turn keeps out of the part.
-  std::optional<Step> steer(const Vec2& p, const Vec2& h, int sign = 1) const {
+  // `away_under`: the last step's way out was open (Step::escapes), so the turn fully away is known under the
+  // target without measuring it.
+  std::optional<Step> steer(const Vec2& p, const Vec2& h, int sign = 1, bool away_under = false) const {
     // Over the target at the end of the step (the cut runs along sign * h).
     const auto at = [&](double a) {
       Step s;
@@ -427,8 +434,13 @@ class AdaptivePlanner {
       }
       return true;
     };
-    const Step away = at(-into);
-    if (away.over) return std::nullopt;
+    Step away;
+    if (away_under) {
+      away.h = turned(h, -into), away.p = p + step_ * away.h;  // as at(-into) places it
+    } else {
+      away = at(-into);
+      if (away.over) return std::nullopt;
+    }
     // The turn farthest from the material is the fallback of every search below; its samples along the step are
     // tried only when a search may fall back on it (most steps find a turn into the material that passes).
     std::optional<bool> away_along;
@@ -456,8 +468,12 @@ class AdaptivePlanner {
       if (!away_ok()) return std::nullopt;
       std::tie(a_ok, best) = bisect(-into, away, a_ok, under);
     }
-    if (!escapes(best) && escapes(away) && away_ok())
+    best.escapes = escapes(best);
+    if (!best.escapes && escapes(away) && away_ok()) {
+      away.escapes = true;
       std::tie(a_ok, best) = bisect(-into, away, a_ok, [&](const Step& s) { return under(s) && escapes(s); });
+      best.escapes = true;  // every turn the bisection keeps passed escapes(), the away turn too
+    }
     if (clear(best)) return best;
     for (int k = 1; k <= 8; ++k) {
       const Step s = at(a_ok + (-into - a_ok) * k / 8.0);
@@ -548,9 +564,11 @@ class AdaptivePlanner {
   Start walk_back(const Start& s) const {
     Vec2 p = s.p, h = -turned(s.h, lead_in_);
     bool met = false;  // the walk sets off in air beside the front
+    bool escapes = false;
     for (double walked = 0; walked < kWalkBack * R_; walked += step_) {
-      const std::optional<Step> next = steer(p, h, -1);
+      const std::optional<Step> next = steer(p, h, -1, escapes);
       if (!next) break;
+      escapes = next->escapes;
       const bool air = material_.engagement(next->p, -next->h, R_ - cell_) < kAirDeg;
       if (air && (met || walked > 2 * R_)) break;
       met = met || !air;

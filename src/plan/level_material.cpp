@@ -70,16 +70,27 @@ void LevelMaterial::reset(const Vec2& lo, const Vec2& hi, double cell) {
   bits_.assign(size_t(nx_) * size_t(ny_), 0);
   bx_ = (nx_ + kBlock - 1) / kBlock, by_ = (ny_ + kBlock - 1) / kBlock;
   block_count_.assign(size_t(bx_) * size_t(by_), 0);
+  block_air_.assign(size_t(bx_) * size_t(by_), 0);
   index32_ = nx_ * ny_ <= long(INT32_MAX);
 }
 
 void LevelMaterial::set(size_t c, uint8_t value) {
-  const bool was = bits_[c] == kMaterial, is = value == kMaterial;
-  if (log_ && was && !is) log_->push_back(c);
+  const uint8_t old = bits_[c];
+  if (log_ && old == kMaterial && value != kMaterial) log_->push_back(c);
   bits_[c] = value;
-  if (was == is) return;
+  if (old == value) return;
   const size_t b = size_t((long(c / nx_) / kBlock) * bx_ + long(c % nx_) / kBlock);
-  block_count_[b] += is ? 1 : uint32_t(-1);
+  if (old == kMaterial) --block_count_[b];
+  if (value == kMaterial) ++block_count_[b];
+  if (old == kAir) --block_air_[b];
+  if (value == kAir) ++block_air_[b];
+}
+
+bool LevelMaterial::air_near_block(long bi, long bj) const {
+  for (long j = std::max(0L, bj - 1); j <= std::min(by_ - 1, bj + 1); ++j)
+    for (long i = std::max(0L, bi - 1); i <= std::min(bx_ - 1, bi + 1); ++i)
+      if (block_air_[size_t(j) * bx_ + i]) return true;
+  return false;
 }
 
 void LevelMaterial::block_of(const Vec2& p, long& bi, long& bj) const {

@@ -108,6 +108,9 @@ class LevelMaterial {
                                             {kR8, kR5, kR4, kR5, kR8}};
   long bx_ = 0, by_ = 0;
   std::vector<uint32_t> block_count_;
+  std::vector<uint32_t> block_air_;  // air cells per block
+  // Air in block (bi, bj) or one of the blocks around it: else no cell of the block borders air.
+  bool air_near_block(long bi, long bj) const;
   std::vector<double> crossings_;  // fill's scan-line crossings, row after row
   std::vector<size_t>* log_ = nullptr;
   void set(size_t c, uint8_t value);
@@ -116,6 +119,7 @@ class LevelMaterial {
 template <class Skip, class F>
 void LevelMaterial::edge_cells(long bi, long bj, const Skip& skip, const F& f) const {
   if (bi < 0 || bj < 0 || bi >= bx_ || bj >= by_ || !block_count_[size_t(bj) * bx_ + bi]) return;
+  if (!air_near_block(bi, bj)) return;  // material inside, far from the front
   const long i1 = std::min(nx_, (bi + 1) * kBlock), j1 = std::min(ny_, (bj + 1) * kBlock);
   // A block two cells or more inside the grid's edges (nearly all) reads its cells' neighbours unchecked.
   const bool inner = bi * kBlock >= 2 && bj * kBlock >= 2 && i1 + 2 <= nx_ && j1 + 2 <= ny_;
