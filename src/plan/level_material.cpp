@@ -242,6 +242,10 @@ bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& 
     lo = h < 0 ? INFINITY : c.x() - std::sqrt(h);
     hi = h < 0 ? -INFINITY : c.x() + std::sqrt(h);
   };
+  // The band's long sides, o + t d, and the reciprocals the rows use (a product per row, not a division).
+  const bool band = len > 1e-12 && std::abs(u.y()) > 1e-12;
+  const Vec2 sides[2] = {a - r * n, a + r * n};
+  const double per_dy = band ? 1 / d.y() : 0, per_cell = 1 / cell_;
   // Row j's cells: false once f returns false.
   const auto row = [&](long j) {
     const double y = y0_ + (j + 0.5) * cell_;
@@ -250,28 +254,32 @@ bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& 
     disc(a, y, alo, ahi);
     disc(b, y, blo, bhi);
     double lo = std::min(alo, blo), hi = std::max(ahi, bhi);
-    if (len > 1e-12 && std::abs(u.y()) > 1e-12) {
+    if (band) {
       // The band: points a + t d + s n with t in [0, 1], |s| <= r; on this row it spans between the crossings
       // of its four sides.
-      for (double sgn : {-1.0, 1.0}) {
-        const Vec2 o = a + sgn * r * n;  // a long side, o + t d
-        const double t = (y - o.y()) / d.y();
+      for (const Vec2& o : sides) {
+        const double t = (y - o.y()) * per_dy;
         if (t >= 0 && t <= 1) lo = std::min(lo, o.x() + t * d.x()), hi = std::max(hi, o.x() + t * d.x());
       }
     } else if (len > 1e-12 && std::abs(y - a.y()) <= r) {
       lo = std::min(lo, std::min(a.x(), b.x())), hi = std::max(hi, std::max(a.x(), b.x()));
     }
     if (lo > hi) return true;
-    const long i0 = first_index((lo - x0_) / cell_ - 0.5, nx_), i1 = last_index((hi - x0_) / cell_ - 0.5, nx_ - 1);
-    for (long i = i0; i <= i1; ++i) {
-      const double x = x0_ + (i + 0.5) * cell_;
-      if (x >= alo && x <= ahi) {  // inside a's disc: on to its far side
-        i = std::max(i, last_index((ahi - x0_) / cell_ - 0.5, nx_ - 1));
-        continue;
-      }
-      const size_t c = size_t(j) * nx_ + i;
-      if (bits_[c] == kMaterial && !f(c)) return false;
+    // The row's cells in [lo, hi] but not in [alo, ahi]: the runs on either side of a's disc.
+    const long i0 = first_index((lo - x0_) * per_cell - 0.5, nx_);
+    const long i1 = last_index((hi - x0_) * per_cell - 0.5, nx_ - 1);
+    const size_t at = size_t(j) * nx_;
+    if (alo > ahi) {  // a's disc misses the row
+      for (long i = i0; i <= i1; ++i)
+        if (bits_[at + i] == kMaterial && !f(at + i)) return false;
+      return true;
     }
+    const long ai0 = first_index((alo - x0_) * per_cell - 0.5, nx_);
+    const long ai1 = last_index((ahi - x0_) * per_cell - 0.5, nx_ - 1);
+    for (long i = i0; i <= std::min(i1, ai0 - 1); ++i)
+      if (bits_[at + i] == kMaterial && !f(at + i)) return false;
+    for (long i = std::max(i0, ai1 + 1); i <= i1; ++i)
+      if (bits_[at + i] == kMaterial && !f(at + i)) return false;
     return true;
   };
   if (std::isnan(first_y)) {
