@@ -9,12 +9,12 @@
 #include <tbb/task_group.h>
 
 #include "adaptive_regions.hpp"
-#include "level_material.hpp"
 #include "rosmill/cutter/chip_thinning.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/dubins.hpp"
 #include "rosmill/geometry/region_lookup.hpp"
+#include "rosmill/plan/level_material.hpp"
 #include "rosmill/plan/levels.hpp"
 
 namespace rosmill::core {

@@ -1,8 +1,12 @@
-#include "level_material.hpp"
+#include "rosmill/plan/level_material.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <utility>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 #include "rosmill/geometry/grid_flood.hpp"
 #include "rosmill/geometry/segment_distance.hpp"
@@ -29,16 +33,93 @@ struct ArcTable {
 };
 
 // The cells under the samples of a half-circle wholly on the grid: centre (px, py) and axes u (ahead), v (left)
-// in cell units. The hottest loop of adaptive clearing: straight-line arithmetic that the compiler vectorizes,
-// built for AVX2 as well as the baseline and chosen when the processor runs it.
-__attribute__((target_clones("avx2", "default"))) void arc_cells(const ArcTable& t, double px, double py,
-                                                                   const Vec2& u, const Vec2& v, int32_t nx,
-                                                                   int32_t* cells) {
+// in cell units.
+void arc_cells(const ArcTable& t, double px, double py, const Vec2& u, const Vec2& v, int32_t nx, int32_t* cells) {
   const double ux = u.x(), uy = u.y(), vx = v.x(), vy = v.y();
   for (int k = 0; k < kArcPadded; ++k) {
     const double x = px + t.c[k] * ux + t.s[k] * vx, y = py + t.c[k] * uy + t.s[k] * vy;
     cells[k] = static_cast<int32_t>(y) * nx + static_cast<int32_t>(x);
   }
+}
+
+// Whether counting stops after the samples [0, k): `enough` in, or, when only the side of `enough` is asked
+// (decide), too few left to make it up.
+bool arc_decided(int in, int k, int enough, bool decide) {
+  return in >= enough || (decide && in + (kArcSamples - k) < enough);
+}
+
+// Samples of a half-circle wholly on the grid in material, counted eight at a time with the stops tried between
+// (the same count as the scalar path: the same cell indices, the same stops).
+int arc_count(const ArcTable& t, double px, double py, const Vec2& u, const Vec2& v, int32_t nx,
+              const uint8_t* bits, uint8_t material, int enough, bool decide) {
+  int32_t cells[kArcPadded];
+  arc_cells(t, px, py, u, v, nx, cells);
+  int in = 0;
+  for (int k0 = 0; k0 < kArcSamples; k0 += 8) {
+    const int k1 = std::min(k0 + 8, kArcSamples);
+    for (int k = k0; k < k1; ++k) in += bits[cells[k]] == material;
+    if (arc_decided(in, k1, enough, decide)) break;
+  }
+  return in;
+}
+
+#if defined(__x86_64__)
+// Cell indices of samples k .. k + 3 (AVX2): the scalar path's operations in its order, no fused multiply-add, so
+// the same indices.
+__attribute__((target("avx2"))) __m128i arc_cells4(const ArcTable& t, int k, __m256d x0, __m256d y0, __m256d ux,
+                                                   __m256d uy, __m256d vx, __m256d vy, __m128i nx) {
+  const __m256d c = _mm256_loadu_pd(t.c + k), s = _mm256_loadu_pd(t.s + k);
+  const __m256d x = _mm256_add_pd(_mm256_add_pd(x0, _mm256_mul_pd(c, ux)), _mm256_mul_pd(s, vx));
+  const __m256d y = _mm256_add_pd(_mm256_add_pd(y0, _mm256_mul_pd(c, uy)), _mm256_mul_pd(s, vy));
+  return _mm_add_epi32(_mm_mullo_epi32(_mm256_cvttpd_epi32(y), nx), _mm256_cvttpd_epi32(x));
+}
+
+// arc_count with AVX2: eight samples placed at a time, their cells gathered at once (four bytes from each index:
+// the grid keeps three bytes of padding), and only as many eights placed as the count needs. The hottest loop of
+// adaptive clearing.
+__attribute__((target("avx2,popcnt"))) int arc_count_avx2(const ArcTable& t, double px, double py, const Vec2& u,
+                                                            const Vec2& v, int32_t nx, const uint8_t* bits,
+                                                            uint8_t material, int enough, bool decide) {
+  const __m256d ux = _mm256_set1_pd(u.x()), uy = _mm256_set1_pd(u.y()), vx = _mm256_set1_pd(v.x()),
+                vy = _mm256_set1_pd(v.y()), x0 = _mm256_set1_pd(px), y0 = _mm256_set1_pd(py);
+  const __m128i row = _mm_set1_epi32(nx);
+  const __m256i low_byte = _mm256_set1_epi32(0xff), want = _mm256_set1_epi32(material);
+  int in = 0;
+  for (int k0 = 0; k0 < kArcSamples; k0 += 8) {
+    const __m256i cell = _mm256_set_m128i(arc_cells4(t, k0 + 4, x0, y0, ux, uy, vx, vy, row),
+                                          arc_cells4(t, k0, x0, y0, ux, uy, vx, vy, row));
+    const __m256i got = _mm256_i32gather_epi32(reinterpret_cast<const int*>(bits), cell, 1);
+    const __m256i is = _mm256_cmpeq_epi32(_mm256_and_si256(got, low_byte), want);
+    const int k1 = std::min(k0 + 8, kArcSamples);
+    const unsigned counted = (1u << (k1 - k0)) - 1;  // the padded samples past kArcSamples are not counted
+    in += __builtin_popcount(unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(is))) & counted);
+    if (arc_decided(in, k1, enough, decide)) break;
+  }
+  return in;
+}
+#endif
+
+bool cpu_runs_vector_arcs() {
+#if defined(__x86_64__)
+  static const bool yes = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+  return yes;
+#else
+  return false;
+#endif
+}
+
+bool& vector_arcs_flag() {
+  static bool on = cpu_runs_vector_arcs();
+  return on;
+}
+
+// The count of a half-circle wholly on the grid, by the widest path the processor runs.
+int arc_count_on_grid(const ArcTable& t, double px, double py, const Vec2& u, const Vec2& v, int32_t nx,
+                      const uint8_t* bits, uint8_t material, int enough, bool decide) {
+#if defined(__x86_64__)
+  if (vector_arcs_flag()) return arc_count_avx2(t, px, py, u, v, nx, bits, material, enough, decide);
+#endif
+  return arc_count(t, px, py, u, v, nx, bits, material, enough, decide);
 }
 
 // Cell and block indices from coordinates in cell units, clamped as the loops over them need, without the library's
@@ -67,7 +148,8 @@ void LevelMaterial::reset(const Vec2& lo, const Vec2& hi, double cell) {
   x0_ = lo.x(), y0_ = lo.y(), cell_ = cell;
   nx_ = std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)));
   ny_ = std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cell)));
-  bits_.assign(size_t(nx_) * size_t(ny_), 0);
+  // Three bytes past the last cell: the half-circle's gather reads four bytes from a cell's index.
+  bits_.assign(size_t(nx_) * size_t(ny_) + 3, 0);
   bx_ = (nx_ + kBlock - 1) / kBlock, by_ = (ny_ + kBlock - 1) / kBlock;
   block_count_.assign(size_t(bx_) * size_t(by_), 0);
   block_air_.assign(size_t(bx_) * size_t(by_), 0);
@@ -142,6 +224,10 @@ void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
   }
 }
 
+bool LevelMaterial::vector_arcs() { return vector_arcs_flag(); }
+
+bool LevelMaterial::use_vector_arcs(bool on) { return vector_arcs_flag() = on && cpu_runs_vector_arcs(); }
+
 int LevelMaterial::arc_in(const Vec2& p, const Vec2& dir, double r, int enough, bool decide) const {
   if (!near_material(p, r)) return 0;
   static const ArcTable table;
@@ -150,33 +236,16 @@ int LevelMaterial::arc_in(const Vec2& p, const Vec2& dir, double r, int enough, 
   const double px = (p.x() - x0_) / cell_, py = (p.y() - y0_) / cell_;
   // Counting stops once `enough` are in, and, when only the side of `enough` is asked (decide), once the
   // samples left cannot make up the difference.
-  int in = 0;
-  const auto counted = [&](int k, bool material) {
-    in += material;
-    return in >= enough || (decide && in + (kArcSamples - 1 - k) < enough);
-  };
   const double reach = r / cell_ + 1;
-  if (index32_ && px >= reach && py >= reach && px + reach < double(nx_) && py + reach < double(ny_)) {
+  if (index32_ && px >= reach && py >= reach && px + reach < double(nx_) && py + reach < double(ny_))
     // The whole half-circle on the grid (the cutter inside the region a level works in): no test per sample.
-    int32_t cells[kArcPadded];
-    arc_cells(table, px, py, u, v, static_cast<int32_t>(nx_), cells);
-    // Counted eight at a time, the stops tried between: a branch per eight samples, not per sample.
-    constexpr int kChunk = 8;
-    for (int k0 = 0; k0 < kArcSamples; k0 += kChunk) {
-      const int k1 = std::min(k0 + kChunk, kArcSamples);
-      if (k1 - k0 == kChunk) {
-        for (int k = k0; k < k0 + kChunk; ++k) in += bits_[size_t(cells[k])] == kMaterial;
-      } else {
-        for (int k = k0; k < k1; ++k) in += bits_[size_t(cells[k])] == kMaterial;
-      }
-      if (in >= enough || (decide && in + (kArcSamples - k1) < enough)) break;
-    }
-    return in;
-  }
+    return arc_count_on_grid(table, px, py, u, v, static_cast<int32_t>(nx_), bits_.data(), kMaterial, enough, decide);
+  int in = 0;
   for (int k = 0; k < kArcSamples; ++k) {
     const double x = px + table.c[k] * u.x() + table.s[k] * v.x(), y = py + table.c[k] * u.y() + table.s[k] * v.y();
     const bool on = x >= 0 && y >= 0 && x < double(nx_) && y < double(ny_);
-    if (counted(k, on && bits_[size_t(static_cast<long>(y)) * nx_ + static_cast<long>(x)] == kMaterial)) break;
+    in += on && bits_[size_t(static_cast<long>(y)) * nx_ + static_cast<long>(x)] == kMaterial;
+    if (arc_decided(in, k + 1, enough, decide)) break;
   }
   return in;
 }
@@ -334,10 +403,11 @@ double LevelMaterial::material_area_off_walls(long margin) const {
 
 std::vector<std::vector<size_t>> LevelMaterial::islands_off_walls(long margin) const {
   std::vector<std::vector<size_t>> islands;
-  std::vector<uint8_t> seen(bits_.size(), 0);
+  const size_t n = size_t(nx_) * size_t(ny_);
+  std::vector<uint8_t> seen(n, 0);
   std::vector<size_t> open;
   const auto in = [&](size_t c) { return bits_[c] == kMaterial && off_walls(long(c) % nx_, long(c) / nx_, margin); };
-  for (size_t c = 0; c < bits_.size(); ++c) {
+  for (size_t c = 0; c < n; ++c) {
     if (seen[c] || !in(c)) continue;
     std::vector<size_t> island;
     flood_cells(nx_, ny_, c, seen, open, in, [&](size_t k) { island.push_back(k); });

@@ -58,6 +58,10 @@ class LevelMaterial {
   // Those cells, grouped into islands joined across edges.
   std::vector<std::vector<size_t>> islands_off_walls(long margin) const;
   double cell() const { return cell_; }
+  // Whether the half-circle's samples are counted with AVX2 (where the processor has it; the same counts as the
+  // scalar path, which tests check by switching it off). use_vector_arcs returns whether it is now on.
+  static bool vector_arcs();
+  static bool use_vector_arcs(bool on);
 
   // Cells by index (row after row), for maps of the same grid.
   long nx() const { return nx_; }
