@@ -220,7 +220,8 @@ class AdaptivePlanner {
       escapes = next->escapes;
       // Air where the step would cut no cell (the engagement may still see the cells a disc's edge leaves, their
       // centres just beyond R).
-      const bool air_step = material_.ahead_clear(p, next->p, R_, Vec2(next->h.y(), -next->h.x()));
+      // (The material it would cut is kept, to be cut without a second search when the step is taken.)
+      const bool air_step = !material_.material_ahead(p, next->p, R_, ahead_);
       const double turn = std::atan2(h.x() * next->h.y() - h.y() * next->h.x(), h.dot(next->h));
       p = next->p, h = next->h;
       if (air_step) {
@@ -233,9 +234,9 @@ class AdaptivePlanner {
         continue;
       }
       air_turn = 0;
-      for (const Vec2& q : in_air) cut_to(q);
+      for (const Vec2& q : in_air) cut_to(q);  // through air: they cut nothing, ahead_ stays what p cuts
       in_air.clear();
-      cut_to(p);
+      cut_to(p, &ahead_);
       air = 0;
       ++cut;
     }
@@ -494,16 +495,18 @@ class AdaptivePlanner {
     std::vector<std::pair<double, size_t>> edge;
     std::vector<Vec2> normal;
     for (long ring = 0; ring <= rings; ++ring) {
-      for (long j = bj - ring; j <= bj + ring; ++j)
-        for (long i = bi - ring; i <= bi + ring; ++i) {
-          if (std::max(std::abs(i - bi), std::abs(j - bj)) != ring) continue;
+      // The ring's blocks row by row from the bottom, each row from the left: its bottom and top rows whole, the
+      // rows between at its two sides only.
+      for (long j = bj - ring; j <= bj + ring; ++j) {
+        const long step = j == bj - ring || j == bj + ring ? 1 : 2 * ring;
+        for (long i = bi - ring; i <= bi + ring; i += step)
           material_.edge_cells(i, j, [&](size_t c) { return given_up_[c] != 0; },
                                 [&](size_t c, const Vec2& centre, const Vec2& n) {
             edge.push_back({(centre - from).squaredNorm(), normal.size()});
             normal.push_back(n);
             cells_.push_back(c);
           });
-        }
+      }
       // Every cell nearer than this ring's inner side is in: try them nearest first.
       const double sure = std::max(0.0, (ring - 1) * material_.block_span());
       std::sort(edge.begin(), edge.end());
@@ -694,7 +697,8 @@ class AdaptivePlanner {
   }
 
   // A feed move along the level to p: its engagement measured before it cuts, its feed from the engagement.
-  void cut_to(const Vec2& p) {
+  // `ahead`: the material cells the move cuts when already found (LevelMaterial::material_ahead from here to p).
+  void cut_to(const Vec2& p, const std::vector<size_t>* ahead = nullptr) {
     const Vec2 a = position();
     const double len = (p - a).norm();
     if (len < 1e-9) return;
@@ -704,7 +708,8 @@ class AdaptivePlanner {
     for (int k = 1; k <= n; ++k) e = std::max(e, material_.engagement(a + (p - a) * (double(k) / n), dir, R_));
     heading_ = dir;
     // The disc at a was cut when the cutter got there (a move, a helix or ramp, or a descent into air).
-    material_.cut_ahead(a, p, R_);
+    if (ahead) material_.cut_cells(*ahead);
+    else material_.cut_ahead(a, p, R_);
     if (attempt_.active) {
       attempt_.moves.push_back(p);
       attempt_.engagement.push_back(e);
@@ -1009,6 +1014,7 @@ class AdaptivePlanner {
   std::vector<uint8_t> given_up_;  // material cells no pass starts from any more
   std::vector<size_t> cells_;      // the edge cells a search gathered
   size_t steps_ = 0;               // steps steered at the level
+  std::vector<size_t> ahead_;      // the material cells a pass's step would cut
   int min_steps_ = kMinPassSteps;  // the fewest cutting steps a pass is made with
   int failed_entries_ = 0;         // entries at the level that took next to nothing
   Attempt attempt_;

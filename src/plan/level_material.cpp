@@ -299,7 +299,7 @@ void LevelMaterial::cut_along(const Vec2& a, const Vec2& b, double r) {
 }
 
 template <class F>
-bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& f, double first_y) const {
+bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& f) const {
   const Vec2 d = b - a;
   const double len = d.norm();
   const Vec2 u = len > 1e-12 ? Vec2(d / len) : Vec2::UnitX(), n(-u.y(), u.x());
@@ -351,17 +351,8 @@ bool LevelMaterial::each_ahead(const Vec2& a, const Vec2& b, double r, const F& 
       if (bits_[at + i] == kMaterial && !f(at + i)) return false;
     return true;
   };
-  if (std::isnan(first_y)) {
-    for (long j = j0; j <= j1; ++j)
-      if (!row(j)) return false;
-    return true;
-  }
-  // From the row nearest first_y outward, one row up and one down in turn.
-  const long js = std::clamp(last_index((first_y - y0_) / cell_, ny_ - 1), j0, std::max(j0, j1));
-  for (long k = 0; js + k <= j1 || js - 1 - k >= j0; ++k) {
-    if (js + k <= j1 && !row(js + k)) return false;
-    if (js - 1 - k >= j0 && !row(js - 1 - k)) return false;
-  }
+  for (long j = j0; j <= j1; ++j)
+    if (!row(j)) return false;
   return true;
 }
 
@@ -372,11 +363,18 @@ void LevelMaterial::cut_ahead(const Vec2& a, const Vec2& b, double r) {
   });
 }
 
-bool LevelMaterial::ahead_clear(const Vec2& a, const Vec2& b, double r, const Vec2& side) const {
-  if (!near_material(b, r + (b - a).norm())) return true;
-  // Searched from the rows where material is likeliest (the side the cut has it on, at the front): most steps
-  // meet some, and the search stops at the first.
-  return each_ahead(a, b, r, [](size_t) { return false; }, (b + r * side).y());
+bool LevelMaterial::material_ahead(const Vec2& a, const Vec2& b, double r, std::vector<size_t>& cells) const {
+  cells.clear();
+  if (!near_material(b, r + (b - a).norm())) return false;
+  each_ahead(a, b, r, [&](size_t c) {
+    cells.push_back(c);
+    return true;
+  });
+  return !cells.empty();
+}
+
+void LevelMaterial::cut_cells(const std::vector<size_t>& cells) {
+  for (size_t c : cells) set(c, kAir);
 }
 
 double LevelMaterial::material_area() const {

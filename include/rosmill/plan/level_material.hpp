@@ -42,10 +42,11 @@ class LevelMaterial {
   // Every material cell whose centre lies within r of the segment a-b is cut (becomes air).
   void cut_along(const Vec2& a, const Vec2& b, double r);
   // The same for a cutter that moves from a to b, its disc at a cut already (when it got there): only the cells
-  // ahead of that disc are visited. ahead_clear: none of them is material.
+  // ahead of that disc are visited.
   void cut_ahead(const Vec2& a, const Vec2& b, double r);
-  // `side`: the unit direction from the path to the side the material most likely lies on (a hint only).
-  bool ahead_clear(const Vec2& a, const Vec2& b, double r, const Vec2& side) const;
+  // The material cells cut_ahead(a, b, r) would cut, into `cells`; whether there are any. cut_cells cuts them.
+  bool material_ahead(const Vec2& a, const Vec2& b, double r, std::vector<size_t>& cells) const;
+  void cut_cells(const std::vector<size_t>& cells);
   double material_area() const;
   // While a log is set, every material cell cut is added to it; restore() makes them material again.
   void log_cuts(std::vector<size_t>* log) { log_ = log; }
@@ -90,9 +91,8 @@ class LevelMaterial {
   int arc_in(const Vec2& p, const Vec2& dir, double r, int enough, bool decide) const;
   // Calls f(cell) for the cells whose centre lies within r of the segment a-b but not within r of a, row by row
   // (the capsule's span of each row less the disc's), until f returns false.
-  // Rows are visited from the bottom up, or, given first_y, from the row nearest it outward.
   template <class F>
-  bool each_ahead(const Vec2& a, const Vec2& b, double r, const F& f, double first_y = NAN) const;
+  bool each_ahead(const Vec2& a, const Vec2& b, double r, const F& f) const;
   // Calls f(cell index) for the cells whose centre lies within r of the segment a-b until f returns false.
   template <class F>
   bool each_within(const Vec2& a, const Vec2& b, double r, const F& f) const;
