@@ -545,17 +545,21 @@ class AdaptivePlanner {
   // cut nearly nothing. The wall pass takes what of it a cutter reaches.
   void give_up_skin() {
     const long nx = material_.nx(), ny = material_.ny();
-    constexpr long m = 2;
+    // The cells within two cells' distance: the 3 x 3 square and the four two cells away along the axes.
+    constexpr long kNear[13][2] = {{0, 0},  {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1},
+                                   {0, 1},  {1, 1},   {-2, 0}, {2, 0},  {0, -2}, {0, 2}};
     const auto other = [&](long i, long j) {
       return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == LevelMaterial::kOther;
     };
     for (long j = 0; j < ny; ++j)
       for (long i = 0; i < nx; ++i) {
         const size_t c = size_t(j) * nx + i;
-        if (material_.value(c) != LevelMaterial::kMaterial) continue;
-        for (long dj = -m; dj <= m && !given_up_[c]; ++dj)
-          for (long di = -m; di <= m && !given_up_[c]; ++di)
-            given_up_[c] = di * di + dj * dj <= m * m && other(i + di, j + dj);
+        if (material_.value(c) != LevelMaterial::kMaterial || given_up_[c]) continue;
+        for (const auto& d : kNear)
+          if (other(i + d[0], j + d[1])) {
+            given_up_[c] = 1;
+            break;
+          }
       }
   }
 
