@@ -6,6 +6,8 @@
 #include <tuple>
 #include <utility>
 
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
 #include "adaptive_regions.hpp"
@@ -167,10 +169,17 @@ class AdaptivePlanner {
     z_ = z;
     allowed_ = r.allowed;
     const Vec2 big_lo = lo_ - Vec2::Constant(3 * R_), big_hi = hi_ + Vec2::Constant(3 * R_);
-    material_.reset(big_lo, big_hi, cell_);
-    material_.fill(clip::subtract(clip::rectangle(big_lo, big_hi), r.material), LevelMaterial::kAir);
-    material_.fill(r.target, LevelMaterial::kMaterial);
-    allowed_lookup_ = RegionLookup(r.allowed, 4 * cell_);
+    // The material map and the lookup of where the cutter may go, side by side (isolated: waiting for the other,
+    // this thread takes none of the other levels' walls, which may be being found meanwhile).
+    tbb::this_task_arena::isolate([&] {
+      tbb::parallel_invoke(
+          [&] {
+            material_.reset(big_lo, big_hi, cell_);
+            material_.fill(clip::subtract(clip::rectangle(big_lo, big_hi), r.material), LevelMaterial::kAir);
+            material_.fill(r.target, LevelMaterial::kMaterial);
+          },
+          [&] { allowed_lookup_ = RegionLookup(r.allowed, 4 * cell_); });
+    });
     given_up_.assign(size_t(material_.nx()) * material_.ny(), 0);
     give_up_skin();
     steps_ = 0;
