@@ -785,11 +785,10 @@ class AdaptivePlanner {
     // The window the entry is sought in: the closed material's box, grown by how far from it a centre may be.
     const long nx = material_.nx(), ny = material_.ny();
     long i0 = nx, i1 = -1, j0 = ny, j1 = -1;
-    for (size_t c = 0; c < closed.size(); ++c)
-      if (closed[c] && !given_up_[c]) {
-        const long i = long(c) % nx, j = long(c) / nx;
-        i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
-      }
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i)
+        if (const size_t c = size_t(j) * nx + i; closed[c] && !given_up_[c])
+          i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
     if (i1 < 0) return false;
     const long grow = static_cast<long>(std::ceil(0.9 * R_ / cell_)) + 2 * f;
     i0 = std::max(0L, i0 - grow), j0 = std::max(0L, j0 - grow);
@@ -865,15 +864,17 @@ class AdaptivePlanner {
           if (is(i + di, j + dj, LevelMaterial::kAir)) return true;
       return false;
     };
-    for (size_t c = 0; c < n; ++c) {
-      if (material_.value(c) != LevelMaterial::kMaterial) continue;
-      if (borders_air(long(c) % nx, long(c) / nx)) open.push_back(c);
-      else closed[c] = 1;
-    }
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i) {
+        const size_t c = size_t(j) * nx + i;
+        if (material_.value(c) != LevelMaterial::kMaterial) continue;
+        if (borders_air(i, j)) open.push_back(c);
+        else closed[c] = 1;
+      }
     while (!open.empty()) {
       const size_t c = open.back();
       open.pop_back();
-      const long i = long(c) % nx, j = long(c) / nx;
+      const long j = material_.row_of(c), i = long(c) - j * nx;
       for (const auto& [di, dj] : {std::pair{1L, 0L}, {-1L, 0L}, {0L, 1L}, {0L, -1L}}) {
         if (!is(i + di, j + dj, LevelMaterial::kMaterial)) continue;
         const size_t k = size_t(j + dj) * nx + i + di;

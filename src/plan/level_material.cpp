@@ -148,6 +148,7 @@ void LevelMaterial::reset(const Vec2& lo, const Vec2& hi, double cell) {
   x0_ = lo.x(), y0_ = lo.y(), cell_ = cell;
   nx_ = std::max(1L, static_cast<long>(std::ceil((hi.x() - lo.x()) / cell)));
   ny_ = std::max(1L, static_cast<long>(std::ceil((hi.y() - lo.y()) / cell)));
+  per_nx_ = 1.0 / double(nx_);
   // Three bytes past the last cell: the half-circle's gather reads four bytes from a cell's index.
   bits_.assign(size_t(nx_) * size_t(ny_) + 3, 0);
   bx_ = (nx_ + kBlock - 1) / kBlock, by_ = (ny_ + kBlock - 1) / kBlock;
@@ -157,15 +158,23 @@ void LevelMaterial::reset(const Vec2& lo, const Vec2& hi, double cell) {
 }
 
 void LevelMaterial::set(size_t c, uint8_t value) {
-  const uint8_t old = bits_[c];
-  if (log_ && old == kMaterial && value != kMaterial) log_->push_back(c);
-  bits_[c] = value;
-  if (old == value) return;
-  const size_t b = size_t((long(c / nx_) / kBlock) * bx_ + long(c % nx_) / kBlock);
-  if (old == kMaterial) --block_count_[b];
-  if (value == kMaterial) ++block_count_[b];
-  if (old == kAir) --block_air_[b];
-  if (value == kAir) ++block_air_[b];
+  const long j = row_of(c), i = long(c) - j * nx_;
+  set_run(j, i, i, value);
+}
+
+void LevelMaterial::set_run(long j, long i0, long i1, uint8_t value) {
+  const size_t row = size_t(j) * size_t(nx_);
+  uint32_t* const material = &block_count_[size_t(j / kBlock) * size_t(bx_)];
+  uint32_t* const air = &block_air_[size_t(j / kBlock) * size_t(bx_)];
+  for (long i = i0; i <= i1; ++i) {
+    const uint8_t old = bits_[row + size_t(i)];
+    if (old == value) continue;
+    if (log_ && old == kMaterial) log_->push_back(row + size_t(i));
+    bits_[row + size_t(i)] = value;
+    // Counts of unsigned words: adding -1 as its two's complement takes one away.
+    material[i / kBlock] += uint32_t(value == kMaterial) - uint32_t(old == kMaterial);
+    air[i / kBlock] += uint32_t(value == kAir) - uint32_t(old == kAir);
+  }
 }
 
 bool LevelMaterial::air_near_block(long bi, long bj) const {
@@ -219,7 +228,7 @@ void LevelMaterial::fill(const clip::Paths& region, uint8_t value) {
     for (auto k = first; k + 1 < last; k += 2) {
       const long i0 = std::max(0L, static_cast<long>(std::ceil((*k - x0_) / cell_ - 0.5)));
       const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor((*(k + 1) - x0_) / cell_ - 0.5)));
-      for (long i = i0; i <= i1; ++i) set(size_t(j) * nx_ + i, value);
+      set_run(j, i0, i1, value);
     }
   }
 }
@@ -404,7 +413,10 @@ std::vector<std::vector<size_t>> LevelMaterial::islands_off_walls(long margin) c
   const size_t n = size_t(nx_) * size_t(ny_);
   std::vector<uint8_t> seen(n, 0);
   std::vector<size_t> open;
-  const auto in = [&](size_t c) { return bits_[c] == kMaterial && off_walls(long(c) % nx_, long(c) / nx_, margin); };
+  const auto in = [&](size_t c) {
+    const long j = row_of(c);
+    return bits_[c] == kMaterial && off_walls(long(c) - j * nx_, j, margin);
+  };
   for (size_t c = 0; c < n; ++c) {
     if (seen[c] || !in(c)) continue;
     std::vector<size_t> island;
