@@ -109,7 +109,12 @@ class AdaptivePlanner {
     };
     // The first level's walls first; the other levels' are found on the other core while the first level is
     // planned (one core: a pass follows the last), and are waited for only after it.
+    // The level maps' memory is made the process's own on the other core while the first level's walls are found:
+    // a virtual machine's host faults each fresh page in (heap_reuse.hpp), and the maps are megabytes.
+    tbb::task_group maps;
+    maps.run([&] { reserve_maps(); });
     walls(0, 1);
+    maps.wait();
     tbb::task_group others;
     others.run([&] { walls(1, levels.size()); });
     check_cancel(progress, 0.2);
@@ -161,6 +166,20 @@ class AdaptivePlanner {
 
   // ---- one level
 
+  // The box a level's maps cover: the work area and a cutter's reach beyond.
+  Vec2 map_lo() const { return lo_ - Vec2::Constant(3 * R_); }
+  Vec2 map_hi() const { return hi_ + Vec2::Constant(3 * R_); }
+
+  // Every level's maps at their size, written once (see plan()); a level then rewrites them in place.
+  void reserve_maps() {
+    material_.reset(map_lo(), map_hi(), cell_);
+    const size_t n = size_t(material_.nx()) * material_.ny();
+    given_up_.assign(n, 0);
+    closed_.assign(n, 0);
+    const long f = coarse_cells();
+    for (std::vector<float>& s : scratch_) s.assign(size_t(material_.nx() / f + 1) * size_t(material_.ny() / f + 1), 0);
+  }
+
   void level(double z, const std::vector<Loop>& loops, double loop_tolerance) {
     PlanFrame fl = f_;
     fl.tolerance = loop_tolerance;
@@ -168,7 +187,7 @@ class AdaptivePlanner {
     if (clip::area(r.target) < 1e-3 * R_ * R_) return;
     z_ = z;
     allowed_ = r.allowed;
-    const Vec2 big_lo = lo_ - Vec2::Constant(3 * R_), big_hi = hi_ + Vec2::Constant(3 * R_);
+    const Vec2 big_lo = map_lo(), big_hi = map_hi();
     // The material map and the lookup of where the cutter may go, side by side (isolated: waiting for the other,
     // this thread takes none of the other levels' walls, which may be being found meanwhile).
     tbb::this_task_arena::isolate([&] {
@@ -767,10 +786,10 @@ class AdaptivePlanner {
     // Every entry searches the level's map: after kMaxFailedEntries entries that took next to nothing, what no pass
     // reaches is left (reported as left area) rather than searched again and again.
     if (failed_entries_ >= kMaxFailedEntries) return false;
-    const std::vector<uint8_t> closed = closed_material();
+    const std::vector<uint8_t>& closed = closed_material();
     // On cells of about R / 8 first (the depth need not be finer: the helix is checked point by point), then on
     // the map's own cells, where a slot barely wider than the tool has room for no coarse cell.
-    const long coarse = std::max(1L, static_cast<long>(std::floor(R_ / 8 / cell_)));
+    const long coarse = coarse_cells();
     std::optional<bool> entered = seed_on(closed, coarse);
     if (!entered && coarse > 1) entered = seed_on(closed, 1);
     if (entered) return *entered;
@@ -778,6 +797,8 @@ class AdaptivePlanner {
       if (closed[c]) given_up_[c] = 1;
     return false;
   }
+
+  long coarse_cells() const { return std::max(1L, static_cast<long>(std::floor(R_ / 8 / cell_))); }
 
   // seed() on cells of f x f of the map's: whether an entry was made (or a way in given up), none when no centre
   // has room.
@@ -850,10 +871,11 @@ class AdaptivePlanner {
 
   // The material no pass can start into: cells not joined (across edges) to any material that borders air. An
   // entry opens these; what borders air and was given up stays.
-  std::vector<uint8_t> closed_material() const {
+  const std::vector<uint8_t>& closed_material() {
     const long nx = material_.nx(), ny = material_.ny();
     const size_t n = size_t(nx) * ny;
-    std::vector<uint8_t> closed(n, 0);
+    std::vector<uint8_t>& closed = closed_;
+    closed.assign(n, 0);
     std::vector<size_t> open;
     const auto is = [&](long i, long j, uint8_t v) {
       return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == v;
@@ -1025,6 +1047,7 @@ class AdaptivePlanner {
   RegionLookup allowed_lookup_;  // allowed_, for the many tests of where the cutter may go
   LevelMaterial window_;
   std::vector<float> scratch_[2];
+  std::vector<uint8_t> closed_;    // closed_material()
   std::vector<uint8_t> given_up_;  // material cells no pass starts from any more
   std::vector<size_t> cells_;      // the edge cells a search gathered
   size_t steps_ = 0;               // steps steered at the level
