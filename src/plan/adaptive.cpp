@@ -522,6 +522,7 @@ class AdaptivePlanner {
     const long rings = std::max({bi, bj, material_.blocks_x() - bi, material_.blocks_y() - bj});
     std::vector<std::pair<double, size_t>> edge;
     std::vector<Vec2> normal;
+    size_t sorted = 0;  // edge[0, sorted) is in order
     for (long ring = 0; ring <= rings; ++ring) {
       // The ring's blocks row by row from the bottom, each row from the left: its bottom and top rows whole, the
       // rows between at its two sides only.
@@ -537,7 +538,9 @@ class AdaptivePlanner {
       }
       // Every cell nearer than this ring's inner side is in: try them nearest first.
       const double sure = std::max(0.0, (ring - 1) * material_.block_span());
-      std::sort(edge.begin(), edge.end());
+      // The ring's cells sorted and merged into those left from the rings before (the same order as sorting all).
+      std::sort(edge.begin() + long(sorted), edge.end());
+      std::inplace_merge(edge.begin(), edge.begin() + long(sorted), edge.end());
       size_t tried = 0;
       for (; tried < edge.size() && (edge[tried].first <= sure * sure || ring == rings); ++tried) {
         const size_t k = edge[tried].second;
@@ -549,6 +552,7 @@ class AdaptivePlanner {
         given_up_[cells_[k]] = 1;
       }
       edge.erase(edge.begin(), edge.begin() + tried);
+      sorted = edge.size();
     }
     cells_.clear();
     return std::nullopt;
@@ -576,13 +580,15 @@ class AdaptivePlanner {
     // The cells within two cells' distance: the 3 x 3 square and the four two cells away along the axes.
     constexpr long kNear[13][2] = {{0, 0},  {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1},
                                    {0, 1},  {1, 1},   {-2, 0}, {2, 0},  {0, -2}, {0, 2}};
-    const auto other = [&](long i, long j) {
-      return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == LevelMaterial::kOther;
-    };
     for (long j = 0; j < ny; ++j)
       for (long i = 0; i < nx; ++i) {
         const size_t c = size_t(j) * nx + i;
         if (material_.value(c) != LevelMaterial::kMaterial || given_up_[c]) continue;
+        const bool inner = i >= 2 && j >= 2 && i + 2 < nx && j + 2 < ny;  // its window on the map: unchecked
+        const auto other = [&](long ii, long jj) {
+          return (inner || (ii >= 0 && jj >= 0 && ii < nx && jj < ny)) &&
+                 material_.value(size_t(jj) * nx + ii) == LevelMaterial::kOther;
+        };
         for (const auto& d : kNear)
           if (other(i + d[0], j + d[1])) {
             given_up_[c] = 1;

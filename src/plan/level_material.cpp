@@ -403,8 +403,13 @@ bool LevelMaterial::off_walls(long i, long j, long margin) const {
 
 double LevelMaterial::material_area_off_walls(long margin) const {
   size_t n = 0;
-  for (long j = 0; j < ny_; ++j)
-    for (long i = 0; i < nx_; ++i) n += bits_[size_t(j) * nx_ + i] == kMaterial && off_walls(i, j, margin);
+  for (long bj = 0; bj < by_; ++bj)
+    for (long bi = 0; bi < bx_; ++bi) {
+      if (!block_count_[size_t(bj) * bx_ + bi]) continue;  // no material in the block
+      for (long j = bj * kBlock; j < std::min(ny_, (bj + 1) * kBlock); ++j)
+        for (long i = bi * kBlock; i < std::min(nx_, (bi + 1) * kBlock); ++i)
+          n += bits_[size_t(j) * nx_ + i] == kMaterial && off_walls(i, j, margin);
+    }
   return double(n) * cell_ * cell_;
 }
 
