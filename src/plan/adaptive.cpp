@@ -107,14 +107,14 @@ class AdaptivePlanner {
           part_walls.loops(std::vector<double>(levels.begin() + long(from), levels.begin() + long(to)));
       std::move(found.begin(), found.end(), loops.begin() + long(from));
     };
-    // The first level's walls first; the other levels' are found on the other core while the first level is
-    // planned (one core: a pass follows the last), and are waited for only after it.
-    // The level maps' memory is made the process's own on the other core while the first level's walls are found:
+    // The first level's walls first. Meanwhile the level maps' memory is made the process's own on the other core:
     // a virtual machine's host faults each fresh page in (heap_reuse.hpp), and the maps are megabytes.
     tbb::task_group maps;
     maps.run([&] { reserve_maps(); });
     walls(0, 1);
     maps.wait();
+    // The other levels' walls are found on the other core while the first level is planned (one core: a pass
+    // follows the last), and are waited for only after it.
     tbb::task_group others;
     others.run([&] { walls(1, levels.size()); });
     check_cancel(progress, 0.2);

@@ -17,8 +17,8 @@ namespace {
 
 // Samples of the leading half-circle: a sample per 2 degrees, each counting for its 2 degrees.
 constexpr int kArcSamples = 90;
-// The table is padded to a multiple of the widest vector (8 floats or 4 doubles) with copies of the last sample,
-// so that the loop placing the samples on the grid has no scalar tail; the copies are placed, never counted.
+// The table is padded to a multiple of eight (the samples placed at a time) with copies of the last sample, so
+// that the loops placing them on the grid have no scalar tail; the copies are placed, never counted.
 constexpr int kArcPadded = 96;
 
 // The sample directions relative to the heading: cos and sin of -90 + (k + 0.5) * 2 degrees.

@@ -58,7 +58,9 @@ TEST(LevelMaterial, EngagementCountsTheSamplesOnBothPaths) {
   // Blobs of material: discs and an annulus, so that arcs meet edges at every angle, slivers and holes.
   std::mt19937 rng(29);
   std::uniform_real_distribution<double> at(2, 58), radius(0.3, 6), unit(-1, 1);
-  const auto disc = [](const Vec2& c, double r) { return clip::offset(clip::rectangle(c, c + Vec2(0.01, 0.01)), r, 0.01); };
+  const auto disc = [](const Vec2& c, double r) {
+    return clip::offset(clip::rectangle(c, c + Vec2(0.01, 0.01)), r, 0.01);
+  };
   clip::Paths region;
   for (int k = 0; k < 30; ++k) region = clip::unite(region, disc(Vec2(at(rng), at(rng)), radius(rng)));
   for (int k = 0; k < 10; ++k) {
