@@ -429,11 +429,15 @@ class AdaptivePlanner {
   // `away_under`: the last step's way out was open (Step::escapes), so the turn fully away is known under the
   // target without measuring it.
   std::optional<Step> steer(const Vec2& p, const Vec2& h, int sign = 1, bool away_under = false) const {
-    // Over the target at the end of the step (the cut runs along sign * h).
-    const auto at = [&](double a) {
+    // The step turned by a, placed; then whether it is over the target at its end (the cut runs along sign * h).
+    const auto placed = [&](double a) {
       Step s;
       s.h = turned(h, a);
       s.p = p + step_ * s.h;
+      return s;
+    };
+    const auto at = [&](double a) {
+      Step s = placed(a);
       s.over = material_.engaged_over(s.p, sign * s.h, R_, target_);
       return s;
     };
@@ -465,7 +469,7 @@ class AdaptivePlanner {
     };
     Step away;
     if (away_under) {
-      away.h = turned(h, -into), away.p = p + step_ * away.h;  // as at(-into) places it
+      away = placed(-into);
     } else {
       away = at(-into);
       if (away.over) return std::nullopt;
@@ -504,9 +508,13 @@ class AdaptivePlanner {
       best.escapes = true;  // every turn the bisection keeps passed escapes(), the away turn too
     }
     if (clear(best)) return best;
+    // Near a wall most steps come here (a pass along it turns toward it as far as the engagement allows): the
+    // room, a lookup, is tried before the engagement, measures of the material.
     for (int k = 1; k <= 8; ++k) {
-      const Step s = at(a_ok + (-into - a_ok) * k / 8.0);
-      if (under(s) && clear(s)) return s;
+      Step s = placed(a_ok + (-into - a_ok) * k / 8.0);
+      if (!clear(s)) continue;
+      s.over = material_.engaged_over(s.p, sign * s.h, R_, target_);
+      if (under(s)) return s;
     }
     return std::nullopt;
   }
