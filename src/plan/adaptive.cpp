@@ -1,6 +1,7 @@
 #include "rosmill/plan/adaptive.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <tuple>
@@ -29,7 +30,7 @@ constexpr double kWallRoom = 0.5;     // turn radii a pass keeps ahead of it cle
 constexpr double kWalkBack = 4.0;     // cutter radii a start is walked back along its front at most
 constexpr int kMinPassSteps = 3;      // steps (R / 10 each) a pass cuts for at least
 constexpr double kAirTurn = 2 * M_PI / 3;  // the most a pass turns in air between two cuts
-constexpr int kBisections = 6;        // halvings of the turn that meets the engagement target
+constexpr int kTurns = 64;            // turns a step chooses among past fully away (a 64th of the range apart)
 constexpr int kEscapeSteps = 2;       // steps turning away a pass keeps open after each step
 constexpr size_t kMaxSteps = 2000000;  // per level: a bound on the work whatever the geometry
 constexpr size_t kStepsPerEntry = 1000;  // what an entry's search counts for against kMaxSteps
@@ -40,6 +41,11 @@ constexpr double kMaxSteerDeg = 90.0;     // the most engagement a pass is steer
 Vec2 turned(const Vec2& h, double a) {
   const double c = std::cos(a), s = std::sin(a);
   return {c * h.x() - s * h.y(), s * h.x() + c * h.y()};
+}
+
+// h turned by the angle whose cosine and sine are cs.
+Vec2 turned_by(const Vec2& h, const Vec2& cs) {
+  return {cs.x() * h.x() - cs.y() * h.y(), cs.y() * h.x() + cs.x() * h.y()};
 }
 
 // Where a pass begins: the cutter's centre in cleared air beside the material, and the direction it sets off in.
@@ -56,7 +62,44 @@ struct Step {
   // The way out was tried from here and is open: the next step turned fully away, the first of that way, is
   // under the target (and stays so, as cutting only takes material away).
   bool escapes = false;
+  // The turn taken, of steer()'s grid: where the next step's searches begin, as a pass along a front or a wall
+  // turns about as much from step to step.
+  int turn = kTurns;
 };
+
+// The last of the turns [lo, hi) that passes, where lo passes and hi fails (or lies past the grid), searched from
+// the hint outward by doubling strides and then halving: a step near the hint takes two or three measures where
+// halving [lo, hi) takes six. Where passing is monotone in the turn (the engagement grows as the turn goes into
+// the material) it is the one turn before the first that fails, as halving finds.
+template <class Passes>
+int last_passing(int lo, int hi, int hint, const Passes& passes) {
+  if (hi - lo <= 1) return lo;
+  const int k = std::clamp(hint, lo + 1, hi - 1);
+  if (passes(k)) {
+    lo = k;
+    for (int d = 1; lo + d < hi; d *= 2) {
+      if (!passes(lo + d)) {
+        hi = lo + d;
+        break;
+      }
+      lo += d;
+    }
+  } else {
+    hi = k;
+    for (int d = 1; hi - d > lo; d *= 2) {
+      if (passes(hi - d)) {
+        lo = hi - d;
+        break;
+      }
+      hi -= d;
+    }
+  }
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    (passes(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
 
 class AdaptivePlanner {
  public:
@@ -79,6 +122,10 @@ class AdaptivePlanner {
     step_ = std::max(cell_, 0.1 * R_);
     // A step turns the heading by at most step / r_min: the path's curvature stays under 1 / r_min.
     max_turn_ = std::min(0.5 * M_PI, r_min_ > 0 ? step_ / r_min_ : 0.5 * M_PI);
+    for (int k = 0; k <= kTurns; ++k) {
+      const double a = -max_turn_ * (2.0 * k / kTurns - 1);  // steer()'s turn k with the material on the right
+      turns_[k] = Vec2(std::cos(a), std::sin(a));
+    }
     // Steered to at most kMaxSteerDeg: past a side cut of half the tool, turning into the material as far as the
     // limit allows winds a pass round its own track (at a slotting limit of 180, circles of the turn radius).
     target_ = std::min(limit_, kMaxSteerDeg) - kMeasureDeg;
@@ -240,12 +287,12 @@ class AdaptivePlanner {
     double air = 0, air_turn = 0;
     int cut = 0;  // steps that cut
     std::vector<Vec2> in_air;  // steps through air not yet taken: dropped if the pass ends in air
-    bool escapes = false;
+    Step last;
     while (steps_ < kMaxSteps) {
       ++steps_;
-      const std::optional<Step> next = steer(p, h, 1, escapes);
+      const std::optional<Step> next = steer(p, h, 1, last);
       if (!next) break;
-      escapes = next->escapes;
+      last = *next;
       // Air where the step would cut no cell (the engagement may still see the cells a disc's edge leaves, their
       // centres just beyond R).
       // (The material it would cut is kept, to be cut without a second search when the step is taken.)
@@ -422,28 +469,29 @@ class AdaptivePlanner {
   }
 
   // The next step from p along h, the material on the right (sign 1), or walking back along the front a pass
-  // would cut, the material on the left (sign -1). The heading turns by at most max_turn_: the most toward the
-  // material whose engagement stays at the target, by bisection (the engagement grows as the turn goes into the
-  // material); then back away from it as far as it takes to stay out of the part with room to turn away from its
-  // wall. None when even the turn farthest from the material is over the target or no turn keeps out of the part.
-  // `away_under`: the last step's way out was open (Step::escapes), so the turn fully away is known under the
-  // target without measuring it.
-  std::optional<Step> steer(const Vec2& p, const Vec2& h, int sign = 1, bool away_under = false) const {
-    // The step turned by a, placed; then whether it is over the target at its end (the cut runs along sign * h).
+  // would cut, the material on the left (sign -1). The heading turns by at most max_turn_, to one of kTurns + 1
+  // turns evenly spaced from fully away from the material (0) to fully into it (kTurns): the farthest into the
+  // material that stays out of the part with room to turn away from its wall and whose engagement stays at the
+  // target (the engagement grows as the turn goes into the material). None when even the turn farthest from the
+  // material is over the target or no turn keeps out of the part. `last` is the step before (a default Step at a
+  // path's start): when its way out was open (Step::escapes), the turn fully away is known under the target
+  // without measuring it; its turn is where the searches begin.
+  std::optional<Step> steer(const Vec2& p, const Vec2& h, int sign, const Step& last) const {
+    const double into = -sign * max_turn_;  // toward the material: right of a cut, left walking back
+    const auto turn_of = [&](int k) { return into * (2.0 * k / kTurns - 1); };
     const auto placed = [&](double a) {
       Step s;
       s.h = turned(h, a);
       s.p = p + step_ * s.h;
       return s;
     };
-    const auto at = [&](double a) {
-      Step s = placed(a);
-      s.over = material_.engaged_over(s.p, sign * s.h, R_, target_);
-      return s;
-    };
+    // Turn k of the grid: turns_[k] with the material on the right, mirrored with it on the left.
+    const auto turned_to = [&](const Vec2& g, int k) { return turned_by(g, Vec2(turns_[k].x(), sign * turns_[k].y())); };
+    // Over the target at the end of the step (the cut runs along sign * h).
+    const auto over = [&](const Step& s) { return material_.engaged_over(s.p, sign * s.h, R_, target_); };
     // Under the target at the samples along the step before its end too: a turn under it at the end can still pass
-    // it on the way (a sliver met head-on). Tried only on the turn the end's bisection found, and bisected again
-    // when it fails: most steps pass.
+    // it on the way (a sliver met head-on). Tried on the turn the end's search found, and searched again when it
+    // fails: most steps pass.
     const int n = samples(step_);
     const auto along_ok = [&](const Step& s) {
       for (int k = 1; k < n; ++k)
@@ -454,7 +502,6 @@ class AdaptivePlanner {
     const auto clear = [&](const Step& s) {
       return in_part_clearance(s.p) && in_part_clearance(s.p + kWallRoom * r_min_ * s.h);
     };
-    const double into = -sign * max_turn_;  // toward the material: right of a cut, left walking back
     // A step leaves a way out: turning away as fast as the turn radius allows for kEscapeSteps more steps keeps
     // the engagement at the target. Without it a pass that meets a front from air (nothing to steer by, so it
     // turns fully into the material) or runs into a concave bay of it is turned into the material faster than it
@@ -462,59 +509,68 @@ class AdaptivePlanner {
     const auto escapes = [&](const Step& s) {
       Vec2 q = s.p, g = s.h;
       for (int k = 0; k < kEscapeSteps; ++k) {
-        g = turned(g, -into), q += step_ * g;
+        g = turned_to(g, 0), q += step_ * g;
         if (material_.engaged_over(q, sign * g, R_, target_)) return false;
       }
       return true;
     };
-    Step away;
-    if (away_under) {
-      away = placed(-into);
-    } else {
-      away = at(-into);
-      if (away.over) return std::nullopt;
-    }
-    // The turn farthest from the material is the fallback of every search below; its samples along the step are
-    // tried only when a search may fall back on it (most steps find a turn into the material that passes).
-    std::optional<bool> away_along;
-    const auto away_ok = [&] {
-      if (!away_along) away_along = along_ok(away);
-      return *away_along;
-    };
-    // The turn farthest from a_ok (which passes `fine`) toward a_over (which does not) that passes, by bisection.
-    const auto bisect = [&](double a_ok, Step ok, double a_over, const auto& fine) {
-      for (int k = 0; k < kBisections; ++k) {
-        const double mid = 0.5 * (a_ok + a_over);
-        const Step s = at(mid);
-        if (fine(s)) ok = s, a_ok = mid;
-        else a_over = mid;
+    // The grid's turns, each placed and measured once whichever search asks.
+    enum : uint8_t { kPlaced = 1, kEnd = 2, kAlongKnown = 4, kAlongUnder = 8 };
+    std::array<Step, kTurns + 1>& grid = grid_;
+    std::array<uint8_t, kTurns + 1> known{};
+    const auto place = [&](int k) -> Step& {
+      if (!(known[k] & kPlaced)) {
+        grid[k].h = turned_to(h, k), grid[k].p = p + step_ * grid[k].h;
+        grid[k].over = grid[k].escapes = false, known[k] |= kPlaced;
       }
-      return std::pair{a_ok, ok};
+      return grid[k];
     };
-    // The turn farthest into the material under the target; when the way out from there is closed, the farthest
-    // that keeps it open (tried only then: a pass along a front nearly always has one).
-    double a_ok = into;
-    Step best = at(into);
-    if (best.over) std::tie(a_ok, best) = bisect(-into, away, into, [](const Step& s) { return !s.over; });
-    const auto under = [&](const Step& s) { return !s.over && along_ok(s); };
-    if (!along_ok(best)) {
-      if (!away_ok()) return std::nullopt;
-      std::tie(a_ok, best) = bisect(-into, away, a_ok, under);
+    const auto end_under = [&](int k) {
+      Step& s = place(k);
+      if (!(known[k] & kEnd)) s.over = over(s), known[k] |= kEnd;
+      return !s.over;
+    };
+    const auto under = [&](int k) {
+      if (!end_under(k)) return false;
+      if (!(known[k] & kAlongKnown)) known[k] |= kAlongKnown | (along_ok(grid[k]) ? kAlongUnder : 0);
+      return (known[k] & kAlongUnder) != 0;
+    };
+    const auto roomy = [&](int k) { return clear(place(k)); };
+    // The turn fully away is the fallback of every search below: it is taken to pass, so it is checked first. Its
+    // samples along the step are measured only when a search may fall back on it.
+    if (last.escapes) {
+      place(0);
+      known[0] |= kEnd;
+    } else if (!end_under(0)) {
+      return std::nullopt;
     }
+    // The farthest turn into the material with room, first: a lookup where the engagement is a measure of the
+    // material, and along a wall (most steps of a narrow region) the bound the engagement's search stays within.
+    const int room = roomy(kTurns) ? kTurns : last_passing(0, kTurns, last.turn, roomy);
+    // The farthest turn under the target at its end, then along the step; when the way out from there is closed,
+    // the farthest that keeps it open (tried only then: a pass along a front nearly always has one).
+    int k = last_passing(0, room + 1, last.turn, end_under);
+    if (!under(k)) {
+      if (!under(0)) return std::nullopt;
+      k = last_passing(0, k, k - 1, under);
+    }
+    Step best = grid[k];
+    best.turn = k;
     best.escapes = escapes(best);
-    if (!best.escapes && escapes(away) && away_ok()) {
-      away.escapes = true;
-      std::tie(a_ok, best) = bisect(-into, away, a_ok, [&](const Step& s) { return under(s) && escapes(s); });
-      best.escapes = true;  // every turn the bisection keeps passed escapes(), the away turn too
+    if (!best.escapes && escapes(grid[0]) && under(0)) {
+      k = last_passing(0, k, k - 1, [&](int j) { return under(j) && escapes(grid[j]); });
+      best = grid[k];
+      best.turn = k;
+      best.escapes = true;  // every turn the search keeps passed escapes(), the turn fully away too
     }
     if (clear(best)) return best;
-    // Near a wall most steps come here (a pass along it turns toward it as far as the engagement allows): the
-    // room, a lookup, is tried before the engagement, measures of the material.
-    for (int k = 1; k <= 8; ++k) {
-      Step s = placed(a_ok + (-into - a_ok) * k / 8.0);
+    // No room there (where room is not a single span of turns): back toward the turn fully away.
+    const double a_ok = turn_of(k);
+    for (int j = 1; j <= 8; ++j) {
+      Step s = placed(a_ok + (-into - a_ok) * j / 8.0);
       if (!clear(s)) continue;
-      s.over = material_.engaged_over(s.p, sign * s.h, R_, target_);
-      if (under(s)) return s;
+      s.over = over(s);
+      if (!s.over && along_ok(s)) return s.turn = k, s;
     }
     return std::nullopt;
   }
@@ -613,11 +669,11 @@ class AdaptivePlanner {
   Start walk_back(const Start& s) const {
     Vec2 p = s.p, h = -turned(s.h, lead_in_);
     bool met = false;  // the walk sets off in air beside the front
-    bool escapes = false;
+    Step last;
     for (double walked = 0; walked < kWalkBack * R_; walked += step_) {
-      const std::optional<Step> next = steer(p, h, -1, escapes);
+      const std::optional<Step> next = steer(p, h, -1, last);
       if (!next) break;
-      escapes = next->escapes;
+      last = *next;
       const bool air = material_.engagement(next->p, -next->h, R_ - cell_) < kAirDeg;
       if (air && (met || walked > 2 * R_)) break;
       met = met || !air;
@@ -1049,6 +1105,8 @@ class AdaptivePlanner {
   PlanReport& report_;
   double R_ = 0, limit_ = 0, r_min_ = 0, helix_ = 0, slope_ = 0, cell_ = 0, arc_ = 0;
   double step_ = 0, max_turn_ = 0, target_ = 0, lead_in_ = 0;
+  std::array<Vec2, kTurns + 1> turns_;         // cosine and sine of steer()'s turns (material on the right)
+  mutable std::array<Step, kTurns + 1> grid_;  // steer()'s turns placed and measured (scratch)
   Vec2 lo_, hi_;
   Toolpath tp_;
   MoveWriter* w_ = nullptr;
