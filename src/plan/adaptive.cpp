@@ -160,10 +160,22 @@ class AdaptivePlanner {
     maps.run([&] { reserve_maps(); });
     walls(0, 1);
     maps.wait();
-    // The other levels' walls are found on the other core while the first level is planned (one core: a pass
-    // follows the last), and are waited for only after it.
+    // The regions of a level: what is to be cleared there and where the cutter may go. They depend on the walls and
+    // the stock the job gives, not on what the levels above cut.
+    std::vector<LevelRegions> regions(levels.size());
+    const auto regions_of = [&](size_t i) {
+      PlanFrame fl = f_;
+      fl.tolerance = loose.tolerance;
+      regions[i] = level_regions(params_, fl, levels[i], loops[i], lo_, hi_, arc_, 0.0);
+    };
+    // The other levels' walls and regions are found on the other core while the first level is planned (one core:
+    // a pass follows the last), and are waited for only after it.
     tbb::task_group others;
-    others.run([&] { walls(1, levels.size()); });
+    others.run([&] {
+      walls(1, levels.size());
+      for (size_t i = 1; i < levels.size(); ++i) regions_of(i);
+    });
+    regions_of(0);
     check_cancel(progress, 0.2);
     init_top();
     tp_.strategy = "adaptive";
@@ -172,7 +184,7 @@ class AdaptivePlanner {
     w_ = &w;
     for (size_t i = 0; i < levels.size(); ++i) {
       if (i == 1) others.wait();
-      level(levels[i], loops[i], loose.tolerance);
+      level(levels[i], regions[i]);
       check_cancel(progress, 0.2 + 0.8 * double(i + 1) / levels.size());
     }
     others.wait();
@@ -227,10 +239,7 @@ class AdaptivePlanner {
     for (std::vector<float>& s : scratch_) s.assign(size_t(material_.nx() / f + 1) * size_t(material_.ny() / f + 1), 0);
   }
 
-  void level(double z, const std::vector<Loop>& loops, double loop_tolerance) {
-    PlanFrame fl = f_;
-    fl.tolerance = loop_tolerance;
-    const LevelRegions r = level_regions(params_, fl, z, loops, lo_, hi_, arc_, 0.0);
+  void level(double z, const LevelRegions& r) {
     if (clip::area(r.target) < 1e-3 * R_ * R_) return;
     z_ = z;
     allowed_ = r.allowed;
