@@ -884,11 +884,17 @@ class AdaptivePlanner {
   std::optional<bool> seed_on(const std::vector<uint8_t>& closed, long f) {
     // The window the entry is sought in: the closed material's box, grown by how far from it a centre may be.
     const long nx = material_.nx(), ny = material_.ny();
+    const auto wanted = [&](size_t c) { return closed[c] && !given_up_[c]; };
     long i0 = nx, i1 = -1, j0 = ny, j1 = -1;
-    for (long j = 0; j < ny; ++j)
-      for (long i = 0; i < nx; ++i)
-        if (const size_t c = size_t(j) * nx + i; closed[c] && !given_up_[c])
-          i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
+    for (long j = 0; j < ny; ++j) {
+      const size_t row = size_t(j) * nx;
+      long first = 0;
+      while (first < nx && !wanted(row + first)) ++first;
+      if (first == nx) continue;
+      long last = nx - 1;
+      while (!wanted(row + last)) --last;
+      i0 = std::min(i0, first), i1 = std::max(i1, last), j0 = std::min(j0, j), j1 = std::max(j1, j);
+    }
     if (i1 < 0) return false;
     const long grow = static_cast<long>(std::ceil(0.9 * R_ / cell_)) + 2 * f;
     i0 = std::max(0L, i0 - grow), j0 = std::max(0L, j0 - grow);
@@ -900,11 +906,14 @@ class AdaptivePlanner {
     std::vector<float>& depth = scratch_[1];
     to_material.assign(n, INFINITY);
     depth.assign(n, 0);
-    for (long j = j0; j <= j1; ++j)
-      for (long i = i0; i <= i1; ++i) {
-        const size_t c = size_t(j) * nx + size_t(i);
-        if (closed[c] && !given_up_[c]) to_material[size_t((j - j0) / f) * wx + size_t((i - i0) / f)] = 0;
+    for (long j = j0; j <= j1; ++j) {
+      float* window_row = &to_material[size_t((j - j0) / f) * wx];
+      const size_t row = size_t(j) * nx;
+      for (long i = i0, w = 0, k = 0; i <= i1; ++i) {  // w: i's window column, k: i's place in it
+        if (wanted(row + i)) window_row[w] = 0;
+        if (++k == f) k = 0, ++w;
       }
+    }
     chamfer(to_material, wx, wy, cell);
     const float reach = static_cast<float>(0.9 * R_);
     const Vec2 corner = material_.centre(size_t(j0) * nx + size_t(i0)) - Vec2::Constant(0.5 * cell_);
@@ -959,19 +968,27 @@ class AdaptivePlanner {
     const auto is = [&](long i, long j, uint8_t v) {
       return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == v;
     };
-    const auto borders_air = [&](long i, long j) {
-      for (long dj = -1; dj <= 1; ++dj)
-        for (long di = -1; di <= 1; ++di)
-          if (is(i + di, j + dj, LevelMaterial::kAir)) return true;
-      return false;
+    // Air at a cell of row j or beside it in the row; kept for the rows before, at and after the one classified.
+    const auto air_beside = [&](long j, std::vector<uint8_t>& out) {
+      out.assign(size_t(nx), 0);
+      if (j < 0 || j >= ny) return;
+      for (long i = 0; i < nx; ++i)
+        if (is(i, j, LevelMaterial::kAir)) out[size_t(i)] = 1, out[size_t(std::max(0L, i - 1))] = 1,
+                                           out[size_t(std::min(nx - 1, i + 1))] = 1;
     };
-    for (long j = 0; j < ny; ++j)
+    std::array<std::vector<uint8_t>, 3> beside;  // rows j - 1, j, j + 1
+    air_beside(-1, beside[0]);
+    air_beside(0, beside[1]);
+    for (long j = 0; j < ny; ++j) {
+      air_beside(j + 1, beside[2]);
       for (long i = 0; i < nx; ++i) {
         const size_t c = size_t(j) * nx + i;
         if (material_.value(c) != LevelMaterial::kMaterial) continue;
-        if (borders_air(i, j)) open.push_back(c);
+        if (beside[0][size_t(i)] | beside[1][size_t(i)] | beside[2][size_t(i)]) open.push_back(c);
         else closed[c] = 1;
       }
+      std::rotate(beside.begin(), beside.begin() + 1, beside.end());
+    }
     while (!open.empty()) {
       const size_t c = open.back();
       open.pop_back();
@@ -987,35 +1004,29 @@ class AdaptivePlanner {
 
   // Distances (mm) from the cells at 0 to every other, by a two-pass 3-4 chamfer (Borgefors, "Distance
   // transformations in digital images", 1986): within 8 % of the Euclidean distance.
+  // Each row takes its three neighbours in the row before first (independent cells: vectorised), then its
+  // neighbour along the row in one scan whose last value stays in a register; a minimum is exact, so the order of
+  // the terms changes no distance.
   void chamfer(std::vector<float>& d, long nx, long ny, double cell) const {
     const float a = static_cast<float>(cell), b = static_cast<float>(cell * 4.0 / 3.0);
+    // Row `row` after row `near` (the one before it in the pass's order).
+    const auto from_near = [&](float* row, const float* near) {
+      row[0] = std::min(row[0], std::min(near[0] + a, nx > 1 ? near[1] + b : INFINITY));
+      for (long i = 1; i + 1 < nx; ++i)
+        row[i] = std::min(std::min(row[i], near[i] + a), std::min(near[i - 1] + b, near[i + 1] + b));
+      if (nx > 1) row[nx - 1] = std::min(row[nx - 1], std::min(near[nx - 1] + a, near[nx - 2] + b));
+    };
     for (long j = 0; j < ny; ++j) {
       float* row = &d[size_t(j) * nx];
-      const float* up = j > 0 ? row - nx : nullptr;
-      for (long i = 0; i < nx; ++i) {
-        float v = row[i];
-        if (i > 0) v = std::min(v, row[i - 1] + a);
-        if (up) {
-          v = std::min(v, up[i] + a);
-          if (i > 0) v = std::min(v, up[i - 1] + b);
-          if (i + 1 < nx) v = std::min(v, up[i + 1] + b);
-        }
-        row[i] = v;
-      }
+      if (j > 0) from_near(row, row - nx);
+      float last = row[0];
+      for (long i = 1; i < nx; ++i) last = row[i] = std::min(row[i], last + a);
     }
     for (long j = ny - 1; j >= 0; --j) {
       float* row = &d[size_t(j) * nx];
-      const float* down = j + 1 < ny ? row + nx : nullptr;
-      for (long i = nx - 1; i >= 0; --i) {
-        float v = row[i];
-        if (i + 1 < nx) v = std::min(v, row[i + 1] + a);
-        if (down) {
-          v = std::min(v, down[i] + a);
-          if (i + 1 < nx) v = std::min(v, down[i + 1] + b);
-          if (i > 0) v = std::min(v, down[i - 1] + b);
-        }
-        row[i] = v;
-      }
+      if (j + 1 < ny) from_near(row, row + nx);
+      float last = row[nx - 1];
+      for (long i = nx - 2; i >= 0; --i) last = row[i] = std::min(row[i], last + a);
     }
   }
 
