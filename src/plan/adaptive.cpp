@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <optional>
-#include <tuple>
 #include <utility>
 
 #include <tbb/parallel_invoke.h>
@@ -30,7 +29,7 @@ constexpr double kWallRoom = 0.5;     // turn radii a pass keeps ahead of it cle
 constexpr double kWalkBack = 4.0;     // cutter radii a start is walked back along its front at most
 constexpr int kMinPassSteps = 3;      // steps (R / 10 each) a pass cuts for at least
 constexpr double kAirTurn = 2 * M_PI / 3;  // the most a pass turns in air between two cuts
-constexpr int kTurns = 64;            // turns a step chooses among past fully away (a 64th of the range apart)
+constexpr int kTurns = 64;            // a step turns to one of kTurns + 1, from fully away to fully into the material
 constexpr int kEscapeSteps = 2;       // steps turning away a pass keeps open after each step
 constexpr size_t kMaxSteps = 2000000;  // per level: a bound on the work whatever the geometry
 constexpr size_t kStepsPerEntry = 1000;  // what an entry's search counts for against kMaxSteps
@@ -495,7 +494,9 @@ class AdaptivePlanner {
       return s;
     };
     // Turn k of the grid: turns_[k] with the material on the right, mirrored with it on the left.
-    const auto turned_to = [&](const Vec2& g, int k) { return turned_by(g, Vec2(turns_[k].x(), sign * turns_[k].y())); };
+    const auto turned_to = [&](const Vec2& g, int k) {
+      return turned_by(g, Vec2(turns_[k].x(), sign * turns_[k].y()));
+    };
     // Over the target at the end of the step (the cut runs along sign * h).
     const auto over = [&](const Step& s) { return material_.engaged_over(s.p, sign * s.h, R_, target_); };
     // Under the target at the samples along the step before its end too: a turn under it at the end can still pass
