@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <utility>
 
@@ -198,6 +199,33 @@ bool LevelMaterial::air_near_block(long bi, long bj) const {
     for (long i = std::max(0L, bi - 1); i <= std::min(bx_ - 1, bi + 1); ++i)
       if (block_air_[size_t(j) * bx_ + i]) return true;
   return false;
+}
+
+uint32_t LevelMaterial::edge_row(long j, long i) const {
+  const uint8_t* const at = &bits_[size_t(j) * size_t(nx_) + size_t(i)];
+  const ptrdiff_t up = -ptrdiff_t(nx_), down = ptrdiff_t(nx_);
+#if defined(__x86_64__)
+  static_assert(kBlock == 16, "a block's row is one SSE2 register of cells");
+  const __m128i air = _mm_set1_epi8(char(kAir));
+  const auto is_air = [&](ptrdiff_t offset) {
+    return _mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at + offset)), air);
+  };
+  const __m128i near = _mm_or_si128(
+      _mm_or_si128(_mm_or_si128(is_air(up - 1), is_air(up)), _mm_or_si128(is_air(up + 1), is_air(-1))),
+      _mm_or_si128(_mm_or_si128(is_air(1), is_air(down - 1)), _mm_or_si128(is_air(down), is_air(down + 1))));
+  const __m128i material =
+      _mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(at)), _mm_set1_epi8(char(kMaterial)));
+  return uint32_t(_mm_movemask_epi8(_mm_and_si128(near, material)));
+#else
+  uint32_t bits = 0;
+  for (long k = 0; k < kBlock; ++k) {
+    const uint8_t* c = at + k;
+    const bool near = c[up - 1] == kAir || c[up] == kAir || c[up + 1] == kAir || c[-1] == kAir || c[1] == kAir ||
+                      c[down - 1] == kAir || c[down] == kAir || c[down + 1] == kAir;
+    bits |= uint32_t(*c == kMaterial && near) << k;
+  }
+  return bits;
+#endif
 }
 
 void LevelMaterial::block_of(const Vec2& p, long& bi, long& bj) const {
