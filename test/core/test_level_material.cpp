@@ -1,11 +1,13 @@
 // LevelMaterial's engagement (the adaptive planner's own measure): known answers for a straight side cut, a slot
 // and air, against a count made here from the samples' definition, and the same counts on the AVX2 path and the
-// scalar one.
+// scalar one. Its edge cells (where passes start) against their definition.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "rosmill/geometry/clip_region.hpp"
 #include "rosmill/plan/level_material.hpp"
@@ -54,21 +56,24 @@ TEST(LevelMaterial, SideCutSlotAndAirHaveTheirEngagement) {
   EXPECT_DOUBLE_EQ(m.engagement(Vec2(30 - R - 0.2, 30), Vec2(0, 1), R), 0.0);  // beside the material, not in it
 }
 
-TEST(LevelMaterial, EngagementCountsTheSamplesOnBothPaths) {
-  // Blobs of material: discs and an annulus, so that arcs meet edges at every angle, slivers and holes.
-  std::mt19937 rng(29);
-  std::uniform_real_distribution<double> at(2, 58), radius(0.3, 6), unit(-1, 1);
-  const auto disc = [](const Vec2& c, double r) {
-    return clip::offset(clip::rectangle(c, c + Vec2(0.01, 0.01)), r, 0.01);
-  };
+clip::Paths disc(const Vec2& c, double r) { return clip::offset(clip::rectangle(c, c + Vec2(0.01, 0.01)), r, 0.01); }
+
+// Blobs over the map: discs, rectangles and a ring, so that arcs and edges meet at every angle, slivers and holes.
+clip::Paths blobs(std::mt19937& rng) {
+  std::uniform_real_distribution<double> at(2, 58), radius(0.3, 6);
   clip::Paths region;
   for (int k = 0; k < 30; ++k) region = clip::unite(region, disc(Vec2(at(rng), at(rng)), radius(rng)));
   for (int k = 0; k < 10; ++k) {
     const Vec2 a(at(rng), at(rng)), b(at(rng), at(rng));
     region = clip::unite(region, clip::rectangle(a.cwiseMin(b), a.cwiseMax(b)));
   }
-  region = clip::unite(region, clip::subtract(disc(Vec2(20, 20), 9), disc(Vec2(20, 20), 8)));  // a ring
-  LevelMaterial m = map_of(region);
+  return clip::unite(region, clip::subtract(disc(Vec2(20, 20), 9), disc(Vec2(20, 20), 8)));  // a ring
+}
+
+TEST(LevelMaterial, EngagementCountsTheSamplesOnBothPaths) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> at(2, 58), unit(-1, 1);
+  LevelMaterial m = map_of(blobs(rng));
   const bool vector = LevelMaterial::vector_arcs();
   int checked = 0, defined_apart = 0;
   for (int k = 0; k < 20000; ++k) {
@@ -97,6 +102,50 @@ TEST(LevelMaterial, EngagementCountsTheSamplesOnBothPaths) {
   EXPECT_LT(defined_apart, checked / 100);  // rounding, not a different measure
   std::printf("vector path on this machine: %s; %d of %d counts a sample apart from the definition's\n",
               vector ? "yes" : "no", defined_apart, checked);
+}
+
+// Every block's edge cells, in order, against their definition checked cell by cell here: material cells with air
+// among their eight neighbours on the map, not skipped; each with the unit sum of the directions to the air within
+// two cells, weighted by inverse distance. The map runs to the grid's edges (blocks read unchecked inside, checked
+// along the edges) and holds the part's cells too (neither air nor material).
+TEST(LevelMaterial, EdgeCellsAreTheMaterialCellsBesideAir) {
+  std::mt19937 rng(30);
+  LevelMaterial m;
+  m.reset(Vec2(0, 0), Vec2(60.1, 59.9), kCell);  // 481 x 480 cells: the last column of blocks one cell wide
+  m.fill(clip::rectangle(Vec2(-1, -1), Vec2(61, 61)), LevelMaterial::kAir);
+  m.fill(blobs(rng), LevelMaterial::kMaterial);
+  m.fill(clip::unite(disc(Vec2(40, 40), 7), clip::rectangle(Vec2(56, -1), Vec2(61, 61))), LevelMaterial::kOther);
+  const long nx = m.nx(), ny = m.ny();
+  const auto is = [&](long i, long j, uint8_t v) {
+    return i >= 0 && j >= 0 && i < nx && j < ny && m.value(size_t(j) * nx + i) == v;
+  };
+  const auto skip = [](size_t c) { return c % 7 == 3; };
+  size_t found = 0;
+  for (long bj = 0; bj < m.blocks_y(); ++bj)
+    for (long bi = 0; bi < m.blocks_x(); ++bi) {
+      std::vector<std::pair<size_t, Vec2>> got, expected;
+      m.edge_cells(bi, bj, skip, [&](size_t c, const Vec2&, const Vec2& n) { got.push_back({c, n}); });
+      for (long j = bj * 16; j < std::min(ny, (bj + 1) * 16); ++j)
+        for (long i = bi * 16; i < std::min(nx, (bi + 1) * 16); ++i) {
+          const size_t c = size_t(j) * nx + i;
+          bool beside_air = false;
+          for (long dj = -1; dj <= 1; ++dj)
+            for (long di = -1; di <= 1; ++di) beside_air = beside_air || is(i + di, j + dj, LevelMaterial::kAir);
+          if (!is(i, j, LevelMaterial::kMaterial) || !beside_air || skip(c)) continue;
+          Vec2 g = Vec2::Zero();
+          for (long dj = -2; dj <= 2; ++dj)
+            for (long di = -2; di <= 2; ++di)
+              if ((di || dj) && is(i + di, j + dj, LevelMaterial::kAir)) g += Vec2(di, dj) / std::hypot(di, dj);
+          if (g.norm() > 1e-9) expected.push_back({c, g.normalized()});
+        }
+      ASSERT_EQ(got.size(), expected.size()) << "block " << bi << ", " << bj;
+      for (size_t k = 0; k < got.size(); ++k) {
+        ASSERT_EQ(got[k].first, expected[k].first) << "block " << bi << ", " << bj;
+        EXPECT_NEAR((got[k].second - expected[k].second).norm(), 0.0, 1e-12);
+      }
+      found += got.size();
+    }
+  EXPECT_GT(found, 1000u);  // the blobs' edges, not an empty map
 }
 
 TEST(LevelMaterial, ArcsOffTheGridCountOnlyWhatLiesOnIt) {
