@@ -651,24 +651,38 @@ class AdaptivePlanner {
   // cut nearly nothing. The wall pass takes what of it a cutter reaches.
   void give_up_skin() {
     const long nx = material_.nx(), ny = material_.ny();
-    // The cells within two cells' distance: the 3 x 3 square and the four two cells away along the axes.
-    constexpr long kNear[13][2] = {{0, 0},  {-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1},
-                                   {0, 1},  {1, 1},   {-2, 0}, {2, 0},  {0, -2}, {0, 2}};
-    for (long j = 0; j < ny; ++j)
-      for (long i = 0; i < nx; ++i) {
-        const size_t c = size_t(j) * nx + i;
-        if (material_.value(c) != LevelMaterial::kMaterial || given_up_[c]) continue;
-        const bool inner = i >= 2 && j >= 2 && i + 2 < nx && j + 2 < ny;  // its window on the map: unchecked
-        const auto other = [&](long ii, long jj) {
-          return (inner || (ii >= 0 && jj >= 0 && ii < nx && jj < ny)) &&
-                 material_.value(size_t(jj) * nx + ii) == LevelMaterial::kOther;
-        };
-        for (const auto& d : kNear)
-          if (other(i + d[0], j + d[1])) {
-            given_up_[c] = 1;
-            break;
-          }
+    const size_t width = static_cast<size_t>(nx);
+    // Of each row, per cell: bit 0 it is the part's (kOther), bit 1 one of the three cells centred on it is, bit 2
+    // one of the five. The window (the 3 x 3 square and the four cells two away along the axes) is then bit 2 of
+    // the cell's row, bit 1 of the rows beside it and bit 0 of the rows two away. Loops without branches over
+    // whole rows, through plain pointers (byte stores may alias anything else): vectorised.
+    std::vector<uint8_t> part_row(width + 4, 0), three_row(width + 2, 0);  // [i + 2], [i + 1]: cell i
+    const auto part_near = [&](long j, std::vector<uint8_t>& near) {
+      near.assign(width, 0);
+      if (j < 0 || j >= ny) return;
+      const uint8_t* const cells = material_.values() + size_t(j) * width;
+      uint8_t* const part = part_row.data();
+      uint8_t* const three = three_row.data();
+      uint8_t* const out = near.data();
+      for (size_t i = 0; i < width; ++i) part[i + 2] = cells[i] == LevelMaterial::kOther;
+      for (size_t i = 0; i < width; ++i) three[i + 1] = part[i + 1] | part[i + 2] | part[i + 3];
+      for (size_t i = 0; i < width; ++i)
+        out[i] = uint8_t((three[i] | three[i + 1] | three[i + 2]) << 2 | three[i + 1] << 1 | part[i + 2]);
+    };
+    std::array<std::vector<uint8_t>, 5> rows;  // rows j - 2 ... j + 2
+    for (long k = 0; k < 4; ++k) part_near(k - 2, rows[size_t(k) + 1]);
+    for (long j = 0; j < ny; ++j) {
+      std::rotate(rows.begin(), rows.begin() + 1, rows.end());
+      part_near(j + 2, rows[4]);
+      const uint8_t* const cells = material_.values() + size_t(j) * width;
+      uint8_t* const given_up = given_up_.data() + size_t(j) * width;
+      const uint8_t *const r0 = rows[0].data(), *const r1 = rows[1].data(), *const r2 = rows[2].data(),
+                          *const r3 = rows[3].data(), *const r4 = rows[4].data();
+      for (size_t i = 0; i < width; ++i) {
+        const uint8_t near = (r2[i] >> 2 | (r1[i] | r3[i]) >> 1 | r0[i] | r4[i]) & 1;
+        given_up[i] |= uint8_t(cells[i] == LevelMaterial::kMaterial) & near;
       }
+    }
   }
 
   // From s back along the front the pass would cut (up to kWalkBack radii), past a corner onto the strip of
@@ -964,30 +978,42 @@ class AdaptivePlanner {
     const long nx = material_.nx(), ny = material_.ny();
     const size_t n = size_t(nx) * ny;
     std::vector<uint8_t>& closed = closed_;
-    closed.assign(n, 0);
+    closed.resize(n);  // every cell written below
     std::vector<size_t> open;
     const auto is = [&](long i, long j, uint8_t v) {
       return i >= 0 && j >= 0 && i < nx && j < ny && material_.value(size_t(j) * nx + i) == v;
     };
     // Air at a cell of row j or beside it in the row; kept for the rows before, at and after the one classified.
+    // Loops without branches, over whole rows: vectorised.
+    std::vector<uint8_t> air_row(size_t(nx) + 2, 0);  // [i + 1]: cell i of the row is air
     const auto air_beside = [&](long j, std::vector<uint8_t>& out) {
       out.assign(size_t(nx), 0);
       if (j < 0 || j >= ny) return;
-      for (long i = 0; i < nx; ++i)
-        if (is(i, j, LevelMaterial::kAir)) out[size_t(i)] = 1, out[size_t(std::max(0L, i - 1))] = 1,
-                                           out[size_t(std::min(nx - 1, i + 1))] = 1;
+      const uint8_t* const cells = material_.values() + size_t(j) * nx;
+      uint8_t* const air = air_row.data();
+      uint8_t* const beside_air = out.data();
+      for (size_t i = 0; i < size_t(nx); ++i) air[i + 1] = cells[i] == LevelMaterial::kAir;
+      for (size_t i = 0; i < size_t(nx); ++i) beside_air[i] = air[i] | air[i + 1] | air[i + 2];
     };
     std::array<std::vector<uint8_t>, 3> beside;  // rows j - 1, j, j + 1
     air_beside(-1, beside[0]);
     air_beside(0, beside[1]);
     for (long j = 0; j < ny; ++j) {
       air_beside(j + 1, beside[2]);
-      for (long i = 0; i < nx; ++i) {
-        const size_t c = size_t(j) * nx + i;
-        if (material_.value(c) != LevelMaterial::kMaterial) continue;
-        if (beside[0][size_t(i)] | beside[1][size_t(i)] | beside[2][size_t(i)]) open.push_back(c);
-        else closed[c] = 1;
+      const size_t row = size_t(j) * nx;
+      const uint8_t* const cells = material_.values() + row;
+      const uint8_t *const below = beside[0].data(), *const at = beside[1].data(), *const above = beside[2].data();
+      uint8_t* const closed_row = closed.data() + row;
+      uint8_t any_open = 0;
+      for (size_t i = 0; i < size_t(nx); ++i) {
+        const uint8_t material = cells[i] == LevelMaterial::kMaterial;
+        const uint8_t near = below[i] | at[i] | above[i];
+        closed_row[i] = material & uint8_t(near ^ 1);
+        any_open |= material & near;
       }
+      if (any_open)
+        for (size_t i = 0; i < size_t(nx); ++i)
+          if (cells[i] == LevelMaterial::kMaterial && !closed_row[i]) open.push_back(row + i);
       std::rotate(beside.begin(), beside.begin() + 1, beside.end());
     }
     while (!open.empty()) {

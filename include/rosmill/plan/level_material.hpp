@@ -68,6 +68,7 @@ class LevelMaterial {
   long nx() const { return nx_; }
   long ny() const { return ny_; }
   uint8_t value(size_t c) const { return bits_[c]; }
+  const uint8_t* values() const { return bits_.data(); }  // nx() * ny() of them
   Vec2 centre(size_t c) const {
     const long j = row_of(c);
     return {x0_ + (double(long(c) - j * nx_) + 0.5) * cell_, y0_ + (double(j) + 0.5) * cell_};
