@@ -899,15 +899,22 @@ class AdaptivePlanner {
   std::optional<bool> seed_on(const std::vector<uint8_t>& closed, long f) {
     // The window the entry is sought in: the closed material's box, grown by how far from it a centre may be.
     const long nx = material_.nx(), ny = material_.ny();
-    const auto wanted = [&](size_t c) { return closed[c] && !given_up_[c]; };
+    // Row j's cells closed and not given up, into `wanted` (a loop without branches: vectorised); whether any is.
+    std::vector<uint8_t> wanted(static_cast<size_t>(nx));
+    const auto wanted_in = [&](long j) {
+      const uint8_t* const closed_cells = closed.data() + size_t(j) * nx;
+      const uint8_t* const given_up = given_up_.data() + size_t(j) * nx;
+      uint8_t* const out = wanted.data();
+      uint8_t any = 0;
+      for (size_t i = 0; i < size_t(nx); ++i)
+        any |= out[i] = uint8_t(closed_cells[i] != 0) & uint8_t(given_up[i] == 0);
+      return any != 0;
+    };
     long i0 = nx, i1 = -1, j0 = ny, j1 = -1;
     for (long j = 0; j < ny; ++j) {
-      const size_t row = size_t(j) * nx;
-      long first = 0;
-      while (first < nx && !wanted(row + first)) ++first;
-      if (first == nx) continue;
-      long last = nx - 1;
-      while (!wanted(row + last)) --last;
+      if (!wanted_in(j)) continue;
+      const long first = std::find(wanted.begin(), wanted.end(), 1) - wanted.begin();
+      const long last = wanted.rend() - std::find(wanted.rbegin(), wanted.rend(), 1) - 1;
       i0 = std::min(i0, first), i1 = std::max(i1, last), j0 = std::min(j0, j), j1 = std::max(j1, j);
     }
     if (i1 < 0) return false;
@@ -922,12 +929,11 @@ class AdaptivePlanner {
     to_material.assign(n, INFINITY);
     depth.assign(n, 0);
     for (long j = j0; j <= j1; ++j) {
-      float* window_row = &to_material[size_t((j - j0) / f) * wx];
-      const size_t row = size_t(j) * nx;
-      for (long i = i0, w = 0, k = 0; i <= i1; ++i) {  // w: i's window column, k: i's place in it
-        if (wanted(row + i)) window_row[w] = 0;
-        if (++k == f) k = 0, ++w;
-      }
+      if (!wanted_in(j)) continue;
+      float* const window_row = &to_material[size_t((j - j0) / f) * wx];
+      for (long w = 0; w < wx; ++w)  // window column w: cells i0 + w f ... of the row
+        for (long i = i0 + w * f; i < std::min(i1 + 1, i0 + (w + 1) * f); ++i)
+          if (wanted[size_t(i)]) window_row[w] = 0;
     }
     chamfer(to_material, wx, wy, cell);
     const float reach = static_cast<float>(0.9 * R_);
