@@ -525,7 +525,7 @@ class AdaptivePlanner {
       return true;
     };
     // The grid's turns, each placed and measured once whichever search asks.
-    enum : uint8_t { kPlaced = 1, kEnd = 2, kAlongKnown = 4, kAlongUnder = 8 };
+    enum : uint8_t { kPlaced = 1, kEnd = 2, kAlongKnown = 4, kAlongUnder = 8, kRoomKnown = 16, kRoom = 32 };
     std::array<Step, kTurns + 1>& grid = grid_;
     std::array<uint8_t, kTurns + 1> known{};
     const auto place = [&](int k) -> Step& {
@@ -545,7 +545,10 @@ class AdaptivePlanner {
       if (!(known[k] & kAlongKnown)) known[k] |= kAlongKnown | (along_ok(grid[k]) ? kAlongUnder : 0);
       return (known[k] & kAlongUnder) != 0;
     };
-    const auto roomy = [&](int k) { return clear(place(k)); };
+    const auto roomy = [&](int k) {
+      if (!(known[k] & kRoomKnown)) known[k] |= kRoomKnown | (clear(place(k)) ? kRoom : 0);
+      return (known[k] & kRoom) != 0;
+    };
     // The turn fully away is the fallback of every search below: it is taken to pass, so it is checked first. Its
     // samples along the step are measured only when a search may fall back on it.
     if (last.escapes) {
@@ -573,7 +576,7 @@ class AdaptivePlanner {
       best.turn = k;
       best.escapes = true;  // every turn the search keeps passed escapes(), the turn fully away too
     }
-    if (clear(best)) return best;
+    if (roomy(k)) return best;
     // No room there (where room is not a single span of turns): back toward the turn fully away.
     const double a_ok = turn_of(k);
     for (int j = 1; j <= 8; ++j) {
