@@ -11,6 +11,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/input_file.hpp"
+#include "rosmill/number_text.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -98,7 +99,8 @@ Tool read_tool(const YAML::Node& node, const std::string& source, size_t index) 
   const EntryReader e(node, where);
   Tool t;
   const double id = e.number("id", true, 0);
-  if (id < 1 || id != std::floor(id) || id > 1e6) e.fail("id", "must be a whole number >= 1");
+  if (id < 1 || id != std::floor(id) || id > kMaxToolNumber)
+    e.fail("id", "must be a whole number in [1, " + std::to_string(kMaxToolNumber) + "]");
   t.id = static_cast<int>(id);
   t.cutter = read_cutter(e);
   t.name = e.text("name", false, std::string(cutter_type_name(t.cutter.type)) + " " + e.text("diameter", true, ""));
@@ -158,9 +160,9 @@ ToolTable read_tool_table(const std::string& path) {
 
 Tool default_tool(const Cutter& cutter) {
   Tool t;
-  t.id = 0;
+  t.id = kNoToolNumber;
   t.cutter = cutter;
-  t.name = std::string(cutter_type_name(cutter.type)) + " " + std::to_string(cutter.diameter);
+  t.name = std::string(cutter_type_name(cutter.type)) + " " + shortest_text(cutter.diameter);
   const double d = cutter.diameter;
   t.stepover = (cutter.type == CutterType::FlatEnd ? 0.4 : 0.1) * d;
   t.stepdown = 0.5 * d;
@@ -170,15 +172,38 @@ Tool default_tool(const Cutter& cutter) {
   return t;
 }
 
-Tool resolve_tool(const std::string& spec, const ToolTable* table) {
+int parse_tool_number(const std::string& text, const std::string& where) {
+  const bool digits = !text.empty() && text.size() <= 5 && std::all_of(text.begin(), text.end(), [](unsigned char c) {
+    return std::isdigit(c);
+  });
+  const int n = digits ? std::stoi(text) : 0;
+  if (n < 1 || n > kMaxToolNumber)
+    throw Error(where, "tool number '" + text + "' must be a whole number in [1, " + std::to_string(kMaxToolNumber) +
+                           "]: the tool's pocket in the controller's tool table");
+  return n;
+}
+
+Tool resolve_tool(const std::string& spec, const ToolTable* table, const std::string& where) {
   const bool numeric = !spec.empty() && std::all_of(spec.begin(), spec.end(), [](unsigned char c) {
     return std::isdigit(c);
   });
   if (numeric && spec.size() <= 9) {
-    if (!table) throw Error("--tool", "tool id " + spec + " needs a tool table (--tools FILE)");
+    if (!table) throw Error(where, "tool id " + spec + " needs a tool table (--tools FILE)");
     return table->get(std::stoi(spec));
   }
-  return default_tool(parse_cutter_spec(spec, "--tool"));
+  const size_t at = spec.find('@');
+  Tool t = default_tool(parse_cutter_spec(spec.substr(0, at), where));
+  if (at != std::string::npos) t.id = parse_tool_number(spec.substr(at + 1), where);
+  return t;
+}
+
+std::string inline_tool_spec(const Cutter& c, int number) {
+  const auto text = [](double v) { return shortest_text(v); };
+  std::string spec = c.type == CutterType::BallEnd   ? "ball:" + text(c.diameter)
+                     : c.type == CutterType::FlatEnd ? "flat:" + text(c.diameter)
+                                                     : "bull:" + text(c.diameter) + ":" + text(c.corner_radius);
+  if (number != kNoToolNumber) spec += "@" + std::to_string(number);
+  return spec;
 }
 
 }  // namespace rosmill::core

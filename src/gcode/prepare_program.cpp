@@ -1,11 +1,35 @@
 #include "rosmill/gcode/prepare_program.hpp"
 
+#include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 
 namespace rosmill::core::gcode {
+namespace {
+
+// Every tool a program loads by its number in the controller's tool table: a tool without one would be written
+// T0 M6, which empties LinuxCNC's spindle, and G43 H0, no length offset; two cutters under one number would cut
+// with whichever the controller holds there.
+void require_tool_numbers(const Job& job) {
+  for (size_t t = 0; t < job.size(); ++t) {
+    const Tool& tool = job[t].tool;
+    const std::string which = "toolpath " + std::to_string(t + 1) + " (" + job[t].strategy + ")";
+    if (tool.id == kNoToolNumber)
+      throw Error(which, "its tool '" + (tool.name.empty() ? inline_tool_spec(tool.cutter, kNoToolNumber) : tool.name) +
+                             "' has no number in the controller's tool table: give it as " +
+                             inline_tool_spec(tool.cutter, kNoToolNumber) +
+                             "@N (N: its tool number), or name a tool of the tool table");
+    for (size_t u = 0; u < t; ++u)
+      if (job[u].tool.id == tool.id && !same_cutter(job[u].tool.cutter, tool.cutter))
+        throw Error(which, "tool T" + std::to_string(tool.id) + " is another cutter in toolpath " +
+                               std::to_string(u + 1) + ": one number, one tool");
+  }
+}
+
+}  // namespace
 
 PreparedProgram prepare_program(const Job& job, const PostOptions& post_options, const ProgramChecks& checks) {
   if (job.empty()) throw Error("job", "has no toolpath");
+  require_tool_numbers(job);
   PreparedProgram p;
   p.program = post(job, post_options);
   if (checks.machine) {

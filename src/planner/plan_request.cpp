@@ -2,12 +2,14 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "rosmill/cloud/cloud_surface.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/plan/kept_moves.hpp"
+#include "rosmill/plan/mesh_surface.hpp"
+#include "rosmill/plan/tool_body_surface.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 
 namespace rosmill::core {
@@ -55,7 +57,14 @@ Job run(const StrategyEntry& entry, const std::string& name, const PlanningReque
                 "needs a mesh (an STL file), got a " + std::string(r.input.cloud ? "cloud" : "surface"));
   check_plan_params(params);
   PlanReport report;
-  const StrategyCall call{entry.needs_mesh ? nullptr : &surface.get(), r.input.mesh, params, progress, &report};
+  // Every strategy keeps the tool's shank and holder out of the part as it keeps the cutter out; a finishing one out
+  // of the material a job's stock still holds too. Roughing removes that material level by level as it goes down,
+  // so the stock before it is no bound: the job sweeps its bodies through the stock as it cuts (body_collision.hpp).
+  std::optional<ToolBodySurface> body;
+  if (!entry.needs_mesh)
+    body.emplace(surface.get(), params.tool, entry.roughing ? nullptr : params.material, params.allowance);
+  const Surface* planned_on = !body ? nullptr : body->body_matters() ? &*body : &surface.get();
+  const StrategyCall call{planned_on, r.input.mesh, params, progress, &report};
   Job job = entry.function(call);
   // Rest machining: whatever the strategy, only where an earlier tool left rest material.
   if (params.material && params.material->keeps() && !entry.follows_material) {

@@ -130,15 +130,22 @@ class Reader {
       const long n = std::lround(t);
       if (t != n || n < 0) throw Error(reader_.where(), "bad tool number T" + std::to_string(t));
       if (!tools_.tools.count(static_cast<int>(n)))
-        throw Error(reader_.where(), "tool T" + std::to_string(n) + " is not in the tool table");
+        throw Error(reader_.where(), not_in_table(n));
     }
     if (b.has_m(6) && !b.has('T') && reader_.state().selected_tool < 0)
       throw Error(reader_.where(), "M6 without a T word before it");
   }
 
+  static std::string not_in_table(long n) {
+    const std::string t = std::to_string(n);
+    if (n == 0) return "tool T0 empties LinuxCNC's spindle: no tool is there to cut with";
+    return "tool T" + t + " is not in the tool table: give it as --tool CUTTER@" + t + " (or " + t +
+           "=CUTTER, e.g. flat:10@" + t + ") or in the table (--tools)";
+  }
+
   int tool_index(int number, const std::string& where) {
     auto it = tools_.tools.find(number);
-    if (it == tools_.tools.end()) throw Error(where, "tool T" + std::to_string(number) + " is not in the tool table");
+    if (it == tools_.tools.end()) throw Error(where, not_in_table(number));
     for (size_t i = 0; i < program_.tools.size(); ++i)
       if (program_.tools[i].id == number && (i > 0 || !tools_.loaded)) return static_cast<int>(i);
     Tool t = it->second;
@@ -198,8 +205,14 @@ ToolSetup tool_setup(const std::vector<std::string>& specs, const ToolTable* tab
   std::vector<int> defined;
   int loaded_number = -1;
   std::string loaded_spec;
-  for (const std::string& spec : specs) {
-    const std::string where = "--tool " + spec;
+  for (const std::string& given : specs) {
+    const std::string where = "--tool " + given;
+    // "CUTTER@N", as `rosmill plan --tool` takes an inline tool, is "N=CUTTER".
+    const size_t at = given.find('@');
+    const std::string spec = given.find('=') == std::string::npos && at != std::string::npos
+                                 ? std::to_string(parse_tool_number(given.substr(at + 1), where)) + "=" +
+                                       given.substr(0, at)
+                                 : given;
     const size_t eq = spec.find('=');
     std::string key = eq == std::string::npos ? spec : spec.substr(0, eq);
     if (!key.empty() && (key[0] == 'T' || key[0] == 't')) key = key.substr(1);

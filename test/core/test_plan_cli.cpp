@@ -179,3 +179,32 @@ TEST(PlanCli, PlaceRunsThePlanOnTheRegisteredPose) {
   EXPECT_NE(cloud.status, 0);
   EXPECT_NE(cloud.out.find("--place"), std::string::npos) << cloud.out;
 }
+
+// An inline tool carries its number in the controller's tool table: `flat:10@7` is written T7 M6 and G43 H7, never
+// T0 (which empties LinuxCNC's spindle), and `rosmill verify` reads the program back with the same spec. Without a
+// number no program is written, and the message says how to give one.
+TEST(PlanCli, InlineToolsAreWrittenWithTheirNumber) {
+  const std::string dir = ::testing::TempDir() + "rosmill_inline_tool_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  const std::string cavity = dir + "/cavity.stl", program = dir + "/a.ngc";
+  ASSERT_EQ(run_cli("primitive cavity -o " + cavity).status, 0);
+  const std::string plan = "plan " + cavity + " --strategy raster --stepover 4 --no-limits ";
+  CliRun r = run_cli(plan + "--tool flat:10 -o " + program);
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("has no number in the controller's tool table: give it as flat:10@N"), std::string::npos)
+      << r.out;
+  EXPECT_FALSE(std::filesystem::exists(program));
+  r = run_cli(plan + "--tool flat:10@7 -o " + program);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(program);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\nT7 M6\nG43 H7\n"), std::string::npos);
+  EXPECT_EQ(text.find("T0"), std::string::npos);
+  r = run_cli("verify " + cavity + " " + program + " --tool flat:10@7 --json");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(json::parse(r.out)["max_gouge_mm"], 0.0);
+  r = run_cli("verify " + cavity + " " + program + " --tool flat:10");
+  EXPECT_NE(r.status, 0);
+  EXPECT_NE(r.out.find("tool T7 is not in the tool table: give it as --tool CUTTER@7"), std::string::npos) << r.out;
+  std::filesystem::remove_all(dir);
+}

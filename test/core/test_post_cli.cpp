@@ -108,7 +108,7 @@ TEST_F(CliTest, PostWritesEachDialectWithArcsWithinTheMachine) {
 
 TEST_F(CliTest, PlanWritesGcodeWhenTheOutputIsAProgram) {
   ASSERT_EQ(rosmill("primitive cube -o " + path("cube.stl")).status, 0);
-  CliRun r = rosmill("plan " + path("cube.stl") + " --strategy contour --tool flat:6 --stepdown 20 -o " + path("cube.gcode"));
+  CliRun r = rosmill("plan " + path("cube.stl") + " --strategy contour --tool flat:6@5 --stepdown 20 -o " + path("cube.gcode"));
   ASSERT_EQ(r.status, 0) << r.err;
   const auto lines = gcode::read_program_lines(path("cube.gcode"));
   ASSERT_GT(lines.size(), 10u);
@@ -118,7 +118,7 @@ TEST_F(CliTest, PlanWritesGcodeWhenTheOutputIsAProgram) {
   EXPECT_TRUE(rs.ok) << rs.error;
   EXPECT_GT(rs.moves.size(), 8u);
   // The same with the GRBL dialect: a pause instead of M6.
-  r = rosmill("plan " + path("cube.stl") + " --strategy contour --tool flat:6 --stepdown 20 --dialect grbl -o " +
+  r = rosmill("plan " + path("cube.stl") + " --strategy contour --tool flat:6@5 --stepdown 20 --dialect grbl -o " +
               path("cube.nc"));
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string text = slurp(path("cube.nc"));

@@ -4,12 +4,13 @@
 
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
+#include "error_of.hpp"
 
 using namespace rosmill::core;
 
 namespace {
 
-std::string error_of(const std::string& yaml) {
+std::string table_error(const std::string& yaml) {
   try {
     parse_tool_table(yaml, "t.yaml");
   } catch (const Error& e) {
@@ -56,19 +57,19 @@ TEST(ToolTable, GoodEntryFields) {
 }
 
 TEST(ToolTable, ErrorsNameFileToolAndField) {
-  EXPECT_EQ(error_of(with("diameter: 8", "diameter: -8")), "t.yaml: tool 7: field 'diameter' must be > 0, got '-8'");
-  EXPECT_EQ(error_of(with("feed: 1400", "feed: fast")), "t.yaml: tool 7: field 'feed' is not a number, got 'fast'");
-  EXPECT_EQ(error_of(with("type: bull", "type: drill")), "t.yaml: tool 7: field 'type' must be flat, ball or bull, got 'drill'");
-  EXPECT_EQ(error_of(with("corner_radius: 1", "corner_radius: 5")),
+  EXPECT_EQ(table_error(with("diameter: 8", "diameter: -8")), "t.yaml: tool 7: field 'diameter' must be > 0, got '-8'");
+  EXPECT_EQ(table_error(with("feed: 1400", "feed: fast")), "t.yaml: tool 7: field 'feed' is not a number, got 'fast'");
+  EXPECT_EQ(table_error(with("type: bull", "type: drill")), "t.yaml: tool 7: field 'type' must be flat, ball or bull, got 'drill'");
+  EXPECT_EQ(table_error(with("corner_radius: 1", "corner_radius: 5")),
             "t.yaml: tool 7: field 'corner_radius' is larger than half the diameter");
-  EXPECT_EQ(error_of(with(", stepdown: 1.5", "")), "t.yaml: tool 7: field 'stepdown' is missing");
-  EXPECT_EQ(error_of(with("stepover: 2", "stepover: 20")), "t.yaml: tool 7: field 'stepover' is larger than the diameter");
-  EXPECT_EQ(error_of(with("name: bull", "nmae: bull")), "t.yaml: tool 7: unknown field 'nmae'");
-  EXPECT_EQ(error_of(with("id: 7", "id: 2.5")), "t.yaml: tool 2.5: field 'id' must be a whole number >= 1");
-  EXPECT_EQ(error_of(std::string(kGood) + std::string(kGood).substr(7)), "t.yaml: tool 7: field 'id' is used twice");
-  EXPECT_EQ(error_of("tools: []"), "t.yaml: 'tools' must be a non-empty list");
-  EXPECT_NE(error_of("tools: [ {id: 1").find("t.yaml:1: not valid YAML"), std::string::npos);
-  EXPECT_NE(error_of(with("type: bull, diameter: 8, corner_radius: 1", "type: ball, diameter: 8, corner_radius: 1"))
+  EXPECT_EQ(table_error(with(", stepdown: 1.5", "")), "t.yaml: tool 7: field 'stepdown' is missing");
+  EXPECT_EQ(table_error(with("stepover: 2", "stepover: 20")), "t.yaml: tool 7: field 'stepover' is larger than the diameter");
+  EXPECT_EQ(table_error(with("name: bull", "nmae: bull")), "t.yaml: tool 7: unknown field 'nmae'");
+  EXPECT_EQ(table_error(with("id: 7", "id: 2.5")), "t.yaml: tool 2.5: field 'id' must be a whole number in [1, 99999]");
+  EXPECT_EQ(table_error(std::string(kGood) + std::string(kGood).substr(7)), "t.yaml: tool 7: field 'id' is used twice");
+  EXPECT_EQ(table_error("tools: []"), "t.yaml: 'tools' must be a non-empty list");
+  EXPECT_NE(table_error("tools: [ {id: 1").find("t.yaml:1: not valid YAML"), std::string::npos);
+  EXPECT_NE(table_error(with("type: bull, diameter: 8, corner_radius: 1", "type: ball, diameter: 8, corner_radius: 1"))
                 .find("field 'corner_radius' must be half the diameter"),
             std::string::npos);
 }
@@ -82,4 +83,30 @@ TEST(ToolTable, ResolveSpecOrId) {
   EXPECT_DOUBLE_EQ(b.stepover, 0.6);
   EXPECT_THROW(resolve_tool("ball:x", &t), Error);
   EXPECT_THROW(read_tool_table("/nonexistent/tools.yaml"), Error);
+}
+
+// An inline tool carries its number in the controller's tool table after '@'; without one it has none (T0 on
+// LinuxCNC would empty the spindle), and the spec it reads back from names the same tool.
+TEST(ToolTable, InlineToolsCarryTheirNumber) {
+  EXPECT_EQ(resolve_tool("ball:6", nullptr).id, kNoToolNumber);
+  const Tool f = resolve_tool("flat:4@7", nullptr);
+  EXPECT_EQ(f.id, 7);
+  EXPECT_EQ(f.cutter.type, CutterType::FlatEnd);
+  EXPECT_DOUBLE_EQ(f.cutter.diameter, 4.0);
+  const Tool b = resolve_tool("bull:8:1.5@12", nullptr);
+  EXPECT_EQ(b.id, 12);
+  EXPECT_DOUBLE_EQ(b.cutter.corner_radius, 1.5);
+  EXPECT_EQ(inline_tool_spec(b.cutter, b.id), "bull:8:1.5@12");
+  EXPECT_EQ(inline_tool_spec(Cutter::ball(0.1), kNoToolNumber), "ball:0.1");
+  const Tool back = resolve_tool(inline_tool_spec(Cutter::flat(6.35), 3), nullptr);
+  EXPECT_EQ(back.id, 3);
+  EXPECT_EQ(back.cutter.diameter, 6.35);
+  EXPECT_EQ(error_of([] { resolve_tool("flat:4@0", nullptr); }),
+            "--tool: tool number '0' must be a whole number in [1, 99999]: the tool's pocket in the controller's "
+            "tool table");
+  EXPECT_THROW(resolve_tool("flat:4@", nullptr), Error);
+  EXPECT_THROW(resolve_tool("flat:4@x", nullptr), Error);
+  EXPECT_THROW(resolve_tool("flat:4@100000", nullptr), Error);
+  EXPECT_THROW(resolve_tool("flat:4@7@8", nullptr), Error);
+  EXPECT_THROW(resolve_tool("@7", nullptr), Error);
 }

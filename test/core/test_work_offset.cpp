@@ -205,7 +205,7 @@ TEST(WorkOffset, TheCliTakesNumbersOrARegistration) {
   std::filesystem::create_directories(dir);
   const std::string toolpath = dir + "/raster.json";
   ASSERT_EQ(run_rosmill("primitive cube -o " + dir + "/cube.stl").status, 0);
-  ASSERT_EQ(run_rosmill("plan " + dir + "/cube.stl --strategy raster --tool flat:6 -o " + toolpath).status, 0);
+  ASSERT_EQ(run_rosmill("plan " + dir + "/cube.stl --strategy raster --tool flat:6@5 -o " + toolpath).status, 0);
   const CliRun numbers =
       run_rosmill("post " + toolpath + " -o " + dir + "/a.ngc --work-offset 10,20,-20,3");
   ASSERT_EQ(numbers.status, 0) << numbers.err;

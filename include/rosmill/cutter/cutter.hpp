@@ -22,6 +22,11 @@ struct Cutter {
   static Cutter bull(double d, double r) { return {CutterType::BullNose, d, r, 4 * d, d}; }
 };
 
+// The same cutting shape (type, diameter, corner radius): what one tool number must always name.
+inline bool same_cutter(const Cutter& a, const Cutter& b) {
+  return a.type == b.type && a.diameter == b.diameter && a.corner_radius == b.corner_radius;
+}
+
 // A tool of the tool table (config/tools.yaml): a cutter plus how to run it.
 // Degrees of a cutter's circle in material in a straight side cut `ae` wide: acos(1 - ae / radius), 180 from a
 // cut of the whole diameter (a slot).

@@ -30,6 +30,7 @@ struct ToolSetup {
 
 // The tool table's tools (when given) and the command line's --tool specs on top of them:
 //   "N=CUTTER" or "TN=CUTTER"  defines tool N (CUTTER: ball:D, flat:D, bull:D:r; replaces the table's N)
+//   "CUTTER@N"                 the same, as `rosmill plan --tool` names an inline tool
 //   "CUTTER"                   the tool in the spindle at the start
 //   "N" or "TN"                tool N is in the spindle at the start
 // Throws Error naming the spec on a bad one, a tool defined twice, or two tools loaded at the start.
