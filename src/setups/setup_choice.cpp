@@ -192,9 +192,11 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
   const size_t n = r.candidates.size();
   r.candidate_area.assign(n, 0.0);
   r.candidate_refused.assign(n, "");
+  r.candidate_unfit.assign(n, 0);
   const ReachTool tool = reach_tool(o.tool);
   const Box3 stock = o.stock.empty() ? part.bbox : o.stock;
   std::vector<uint64_t> reached(s.size(), 0), fixture_blocked(s.size(), 0);
+  std::vector<uint8_t> reached_unfit(s.size(), 0);  // reached by a candidate that does not fit the machine
   uint64_t usable = 0;
   for (size_t c = 0; c < n; ++c) {
     const Candidate& cand = r.candidates[c];
@@ -203,15 +205,23 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
       continue;
     }
     const SetupFrame setup = direction_setup(cand.direction);
-    std::vector<Vec3> fixture;
-    if (o.fixture) {
-      try {
-        fixture = fixture::fixture_corners(fixture::place_fixture(*o.fixture, placed(stock, setup.placement),
-                                                                  "setup " + cand.name + " fixture"));
-      } catch (const Error& e) {
-        r.candidate_refused[c] = e.what();
-        continue;
-      }
+    const Box3 turned = placed(stock, setup.placement);
+    fixture::Fixture holding;
+    try {
+      holding = fixture::place_fixture(o.fixture.value_or(fixture::FixtureSpec{}), turned,
+                                    "setup " + cand.name + " fixture");
+    } catch (const Error& e) {
+      r.candidate_refused[c] = e.what();
+      continue;
+    }
+    const std::vector<Vec3> fixture = o.fixture ? fixture::fixture_corners(holding) : std::vector<Vec3>{};
+    const std::string misfit = o.machine ? machine_misfit(*o.machine, turned, holding) : "";
+    if (!misfit.empty()) {
+      r.candidate_refused[c] = misfit;
+      r.candidate_unfit[c] = 1;
+      const std::vector<Reach> reach = reach_along(part, s, setup, tool, fixture, o.max_angle_deg);
+      for (size_t k = 0; k < s.size(); ++k) reached_unfit[k] |= !held[k] && reach[k] == Reach::Reached;
+      continue;
     }
     usable |= uint64_t(1) << c;
     const std::vector<Reach> reach = reach_along(part, s, setup, tool, fixture, o.max_angle_deg);
@@ -286,12 +296,16 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
   }
   // What no chosen setup machines, by patch and reason.
   std::map<std::pair<uint32_t, std::string>, Unreached> places;
+  r.unmachined.assign(s.size(), Unmachined::No);
   for (size_t k = 0; k < s.size(); ++k) {
     if (r.machined_by[k] >= 0) continue;
-    const std::string reason = held[k]                              ? "held"
-                               : (fixture_blocked[k] & found.chosen) ? "fixture"
-                               : reached[k]                         ? "not chosen"
-                                                                    : "unreachable";
+    r.unmachined[k] = held[k]                              ? Unmachined::Held
+                      : (fixture_blocked[k] & found.chosen) ? Unmachined::Fixture
+                      : reached[k]                         ? Unmachined::NotChosen
+                      : reached_unfit[k]                   ? Unmachined::Machine
+                                                           : Unmachined::Unreachable;
+    static const char* const kReason[] = {"", "held", "fixture", "not chosen", "unreachable", "machine"};
+    const std::string reason = kReason[static_cast<int>(r.unmachined[k])];
     Unreached& u = places[{patch_of[k], reason}];
     u.patch = patch_of[k];
     u.reason = reason;

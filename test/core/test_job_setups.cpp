@@ -20,7 +20,7 @@
 #include "rosmill/setups/reach.hpp"
 #include "rosmill/testing/sanitized.hpp"
 #include "job_test_options.hpp"
-#include "swept_check.hpp"
+#include "rosmill/testing/swept_check.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::job;
@@ -86,10 +86,11 @@ TEST(JobSetups, CubeFromTheTopThenTheSideCutsOnlyWhatIsLeft) {
 }
 
 // A side setup held in a vise whose jaws stand 65 mm up the stock (90 mm high from -X, 15 mm over the cube all
-// round): the roughing keeps its cutter off the jaws, but at its deepest levels beside them its holder (32 mm
-// across, 40 mm above the tip) comes down onto one, and the job is refused naming the operation, the move and the
-// jaw. With the jaws gripping 5 mm the same job runs.
-TEST(JobSetups, AJawInTheHoldersWayIsRefusedAndLowerJawsRun) {
+// round): the roughing keeps its cutter off the jaws, and at its deepest levels beside them its holder (32 mm
+// across, 40 mm above the tip) too: those levels stop a holder's reach short of the jaws, where the stock stays
+// (the fixture check, which refuses a move into a jaw, has nothing to refuse). With the jaws gripping 5 mm the
+// same job cuts deeper there.
+TEST(JobSetups, TheHolderKeepsOffAHighJawAndLowerJawsLetItDeeper) {
   const std::string job =
       "part: primitive:cube\nstock: {box: {margin: 15}}\nsetups:\n"
       "  - direction: -X\n"
@@ -102,15 +103,16 @@ TEST(JobSetups, AJawInTheHoldersWayIsRefusedAndLowerJawsRun) {
     text.replace(text.find("GRIP"), 4, grip);
     return parse_job(text, "vise.yaml", ROSMILL_SOURCE_DIR);
   };
-  const std::string refused = error_of([&] { run_job(with("70", "65"), options()); });
-  EXPECT_NE(refused.find("vise.yaml:7 operations[0] (rough, setup -X): the holder enters the fixture's vise "),
-            std::string::npos)
-      << refused;
-  EXPECT_NE(refused.find(" jaw at move "), std::string::npos) << refused;
-  const JobReport r = run_job(with("25", "5"), options());
-  ASSERT_EQ(r.operations.size(), 1u);
-  EXPECT_GT(r.operations[0].moves, 0u);
-  EXPECT_EQ(r.gouge_mm, 0.0);
+  const JobReport high = run_job(with("70", "65"), options());
+  const JobReport low = run_job(with("25", "5"), options());
+  ASSERT_EQ(high.operations.size(), 1u);
+  ASSERT_EQ(low.operations.size(), 1u);
+  EXPECT_GT(high.operations[0].moves, 0u);
+  EXPECT_EQ(high.gouge_mm, 0.0);
+  EXPECT_EQ(low.gouge_mm, 0.0);
+  // The high jaws' top stands 25 mm under the stock's top: below 65 mm down the holder would meet them beside the
+  // stock, so that much of the 15 mm margin stays.
+  EXPECT_LT(high.operations[0].removed_mm3, low.operations[0].removed_mm3);
 }
 
 // The example job: the pocket part from its casting, top and four sides, each in a vise, the bottom held.
@@ -167,19 +169,19 @@ TEST(JobSetups, FieldsAreCheckedWithTheirLine) {
   auto error = [](const std::string& text) {
     return error_of([&] { parse_job("part: primitive:cube\n" + text, "job.yaml", ROSMILL_SOURCE_DIR); });
   };
-  const std::string ops = "    operations: [{strategy: rough, tool: flat:10}]\n";
+  const std::string ops = "    operations: [{strategy: rough, tool: flat:10@1}]\n";
   EXPECT_EQ(error("setups:\n  - direction: -X\n" + ops), "");
   EXPECT_EQ(error("setups:\n  - direction: [1, 1, 0]\n" + ops), "");
   EXPECT_NE(error("setups:\n  - direction: -W\n" + ops).find("job.yaml:3 setups[0].direction: expected +Z"),
             std::string::npos);
   EXPECT_NE(error("setups:\n  - direction: [0, 0, 0]\n" + ops).find("must not be zero"), std::string::npos);
-  EXPECT_NE(error("setups:\n  - {operations: [{strategy: rough, tool: flat:10}]}\n").find("direction: missing"),
+  EXPECT_NE(error("setups:\n  - {operations: [{strategy: rough, tool: flat:10@1}]}\n").find("direction: missing"),
             std::string::npos);
   EXPECT_NE(error("setups:\n  - direction: +Z\n").find("setups[0].operations: missing"), std::string::npos);
-  EXPECT_NE(error("setups:\n  - direction: +Z\n    operations: [{strategy: rough, tool: flat:10, setup: -X}]\n")
+  EXPECT_NE(error("setups:\n  - direction: +Z\n    operations: [{strategy: rough, tool: flat:10@1, setup: -X}]\n")
                 .find("setups[0].operations[0].setup: an operation of a job with setups runs in its setup"),
             std::string::npos);
-  EXPECT_NE(error("setups:\n  - direction: +Z\n" + ops + "operations: [{strategy: rough, tool: flat:10}]\n")
+  EXPECT_NE(error("setups:\n  - direction: +Z\n" + ops + "operations: [{strategy: rough, tool: flat:10@1}]\n")
                 .find("a job with setups gives each setup its operations"),
             std::string::npos);
   EXPECT_NE(error("setups:\n  - direction: +Z\n    datum: middle\n" + ops).find("setups[0].datum: expected top-centre"),
@@ -194,7 +196,7 @@ TEST(JobSetups, FieldsAreCheckedWithTheirLine) {
   EXPECT_NE(error("setups:\n  - direction: +Z\n    fixture: {boxes: [{min: [0, 0, 0], max: [1, 1, -1]}]}\n" + ops)
                 .find("must lie above min"),
             std::string::npos);
-  EXPECT_NE(error("held_face: -Z\noperations: [{strategy: rough, tool: flat:10}]\n").find("held_face: only a job with setups"),
+  EXPECT_NE(error("held_face: -Z\noperations: [{strategy: rough, tool: flat:10@1}]\n").find("held_face: only a job with setups"),
             std::string::npos);
   std::string seven = "setups:\n";
   for (int k = 0; k < 7; ++k) seven += "  - direction: +Z\n" + ops;
@@ -205,4 +207,29 @@ TEST(JobSetups, FieldsAreCheckedWithTheirLine) {
   const std::string wide = error_of([&] { run_job(narrow, options()); });
   EXPECT_NE(wide.find("job.yaml:3 setups[0] (-X) fixture.vise: the stock is 70 mm across the jaws"), std::string::npos)
       << wide;
+}
+
+// A bar 180 mm long, too long to stand on its end under the default machine's spindle: with `setups: auto` neither
+// end is a setup (the tip clearing the stock would rise above the Z travel). The blind hole in its +X end only an end
+// setup reaches, so the job is refused before anything is planned, naming the setups and why; a job that accepts
+// faces left unfinished runs the rest, and reports the hole as machined by no setup for the machine.
+TEST(JobSetups, ALongBarIsNotStoodOnItsEnd) {
+  const std::string dir = job_test::scratch("job_setups_long_bar");
+  const std::string job = "part: " ROSMILL_TEST_DATA "/parts/long_bar.stl\nstock: {box: {margin: 3}}\n"
+                          "setups: auto\nheld_face: -Z\nfixture: {vise: {opening: 200, clamp: y}}\n"
+                          "operations: [{name: rough, strategy: rough, tool: 1, stepover: 4, stepdown: 5, "
+                          "allowance: 0.5}]\n";
+  const std::string refused = error_of([&] { run_job(parse_job(job, "bar.yaml", dir), options()); });
+  EXPECT_NE(refused.find("bar.yaml setups: "), std::string::npos) << refused;
+  EXPECT_NE(refused.find("reached only by setups that do not fit the machine"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("+X: the stock stands 186.0 mm high in it"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("above linuxcnc-sim-mm's Z travel (101.6)"), std::string::npos) << refused;
+  const JobReport r = run_job(parse_job(job + "accept_unfinished: true\n", "bar.yaml", dir), options());
+  for (const SetupReport& s : r.setups) EXPECT_LT(std::abs(s.direction.x()), 0.5) << s.name;
+  double machine = 0;
+  for (const setups::Unreached& u : r.unreachable)
+    if (u.reason == "machine") machine += u.area;
+  // The hole's floor and wall: pi 4^2 + 10 x the 32-gon's perimeter of 8 mm across.
+  EXPECT_NEAR(machine, 16 * M_PI + 10 * 32 * 8 * std::sin(M_PI / 32), 6.0);
+  std::filesystem::remove_all(dir);
 }

@@ -271,3 +271,29 @@ TEST(SetupChoice, BadOptionsAreRefused) {
   o.directions = {Vec3(NAN, 0, 1)};
   EXPECT_THROW(choose(cube, o), Error);
 }
+
+// The room of the default machine (config/machine.yaml: LinuxCNC's 3-axis sim) for a stock in a vise: the tip's Z
+// travel ends at 101.6 over a table at -50, the X and Y travel at +-254.
+TEST(SetupChoice, AStockTooTallOrTooLongForTheMachineDoesNotFit) {
+  MachineRoom room;
+  room.travel = Box3::between(Vec3(-254, -254, -50.8), Vec3(254, 254, 101.6));
+  room.table_z = -50;
+  room.clearance = 5;
+  room.beyond = 11;
+  room.name = "linuxcnc-sim-mm";
+  fixture::FixtureSpec vise;
+  vise.kind = fixture::FixtureSpec::Kind::Vise;
+  const auto misfit = [&](const Vec3& size) {
+    const Box3 stock = Box3::between(Vec3::Zero(), size);
+    return machine_misfit(room, stock, fixture::place_fixture(vise, stock, "vise"));
+  };
+  // 44 mm high stands on the vise's seat (its floor and parallels, 30 + 20 mm) and clears with its 5 mm: z 49.
+  EXPECT_EQ(misfit(Vec3(100, 50, 44)), "");
+  // 183 mm high (a 178 mm part on its end): the tip would reach 188.
+  const std::string tall = misfit(Vec3(50, 40, 183));
+  EXPECT_NE(tall.find("machine z 188.0, above linuxcnc-sim-mm's Z travel (101.6)"), std::string::npos) << tall;
+  // 500 mm long along x: with the tools 11 mm beyond it, from -261 to 261.
+  const std::string along = misfit(Vec3(500, 40, 30));
+  EXPECT_NE(along.find("along x"), std::string::npos) << along;
+  EXPECT_NE(along.find("-261.0 to 261.0"), std::string::npos) << along;
+}

@@ -24,6 +24,18 @@
 
 namespace rosmill::core::setups {
 
+// The room a 3-axis machine has for a setup (machine coordinates, mm): the tool tip's travel, the table's top, where
+// the fixture stands on it, how high over the stock the programs' rapids run and how far past the stock's sides the
+// tools go. A candidate whose stock, standing in its fixture, would take the tip out of its travel is not a setup.
+struct MachineRoom {
+  Box3 travel;                       // the tip's soft limits
+  double table_z = 0;                // the table's top
+  Vec2 fixture_position = Vec2::Zero();  // the stock is centred over it
+  double clearance = 5;              // the rapids' height over the stock's top (the plans' safe clearance)
+  double beyond = 0;                 // how far the tools reach past the stock's sides (the largest tool's diameter)
+  std::string name;                  // the machine's, for messages
+};
+
 struct ChoiceOptions {
   Tool tool;                        // the tool whose reach counts (the finishing tool)
   double max_angle_deg = 90.0;
@@ -38,6 +50,7 @@ struct ChoiceOptions {
   double spacing = 0.0;             // between samples (mm); 0: about 40,000 samples over the part
   CandidateOptions candidates;
   std::vector<Vec3> directions;     // when given, the candidates instead of the axes, flats and EGI peaks
+  std::optional<MachineRoom> machine;  // when given, a candidate must fit it
   // false: every usable candidate is a setup (a job that names its setups): only who machines what is found.
   bool search = true;
   size_t exhaustive_limit = 16;
@@ -61,7 +74,8 @@ struct ChosenSetup {
 
 // Surface no chosen setup machines, per patch and reason: "held" (the face the part is held by), "fixture" (a
 // chosen setup's fixture stands in the way), "not chosen" (a candidate reaches it, but adds too little to be worth
-// a setup), "unreachable" (no candidate reaches it: an undercut, or deeper than the tool reaches).
+// a setup), "machine" (only candidates that do not fit the machine reach it), "unreachable" (no candidate reaches
+// it: an undercut, or deeper than the tool reaches).
 struct Unreached {
   uint32_t patch = 0;
   std::string reason;
@@ -69,16 +83,22 @@ struct Unreached {
   Vec3 centroid = Vec3::Zero(), normal = Vec3::Zero();
 };
 
+// Why a sample is machined by no chosen setup (Unreached's reasons, per sample).
+// Machine: only candidates that do not fit the machine reach it.
+enum class Unmachined : uint8_t { No, Held, Fixture, NotChosen, Unreachable, Machine };
+
 struct SetupChoice {
   std::vector<Candidate> candidates;
   std::vector<double> candidate_area;       // what each reaches alone (mm^2)
   std::vector<std::string> candidate_refused;  // why a candidate cannot be a setup (empty: it can)
+  std::vector<uint8_t> candidate_unfit;         // 1 where it was refused for not fitting the machine
   std::vector<ChosenSetup> setups;
   double total_area = 0, machined_area = 0, unreachable_area = 0;
   double best_cover = 0;      // what every usable candidate together covers under the rule (mm^2)
   std::vector<Unreached> unreachable;
   SurfaceSamples samples;
   std::vector<int> machined_by;  // per sample: the index into `setups` that machines it, -1 none
+  std::vector<Unmachined> unmachined;  // per sample: why none does (No where one does)
   std::vector<uint64_t> reached;  // per sample: bit c set when candidate c reaches it
   bool exhaustive = true;
   uint64_t subsets = 0;       // sets of setups compared
@@ -86,6 +106,11 @@ struct SetupChoice {
 };
 
 SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patches, const ChoiceOptions& options);
+
+// Why the stock, standing in `fixture` as placed for a setup (both in the setup's frame), does not fit the machine:
+// its tip would rise above its travel clearing them, or the tools would leave the table's travel beside them; empty
+// when it fits.
+std::string machine_misfit(const MachineRoom& room, const Box3& stock, const fixture::Fixture& fixture);
 
 // Per facet of the part, the chosen setup that machines most of its area (an index into `setups`), -1 for a facet no
 // setup machines: what a view colours the part by.
