@@ -47,7 +47,7 @@ void add_range(std::vector<Range>& ranges, double lo, double hi) {
 
 InProcessStock InProcessStock::box(const Box3& b, double resolution, size_t max_cells, const std::string& where) {
   if (!b.empty() && !(b.size().minCoeff() > 0)) throw Error(where, "the stock box has no volume");
-  return InProcessStock(box_dexels(b, stock_grid(b, resolution, max_cells, where)));
+  return InProcessStock(box_dexels(b, stock_grid(b, resolution, max_cells, where)), b);
 }
 
 InProcessStock InProcessStock::from_mesh(const Mesh& mesh, double resolution, size_t max_cells,
@@ -64,9 +64,93 @@ InProcessStock InProcessStock::from_cloud(const PointCloud& cloud, double table_
 }
 
 size_t InProcessStock::bytes() const {
-  size_t n = material_.bytes();
-  for (const Envelope& e : envelopes_) n += e.field.top.capacity() * sizeof(float);
+  size_t n = material_.bytes() + raw_.bytes();
+  for (const Envelope& e : envelopes_) n += e.field.top.capacity() * sizeof(float) + e.moves.bytes();
   return n;
+}
+
+bool InProcessStock::raw_at(const Vec3& p) const {
+  if (raw_box_) return (p.array() >= raw_box_->min.array()).all() && (p.array() <= raw_box_->max.array()).all();
+  const GridSpec& g = raw_.grid;
+  const double fi = std::floor((p.x() - g.x0) / g.cell), fj = std::floor((p.y() - g.y0) / g.cell);
+  if (!(fi >= 0 && fj >= 0 && fi < g.nx && fj < g.ny)) return false;
+  const size_t c = g.index(static_cast<int>(fi), static_cast<int>(fj));
+  for (const Span* s = raw_.begin(c); s != raw_.end(c); ++s)
+    if (p.z() >= s->lo && p.z() <= s->hi) return true;
+  return false;
+}
+
+bool InProcessStock::removed_at(const Vec3& p) const {
+  for (const Envelope& e : envelopes_) {
+    const Vec3 q = e.setup.to_setup_frame(p);
+    if (e.moves.removes(q.x(), q.y(), q.z())) return true;
+  }
+  return false;
+}
+
+bool InProcessStock::cut_near(const Vec3& p) const {
+  for (const Envelope& e : envelopes_) {
+    const Vec3 q = e.setup.to_setup_frame(p);
+    if (e.moves.comes_near(q.x(), q.y(), q.z())) return true;
+  }
+  return false;
+}
+
+double InProcessStock::near_distance() const { return kNearCut; }
+
+StockProbe::StockProbe(const InProcessStock& stock, double radius)
+    : stock_(stock), radius_(radius), moves_(stock.envelopes_.size()) {
+  if (!(radius > 0)) throw Error("stock probe", "the radius must be > 0 mm");
+}
+
+void StockProbe::aim(const Vec3& p) {
+  if ((p - centre_).norm() <= radius_) return;  // false for the first (NaN) centre too
+  centre_ = p;
+  for (size_t e = 0; e < moves_.size(); ++e) {
+    const InProcessStock::Envelope& env = stock_.envelopes_[e];
+    env.moves.gather(env.setup.to_setup_frame(p), radius_, moves_[e]);
+  }
+}
+
+bool StockProbe::removed_at(const Vec3& p) {
+  aim(p);
+  for (size_t e = 0; e < moves_.size(); ++e) {
+    const InProcessStock::Envelope& env = stock_.envelopes_[e];
+    const Vec3 q = env.setup.to_setup_frame(p);
+    if (env.moves.removes_among(moves_[e], q.x(), q.y(), q.z())) return true;
+  }
+  return false;
+}
+
+bool StockProbe::cut_near(const Vec3& p) {
+  aim(p);
+  for (size_t e = 0; e < moves_.size(); ++e) {
+    const InProcessStock::Envelope& env = stock_.envelopes_[e];
+    const Vec3 q = env.setup.to_setup_frame(p);
+    if (env.moves.comes_near_among(moves_[e], q.x(), q.y(), q.z())) return true;
+  }
+  return false;
+}
+
+double InProcessStock::raw_extent(const Vec3& p, const Vec3& d, double t_max) const {
+  Box3 box = raw_box_.value_or(Box3{});
+  if (!raw_box_) {
+    const GridSpec& g = raw_.grid;
+    box.add(Vec3(g.x0, g.y0, raw_.z_min));
+    box.add(Vec3(g.x0 + g.nx * g.cell, g.y0 + g.ny * g.cell, raw_.z_max));
+  }
+  double t0 = 0, t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (p[a] < box.min[a] || p[a] > box.max[a]) return 0;
+      continue;
+    }
+    double n = (box.min[a] - p[a]) / d[a], f = (box.max[a] - p[a]) / d[a];
+    if (n > f) std::swap(n, f);
+    t0 = std::max(t0, n);
+    t1 = std::min(t1, f);
+  }
+  return t0 > 0 || t1 < t0 ? 0.0 : t1;
 }
 
 Box3 InProcessStock::turned_bounds(const SetupFrame& setup) const {
@@ -111,6 +195,7 @@ InProcessStock::Envelope& InProcessStock::envelope_of(const SetupFrame& setup) {
   e.setup = setup;
   e.field.grid = setup_grid(setup);
   e.field.top.assign(e.field.grid.cells(), std::numeric_limits<float>::infinity());
+  e.moves = SweptMoves(e.field.grid);
   envelopes_.push_back(std::move(e));
   return envelopes_.back();
 }
@@ -231,6 +316,7 @@ RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupF
   o.mark_cutting_moves = true;
   const SimulationResult sim = simulate(program, work, o);
   Envelope& e = envelope_of(setup);
+  e.moves.add(program, o.arc_tolerance);
   for (size_t c = 0; c < work.top.size(); ++c)
     if (work.cut_by[c] != HeightField::kNoMove) {
       e.field.top[c] = std::min(e.field.top[c], work.top[c]);

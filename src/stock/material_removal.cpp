@@ -395,18 +395,17 @@ SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const 
   return result;
 }
 
-// The sweeper runs a band of every row over a program of one move, the move it is given: no pruning (the move
-// is linked to nothing), no trace, no threads.
+// The sweeper runs one band of every row over the program, its moves in order, pruned as simulate() prunes them.
 struct MoveSweeper::State {
-  MachineProgram one;
+  const MachineProgram& program;
   std::vector<CutterProfile> profiles;
   SimulationOptions options;
   HeightField& stock;
   BandSweep band;
-  State(const MachineProgram& program, HeightField& field, double arc_tolerance)
-      : one{program.tools, {CanonMove{}}, program.from_gcode, 0.0}, profiles(cutter_profiles(program)),
-        options(sweep_options(arc_tolerance)), stock(with_marks(field)),
-        band(one, profiles, options, field, nullptr, kInf, 0, std::max(0, field.grid.ny - 1)) {}
+  size_t next = 0;  // the move to sweep next
+  State(const MachineProgram& prog, HeightField& field, double arc_tolerance)
+      : program(prog), profiles(cutter_profiles(prog)), options(sweep_options(arc_tolerance)),
+        stock(with_marks(field)), band(prog, profiles, options, field, nullptr, kInf, 0, std::max(0, field.grid.ny - 1)) {}
   static std::vector<CutterProfile> cutter_profiles(const MachineProgram& program) {
     std::vector<CutterProfile> out;
     for (const Tool& tool : program.tools) out.emplace_back(tool.cutter);
@@ -420,9 +419,15 @@ struct MoveSweeper::State {
     SimulationOptions o;
     o.arc_tolerance = arc_tolerance;
     o.parallel = false;
-    o.prune = false;
     o.trace_finishing = false;
     return o;
+  }
+  // As simulate() links them (no finishing trace: every move counts as not finishing).
+  bool linked(size_t k) const {
+    if (k == 0 || k >= program.moves.size()) return false;
+    const CanonMove& p = program.moves[k - 1];
+    const CanonMove& m = program.moves[k];
+    return p.tool == m.tool && p.to == m.from;
   }
 };
 
@@ -431,12 +436,17 @@ MoveSweeper::MoveSweeper(const MachineProgram& program, HeightField& stock, doub
 
 MoveSweeper::~MoveSweeper() = default;
 
-size_t MoveSweeper::sweep(const CanonMove& move) {
-  if (state_->stock.grid.cells() == 0) return 0;
-  if (move.tool >= state_->profiles.size())
-    throw Error("program move " + std::to_string(move.source), "names a tool the program does not have");
-  state_->one.moves[0] = move;
-  return state_->band.move(0, false, false, false);
+size_t MoveSweeper::sweep(size_t k) {
+  State& s = *state_;
+  if (k != s.next)
+    throw Error("move sweeper", "asked for move " + std::to_string(k) + " where move " + std::to_string(s.next) +
+                                    " is next");
+  s.next = k + 1;
+  if (s.stock.grid.cells() == 0) return 0;
+  const CanonMove& m = s.program.moves[k];
+  if (m.tool >= s.profiles.size())
+    throw Error("program move " + std::to_string(m.source), "names a tool the program does not have");
+  return s.band.move(static_cast<uint32_t>(k), s.linked(k), s.linked(k + 1), false);
 }
 
 double lowest_bottom_reference(const CanonMove& move, const Cutter& cutter, double x, double y, int samples) {

@@ -14,6 +14,7 @@ namespace rosmill::core::verify {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
+constexpr double kInf = INFINITY;
 // A feed move whose XY travel is shorter than this (mm) goes along the tool axis: a plunge or a lift.
 constexpr double kAxialMove = 1e-6;
 
@@ -103,19 +104,23 @@ class Measurer {
       sin_.push_back(std::sin(theta));
     }
     length_by_count_.assign(bins_ + 1, 0.0);
+    x_.resize(bins_);
+    y_.resize(bins_);
+    lowest_.resize(bins_);
   }
 
   // Measures a move before it cuts; returns its largest engagement (degrees).
-  double move(const CanonMove& m) {
+  double move(size_t index) {
+    const CanonMove& m = program_.moves[index];
     if (m.rapid || !m.from_known() || (!recent_.empty() && recent_.oldest().move.tool != m.tool)) flush();
     if (m.rapid || !m.from_known()) {
-      sweeper_.sweep(m);
+      sweeper_.sweep(index);
       return 0;
     }
     const double along = xy_length(m);
     if (along < kAxialMove) {
       if (m.to.z() < m.from.z()) ++plunges_, plunge_mm_ += move_length(m);
-      recent_.add(m, path_);
+      recent_.add(m, index, path_);
       return 0;
     }
     const double length = move_length(m);
@@ -127,19 +132,19 @@ class Measurer {
     for (int i = 0; i < n; ++i) {
       const double s = (i + 0.5) / n;
       while (!recent_.empty() && recent_.oldest().end < path_ + s * along - lag) {
-        sweeper_.sweep(recent_.oldest().move);
+        sweeper_.sweep(recent_.oldest().index);
         recent_.drop_oldest();
       }
       most = std::max(most, sample(m, s, length / n, R));
     }
     path_ += along;
-    recent_.add(m, path_);
+    recent_.add(m, index, path_);
     return most * bin_deg_;
   }
 
   // Sweeps what the cells do not hold yet.
   void flush() {
-    for (; !recent_.empty(); recent_.drop_oldest()) sweeper_.sweep(recent_.oldest().move);
+    for (; !recent_.empty(); recent_.drop_oldest()) sweeper_.sweep(recent_.oldest().index);
   }
 
   void finish(EngagementReport& r) const {
@@ -168,15 +173,61 @@ class Measurer {
     // Strictly within the radius: the cutter's own circle is at R from where it is now.
     const double reach = R * (1 - 1e-9) - 1e-9;
     const double floor = p.z() + o_.floor_tolerance;
-    int count = 0;
+    int first = bins_, last = -1;
     for (int k = 0; k < bins_; ++k) {
       const double vx = u.x() * cos_[k] - u.y() * sin_[k], vy = u.x() * sin_[k] + u.y() * cos_[k];
-      const double x = p.x() + R * vx, y = p.y() + R * vy;
-      if (!(material_at(x, y) > floor)) continue;
-      count += std::min(recent_.lowest_within(x, y, reach), lowest_pass_within(m, s, x, y, reach)) > floor;
+      x_[k] = p.x() + R * vx, y_[k] = p.y() + R * vy;
+      lowest_[k] = material_at(x_[k], y_[k]) > floor ? kInf : -kInf;  // -infinity: no material, nothing to read
+      if (lowest_[k] > -kInf) first = std::min(first, k), last = k;
     }
+    if (last < 0) {
+      length_by_count_[0] += weight;
+      return 0;
+    }
+    for (const RecentPath::Piece& piece : recent_) lower(piece.move, 1.0, piece.disc, p, u, R, reach, first, last);
+    // A line's own path so far lies straight behind the cutter, farther than the radius from every point of its
+    // leading half; an arc's may curl into it.
+    if (m.is_arc()) lower(m, s, footprint(m), p, u, R, reach, first, last);
+    int count = 0;
+    for (int k = first; k <= last; ++k) count += lowest_[k] > floor;
     length_by_count_[count] += weight;
     return count;
+  }
+
+  // Lowers the directions' readings in bins [first, last] to where `move` (up to the fraction `until`) passed within
+  // reach of them. Only the bins whose points can lie within reach of the move's footprint are read: the point at
+  // direction v, p + R v, lies within reach + r of the footprint's centre c exactly when the angle between v and
+  // c - p is at most acos((|c - p|^2 + R^2 - (reach + r)^2) / (2 R |c - p|)) (the law of cosines). That range of
+  // angles, taken a turn back and on too, meets the leading half in at most two pieces; each is widened by a bin on
+  // either side so that rounding never drops a bin that the exact reading would lower.
+  void lower(const CanonMove& move, double until, const Footprint& disc, const Vec3& p, const Vec2& u, double R,
+             double reach, int first, int last) {
+    const Vec2 e = disc.centre - p.head<2>();
+    const double d = e.norm(), outer = reach + disc.radius + 1e-9;
+    double w = M_PI;  // every direction
+    if (d > 1e-9) {
+      const double cos_w = (d * d + R * R - outer * outer) / (2 * R * d);
+      if (cos_w >= 1) return;
+      if (cos_w > -1) w = std::acos(cos_w);
+    }
+    if (w >= M_PI - 1e-9) {
+      read(move, until, reach, first, last);
+      return;
+    }
+    const double phi = std::atan2(u.x() * e.y() - u.y() * e.x(), u.dot(e));  // from u towards c, anticlockwise
+    const double bin = bin_deg_ * kDeg;
+    for (int turn = -1; turn <= 1; ++turn) {
+      const double lo = phi - w + 2 * M_PI * turn + 0.5 * M_PI, hi = phi + w + 2 * M_PI * turn + 0.5 * M_PI;
+      if (hi < -bin || lo > M_PI + bin) continue;
+      read(move, until, reach, std::max(first, static_cast<int>(std::floor(lo / bin - 0.5)) - 1),
+           std::min(last, static_cast<int>(std::ceil(hi / bin - 0.5)) + 1));
+    }
+  }
+
+  void read(const CanonMove& move, double until, double reach, int first, int last) {
+    for (int k = first; k <= last; ++k)
+      if (lowest_[k] > -kInf) lowest_[k] = std::min(lowest_[k], lowest_pass_within(move, until, x_[k], y_[k],
+                                                                                     reach));
   }
 
   // The stock's top in the cell holding (x, y); -infinity outside the grid (no material there).
@@ -196,6 +247,7 @@ class Measurer {
   double bin_deg_ = 180;
   std::vector<double> cos_, sin_;
   std::vector<double> length_by_count_;  // feed length per number of engaged angle bins
+  std::vector<double> x_, y_, lowest_;   // per bin of the sample being read: its point, how low the path passed
   RecentPath recent_;
   double path_ = 0;  // XY length of the feed path so far
   double radial_mm_ = 0, plunge_mm_ = 0;
@@ -267,7 +319,7 @@ EngagementReport measure_engagement(const stock::MachineProgram& program, stock:
   const double before = volume(stock);
   Measurer measure(program, stock, options, step);
   r.move_deg.reserve(program.moves.size());
-  for (const CanonMove& m : program.moves) r.move_deg.push_back(static_cast<float>(measure.move(m)));
+  for (size_t k = 0; k < program.moves.size(); ++k) r.move_deg.push_back(static_cast<float>(measure.move(k)));
   measure.flush();
   measure.finish(r);
   r.removed_mm3 = std::max(0.0, before - volume(stock));

@@ -54,10 +54,10 @@ double lowest_pass_within(const CanonMove& move, double until, double x, double 
   return move.is_arc() ? arc_lowest(move, until, x, y, reach) : line_lowest(move, until, x, y, reach);
 }
 
-double RecentPath::lowest_within(double x, double y, double reach) const {
-  double lowest = kInf;
-  for (const Piece& p : pieces_) lowest = std::min(lowest, lowest_pass_within(p.move, 1.0, x, y, reach));
-  return lowest;
+Footprint footprint(const CanonMove& move) {
+  Vec2 lo, hi;
+  move_xy_bounds(move, lo, hi);
+  return {0.5 * (lo + hi), 0.5 * (hi - lo).norm()};
 }
 
 }  // namespace rosmill::core::verify

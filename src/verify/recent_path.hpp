@@ -14,18 +14,30 @@ namespace rosmill::core::verify {
 // within `reach` of (x, y) in XY; +infinity when none is. Lines (a plunge too) and XY arcs (z linear along them).
 double lowest_pass_within(const CanonMove& move, double until, double x, double y, double reach);
 
+// A disc in XY that holds every position of a move: a point farther than `reach` from the disc is farther than that
+// from the move, so a reader of many points can pass over the move for all of them at once.
+struct Footprint {
+  Vec2 centre = Vec2::Zero();
+  double radius = 0;
+};
+Footprint footprint(const CanonMove& move);
+
 class RecentPath {
  public:
   struct Piece {
     CanonMove move;
-    double end;  // the path's XY length at its end
+    size_t index;  // in its program
+    double end;    // the path's XY length at its end
+    Footprint disc;
   };
-  void add(const CanonMove& move, double end) { pieces_.push_back({move, end}); }
+  void add(const CanonMove& move, size_t index, double end) {
+    pieces_.push_back({move, index, end, footprint(move)});
+  }
   bool empty() const { return pieces_.empty(); }
   const Piece& oldest() const { return pieces_.front(); }
   void drop_oldest() { pieces_.pop_front(); }
-  // The lowest tip height of every piece held, within `reach` of (x, y); +infinity when none passed there.
-  double lowest_within(double x, double y, double reach) const;
+  auto begin() const { return pieces_.begin(); }
+  auto end() const { return pieces_.end(); }
 
  private:
   std::deque<Piece> pieces_;

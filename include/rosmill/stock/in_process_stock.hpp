@@ -7,9 +7,12 @@
 // the lowest cutter bottom over them; a point p is material when it is in the raw stock and, for every setup s,
 // (R_s p).z lies below envelope_s at (R_s p).xy. The dexels of that material (the raw stock clipped by every
 // envelope) are kept up to date, so volumes and views read them directly; each envelope keeps its own setup's
-// precision for the next program in that setup.
+// precision for the next program in that setup. The envelopes are sampled at their cells' centres; each setup's
+// moves are kept too (swept_moves.hpp), so that a point anywhere is answered exactly (material_at): what the
+// account of the material left on the part's faces measures with, walls and corners included.
 #pragma once
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +23,7 @@
 #include "rosmill/stock/height_field.hpp"
 #include "rosmill/stock/material_removal.hpp"
 #include "rosmill/stock/program.hpp"
+#include "rosmill/stock/swept_moves.hpp"
 
 namespace rosmill::core::stock {
 
@@ -74,6 +78,20 @@ class InProcessStock {
   // True when some material stands at or above z over the XY box [lo, hi] (the setup's frame).
   bool material_in(const Vec2& lo, const Vec2& hi, double z, const SetupFrame& setup = {}) const;
 
+  // Exact point queries (workpiece frame), thread-safe: whether p lies in the raw stock (a box exactly; a mesh or a
+  // scan as its dexel over p's cell), whether some setup's moves cut it away, and both: material.
+  bool raw_at(const Vec3& p) const;
+  bool removed_at(const Vec3& p) const;
+  bool material_at(const Vec3& p) const { return raw_at(p) && !removed_at(p); }
+  // Material at p farther than a few micrometres (the swept moves' near distance) from what was cut away: a sliver
+  // thinner than twice that (the facets of a hole leave an end mill one at each corner) is not.
+  bool solid_at(const Vec3& p) const { return raw_at(p) && !cut_near(p); }
+  bool cut_near(const Vec3& p) const;
+  double near_distance() const;
+  // The largest t in [0, t_max] with p + t * direction still in the raw stock's box (0 when p is outside it): how
+  // far a line can hold material at all.
+  double raw_extent(const Vec3& p, const Vec3& direction, double t_max) const;
+
   double volume() const { return material_.volume(); }  // mm^3
   const Dexels& material() const { return material_; }   // what is left, in the workpiece frame
   const GridSpec& grid() const { return material_.grid; }
@@ -81,11 +99,14 @@ class InProcessStock {
   size_t setups() const { return envelopes_.size(); }
 
  private:
+  friend class StockProbe;
   struct Envelope {
     SetupFrame setup;
     HeightField field;  // lowest cutter bottom per cell (+infinity where nothing passed)
+    SweptMoves moves;   // every move that made it, for exact queries between the cells' centres
   };
-  explicit InProcessStock(Dexels raw) : material_(std::move(raw)) {}
+  explicit InProcessStock(Dexels raw, std::optional<Box3> box = std::nullopt)
+      : material_(raw), raw_(std::move(raw)), raw_box_(box) {}
   size_t envelope_index(const SetupFrame& setup) const;  // envelopes_.size() when the setup has none
   Envelope& envelope_of(const SetupFrame& setup);
   const Envelope* envelope_if(const SetupFrame& setup) const;
@@ -95,7 +116,29 @@ class InProcessStock {
   void clip(const Envelope& e);
 
   Dexels material_;
+  Dexels raw_;                    // the raw stock, as it was read
+  std::optional<Box3> raw_box_;   // a box stock's own box (exact where its dexels round to their cells)
   std::vector<Envelope> envelopes_;
+};
+
+// The stock's exact point queries, many of them near one another (a line followed out from a face): each setup's
+// moves that can cut within `radius` of a place are gathered once (SweptMoves::gather), and a query within that
+// distance reads those alone; a query farther off gathers again around itself. It keeps its lists from query to
+// query: one per thread, over a stock that no longer changes.
+class StockProbe {
+ public:
+  StockProbe(const InProcessStock& stock, double radius);
+  bool removed_at(const Vec3& p);
+  bool cut_near(const Vec3& p);
+  bool material_at(const Vec3& p) { return stock_.raw_at(p) && !removed_at(p); }
+  bool solid_at(const Vec3& p) { return stock_.raw_at(p) && !cut_near(p); }
+
+ private:
+  void aim(const Vec3& p);
+  const InProcessStock& stock_;
+  double radius_;
+  Vec3 centre_ = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::vector<uint32_t>> moves_;  // per envelope: the moves that can cut near the centre
 };
 
 }  // namespace rosmill::core::stock

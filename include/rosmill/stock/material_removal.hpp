@@ -47,19 +47,21 @@ struct SimulationResult {
 SimulationResult simulate(const MachineProgram& program, HeightField& stock,
                           const SimulationOptions& options = {});
 
-// Sweeps moves one at a time, in the order the caller gives them, on the calling thread: for a caller that reads
-// the stock between moves (the engagement measurement) without simulate()'s per-call setup of bands and threads.
-// Each move is swept whole over its footprint, as SimulationOptions::prune = false does; no finishing trace.
-// `program` gives the tools (a move's `tool` indexes program.tools); `stock` must outlive the sweeper and keep its
-// size. Its cut_by marks the cells a move lowered with 0 (the sweeper knows no move numbers).
+// Sweeps a program's moves one at a time, in program order, on the calling thread: for a caller that reads the
+// stock between moves (the engagement measurement) without simulate()'s per-call setup of bands and threads. A move
+// that starts where the one before it ended, with the same tool, sweeps only the cells it can be the lowest over
+// (SimulationOptions::prune): the cells it leaves are the ones the move before or after it lowers at least as far,
+// so once both are swept the stock is as simulate() leaves it. No finishing trace. `program` and `stock` must
+// outlive the sweeper, and the stock keep its size; its cut_by records the index of the move that lowered a cell.
 class MoveSweeper {
  public:
   MoveSweeper(const MachineProgram& program, HeightField& stock, double arc_tolerance = 0.001);
   ~MoveSweeper();
   MoveSweeper(const MoveSweeper&) = delete;
   MoveSweeper& operator=(const MoveSweeper&) = delete;
-  // Lowers the stock under `move` (a move of the program or a piece of one); returns the cells it lowered.
-  size_t sweep(const CanonMove& move);
+  // Lowers the stock under move k of the program; k must be the move after the last one swept (Error if not).
+  // Returns the cells it lowered.
+  size_t sweep(size_t k);
 
  private:
   struct State;
