@@ -20,4 +20,8 @@ SweepHit CheckedSurface::sweep(const Cutter& cutter, const Vec3& a, const Vec3& 
   return c.depth > d.depth ? c : d;
 }
 
+// The check surface (a fixture) holds the cutter far beside the part too, but a waterline follows the part: its
+// contours of the check surface are cut off where its grid ends, and left open there (waterline.hpp).
+double CheckedSurface::held_reach() const { return drive_.held_reach(); }
+
 }  // namespace rosmill::core

@@ -72,6 +72,64 @@ Box3 MaterialTop::extent() const {
   return b;
 }
 
+namespace {
+
+// The highest of `in` within `w` cells of each cell of a row (van Herk and Gil-Werman's running maximum: blocks of
+// 2w + 1 cells, the maximum from each block's start and to its end, two lookups a cell).
+void running_max(const float* in, int n, int w, float* out, std::vector<float>& ahead, std::vector<float>& behind) {
+  const int k = 2 * w + 1;
+  ahead.resize(n);
+  behind.resize(n);
+  for (int b = 0; b < n; b += k) {
+    const int e = std::min(n, b + k);
+    ahead[b] = in[b];
+    for (int i = b + 1; i < e; ++i) ahead[i] = std::max(ahead[i - 1], in[i]);
+    behind[e - 1] = in[e - 1];
+    for (int i = e - 2; i >= b; --i) behind[i] = std::max(behind[i + 1], in[i]);
+  }
+  for (int i = 0; i < n; ++i) {
+    const int lo = std::max(0, i - w), hi = std::min(n - 1, i + w);
+    out[i] = lo / k == hi / k ? *std::max_element(in + lo, in + hi + 1) : std::max(behind[lo], ahead[hi]);
+  }
+}
+
+}  // namespace
+
+MaterialTop MaterialTop::highest_within(double reach) const {
+  const double r = reach / cell + M_SQRT1_2;  // in cells
+  const int pad = static_cast<int>(std::ceil(r)) + 1;
+  MaterialTop out;
+  out.cell = cell;
+  out.x0 = x0 - pad * cell;
+  out.y0 = y0 - pad * cell;
+  out.nx = nx + 2 * pad;
+  out.ny = ny + 2 * pad;
+  std::vector<float> standing(size_t(out.nx) * out.ny, -INFINITY);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      standing[size_t(j + pad) * out.nx + (i + pad)] = static_cast<float>(this->standing(size_t(j) * nx + i));
+  out.top.assign(standing.size(), -INFINITY);
+  std::vector<float> row(out.nx), ahead, behind;
+  const int rows = static_cast<int>(std::ceil(r));
+  for (int dy = -rows; dy <= rows; ++dy) {
+    const int w = static_cast<int>(std::floor(std::sqrt(std::max(0.0, r * r - double(dy) * dy))));
+    for (int j = 0; j < out.ny; ++j) {
+      const int src = j + dy;
+      if (src < 0 || src >= out.ny) continue;
+      running_max(standing.data() + size_t(src) * out.nx, out.nx, w, row.data(), ahead, behind);
+      float* o = out.top.data() + size_t(j) * out.nx;
+      for (int i = 0; i < out.nx; ++i) o[i] = std::max(o[i], row[i]);
+    }
+  }
+  return out;
+}
+
+double MaterialTop::top_at(const Vec2& p) const {
+  const double fi = std::floor((p.x() - x0) / cell), fj = std::floor((p.y() - y0) / cell);
+  if (!(fi >= 0 && fj >= 0 && fi < nx && fj < ny)) return -INFINITY;
+  return top[size_t(fj) * nx + size_t(fi)];
+}
+
 double MaterialTop::highest_along(const Vec2& a, const Vec2& b, double radius) const {
   double h = -INFINITY;
   cells_near(a, b, radius + cell, [&](size_t c, double) { h = std::max(h, standing(c)); });

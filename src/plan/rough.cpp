@@ -9,6 +9,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/plan/levels.hpp"
 #include "rosmill/plan/stock.hpp"
+#include "rosmill/plan/tool_body_surface.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -35,11 +36,14 @@ std::vector<std::pair<double, double>> material_spans(const SampledLine& line, d
   return spans;
 }
 
-// Free spans of a line at level z: unions of [s - half, s + half] over samples whose widened CL is <= z.
-std::vector<std::pair<double, double>> free_spans(const SampledLine& line, double z, double half) {
+// Free spans of a line at level z: unions of [s - half, s + half] over samples whose widened CL is <= z and where
+// no body of the tool meets the material (`blocked`).
+template <class Blocked>
+std::vector<std::pair<double, double>> free_spans(const SampledLine& line, double z, double half,
+                                                  const Blocked& blocked) {
   std::vector<std::pair<double, double>> spans;
   for (size_t i = 0; i < line.s.size(); ++i) {
-    if (line.h[i] > z) continue;
+    if (line.h[i] > z || blocked(line.origin + line.s[i] * line.dir)) continue;
     const double a = line.s[i] - half, b = line.s[i] + half;
     if (!spans.empty() && a <= spans.back().second + 1e-12) spans.back().second = b;
     else spans.emplace_back(a, b);
@@ -48,6 +52,31 @@ std::vector<std::pair<double, double>> free_spans(const SampledLine& line, doubl
   for (auto& sp : spans) sp.first = std::max(sp.first, line.s.front()), sp.second = std::min(sp.second, line.s.back());
   return spans;
 }
+
+// The tool's shank (where wider than its cutter) and holder over the material the levels so far left: each a map of
+// the highest material within its reach (its radius, the allowance and the bodies' clearance) and its height above
+// the tip. The part itself the surface keeps them off (tool_body_surface.hpp); the material is what the levels
+// above could not clear (beside the part's walls, the fixture, a corner), which a body comes down onto at a level
+// a stick-out below.
+struct BodyGuard {
+  std::vector<std::pair<MaterialTop, double>> bodies;
+
+  void at_level(const MaterialTop& left, const Tool& tool, double allowance, double z) {
+    bodies.clear();
+    const double top = left.highest();
+    const Cutter& c = tool.cutter;
+    const double radius[2] = {0.5 * c.shank_diameter, 0.5 * tool.holder_mm()};
+    const double height[2] = {c.flute_length, tool.stick_out_mm()};
+    for (int b = 0; b < 2; ++b)
+      if (radius[b] > c.radius() && top > z + height[b])
+        bodies.emplace_back(left.highest_within(radius[b] + allowance + kBodyClearance), height[b]);
+  }
+  bool blocked(const Vec2& p, double z) const {
+    for (const auto& [near, height] : bodies)
+      if (near.top_at(p) > z + height) return true;
+    return false;
+  }
+};
 
 // Ramps from (a, z_from) down to z along the piece a-b (back and forth), ending at a at height z.
 void ramp_in(MoveWriter& w, const Vec2& a, const Vec2& b, double z_from, double z, double slope) {
@@ -158,13 +187,15 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
     w.link_to(Vec3(a.x(), a.y(), at_z), over, std::max(under, at_z) + params.approach);
   };
   double above = f.stock.max.z();
+  BodyGuard guard;
   for (size_t li = 0; li < levels.size(); ++li) {
     const double z = levels[li];
     bool reverse = false, begun = !left;  // over a job's material a level that meets none has no pass at all
     if (begun) w.begin_pass("level z " + std::to_string(z));
+    if (left) guard.at_level(*left, params.tool, f.allowance, z);
     for (const SampledLine& L : lines) {
       if (L.s.empty()) continue;
-      auto spans = free_spans(L, z, half);
+      auto spans = free_spans(L, z, half, [&](const Vec2& p) { return guard.blocked(p, z); });
       std::vector<std::pair<double, double>> keep;
       if (reach) keep = reach->along(li, L.origin, L.dir, L.s.back());
       if (left) keep = material_spans(L, z, half, air_gap);

@@ -8,6 +8,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "rosmill/plan/levels.hpp"
 #include "rosmill/plan/raster.hpp"
 
 namespace rosmill::core {
@@ -25,7 +26,9 @@ struct HeightGrid {
 
 HeightGrid height_grid(const Surface& s, const PlanFrame& f, double step) {
   HeightGrid g;
-  const double reach = f.cutter.radius() + f.allowance + 2 * step;
+  // Beyond every place that can hold the cutter: a contour that ran off the grid would be closed by a chord
+  // across what holds it.
+  const double reach = f.cutter.radius() + f.allowance + s.held_reach() + 2 * step;
   g.step = step;
   g.x0 = f.part.min.x() - reach, g.y0 = f.part.min.y() - reach;
   g.nx = static_cast<int>(std::ceil((f.part.max.x() + reach - g.x0) / step)) + 1;
@@ -59,16 +62,20 @@ class LevelContour {
 
   // The chains of crossed grid edges are traced first; the crossings (a bisection each) and then the chords'
   // refinement are independent, and run on both cores.
-  std::vector<Loop> loops() {
+  std::vector<WallContour> contours() {
     link_cells();
     std::vector<uint64_t> edges;      // the chains one after another
     std::vector<size_t> first = {0};  // chain c is edges[first[c], first[c + 1])
-    trace_chains(edges, first);
+    std::vector<bool> closed;
+    trace_chains(edges, first, closed);
     std::vector<Vec3> points(edges.size());
     tbb::parallel_for(size_t(0), edges.size(), [&](size_t k) { points[k] = crossing(edges[k]); });
-    std::vector<Loop> out(first.size() - 1);
-    for (size_t c = 0; c + 1 < first.size(); ++c)
-      out[c] = refine(Loop(points.begin() + first[c], points.begin() + first[c + 1]));
+    std::vector<WallContour> out;
+    for (size_t c = 0; c + 1 < first.size(); ++c) {
+      const Loop chain(points.begin() + first[c], points.begin() + first[c + 1]);
+      const std::vector<WallContour> pieces = refine(chain, closed[c]);
+      out.insert(out.end(), pieces.begin(), pieces.end());
+    }
     return out;
   }
 
@@ -86,11 +93,12 @@ class LevelContour {
   }
   bool node_in(int i, int j) const { return material(g_.h[size_t(j) * g_.nx + i]); }
 
-  // Follows the links from each edge not yet used: one chain of edge ids per loop of three or more crossings.
-  void trace_chains(std::vector<uint64_t>& edges, std::vector<size_t>& first) const {
+  // Follows the links from each edge not yet used: one chain of edge ids per contour of three or more crossings.
+  // A chain that ends where the grid does (an edge with one neighbour) is traced from one of its ends and left open;
+  // every other closes on itself.
+  void trace_chains(std::vector<uint64_t>& edges, std::vector<size_t>& first, std::vector<bool>& closed) const {
     std::unordered_map<uint64_t, bool> used;
-    for (const auto& [edge, nb] : adj_) {
-      if (used.count(edge)) continue;
+    const auto trace = [&](uint64_t edge) {
       uint64_t prev = kNoEdge, cur = edge;
       while (cur != kNoEdge && !used.count(cur)) {
         used[cur] = true;
@@ -100,9 +108,13 @@ class LevelContour {
         prev = cur;
         cur = next;
       }
-      if (edges.size() - first.back() >= 3) first.push_back(edges.size());
+      if (edges.size() - first.back() >= 3) first.push_back(edges.size()), closed.push_back(cur == edge);
       else edges.resize(first.back());
-    }
+    };
+    for (const auto& [edge, nb] : adj_)
+      if (nb[1] == kNoEdge && !used.count(edge)) trace(edge);
+    for (const auto& [edge, nb] : adj_)
+      if (!used.count(edge)) trace(edge);
   }
 
   // Edge ids: 2k for the edge from node k to k + 1 (along x), 2k + 1 from k to k + nx (along y).
@@ -162,42 +174,74 @@ class LevelContour {
     return out;
   }
 
-  // Inserts contour points until every chord's midpoint is within half the tolerance of the contour.
-  Loop refine(const Loop& loop) const {
-    std::vector<Loop> inserted(loop.size());
-    tbb::parallel_for(size_t(0), loop.size(),
-                      [&](size_t i) { split(loop[i], loop[(i + 1) % loop.size()], 0, inserted[i]); });
-    Loop out;
+  // Inserts contour points until every chord's midpoint is within half the tolerance of the contour. A chord no
+  // point of which near its middle is clear (it crosses what holds the cutter, however far the search goes) breaks
+  // the contour there: the pieces are open.
+  std::vector<WallContour> refine(const Loop& loop, bool closed) const {
+    const size_t chords = closed ? loop.size() : loop.size() - 1;
+    std::vector<Loop> inserted(chords);
+    std::vector<char> broken(chords, 0);
+    tbb::parallel_for(size_t(0), chords, [&](size_t i) {
+      broken[i] = !split(loop[i], loop[(i + 1) % loop.size()], 0, inserted[i]);
+    });
+    std::vector<WallContour> out(1);
+    out.back().closed = closed;
     for (size_t i = 0; i < loop.size(); ++i) {
-      out.push_back(loop[i]);
-      out.insert(out.end(), inserted[i].begin(), inserted[i].end());
+      out.back().points.push_back(loop[i]);
+      if (i == chords) break;
+      if (!broken[i]) {
+        out.back().points.insert(out.back().points.end(), inserted[i].begin(), inserted[i].end());
+        continue;
+      }
+      out.emplace_back();  // the chord is not cut: the contour goes on from its other end
+      out.back().closed = false;
     }
-    drop_collinear(out);
+    // A closed contour broken somewhere is open from the break round to it: its last piece joins its first.
+    if (out.size() > 1 && closed) {
+      out.back().points.insert(out.back().points.end(), out.front().points.begin(), out.front().points.end());
+      out.erase(out.begin());
+      for (WallContour& c : out) c.closed = false;
+    }
+    for (WallContour& c : out) drop_collinear(c.points);
+    out.erase(std::remove_if(out.begin(), out.end(), [](const WallContour& c) { return c.points.size() < 2; }),
+              out.end());
     return out;
   }
 
-  void split(const Vec3& a, const Vec3& b, int depth, Loop& out) const {
+  // The chord a-b made to follow the contour within the tolerance (points inserted into `out`); false when its
+  // midpoint lies in what holds the cutter and no clear point is found across it within its own length.
+  bool split(const Vec3& a, const Vec3& b, int depth, Loop& out) const {
     const Vec2 d = b.head<2>() - a.head<2>();
     const double len = d.norm();
-    if (depth > 10 || len < f_.tolerance) return;
+    if (depth > 10 || len < f_.tolerance) return true;
     const Vec2 m = 0.5 * (a.head<2>() + b.head<2>());
     const Vec2 n(-d.y() / len, d.x() / len);
-    const double reach = std::min(0.5 * len, g_.step);
-    const Vec2 p = m - reach * n, q = m + reach * n;
-    LevelProbe& probe = probe_at(m, reach);
-    const bool p_in = material_at(probe, p), q_in = material_at(probe, q), m_in = material_at(probe, m);
+    double reach = std::min(0.5 * len, g_.step);
+    LevelProbe* probe = &probe_at(m, reach);
+    const bool m_in = material_at(*probe, m);
     Vec2 c;
-    if (m_in && !p_in) c = bisect(probe, m, p);
-    else if (m_in && !q_in) c = bisect(probe, m, q);
-    else if (!m_in && p_in) c = bisect(probe, p, m);
-    else if (!m_in && q_in) c = bisect(probe, q, m);
-    else return;
+    for (;;) {
+      const Vec2 p = m - reach * n, q = m + reach * n;
+      const bool p_in = material_at(*probe, p), q_in = material_at(*probe, q);
+      if (m_in && !p_in) c = bisect(*probe, m, p);
+      else if (m_in && !q_in) c = bisect(*probe, m, q);
+      else if (!m_in && p_in) c = bisect(*probe, p, m);
+      else if (!m_in && q_in) c = bisect(*probe, q, m);
+      else if (!m_in) return true;   // clear across its middle: the contour is farther than the chord could stray
+      else if (reach >= len) return false;  // deep in what holds the cutter
+      else {
+        reach = std::min(2 * reach, len);  // the contour is farther off: look further
+        probe = &probe_at(m, reach);
+        continue;
+      }
+      break;
+    }
     // A free midpoint close enough to the contour needs nothing; a midpoint in material always moves out.
-    if (!m_in && (c - m).norm() <= 0.5 * f_.tolerance) return;
+    if (!m_in && (c - m).norm() <= 0.5 * f_.tolerance) return true;
     const Vec3 cp(c.x(), c.y(), z_);
-    split(a, cp, depth + 1, out);
+    if (!split(a, cp, depth + 1, out)) return false;
     out.push_back(cp);
-    split(cp, b, depth + 1, out);
+    return split(cp, b, depth + 1, out);
   }
 
   const Surface& s_;
@@ -210,12 +254,13 @@ class LevelContour {
   std::unordered_map<uint64_t, std::array<uint64_t, 2>> adj_;
 };
 
-std::vector<double> default_levels(const PlanFrame& f, const HeightGrid& g) {
+// A level every step-down below the highest CL height, one at every flat face (plus the allowance) and one at the
+// part's floor: a wall's foot on a floor, a step or the table is cut by the level at that floor's height, not left
+// up to a step-down high between the levels above it.
+std::vector<double> default_levels(const Surface& s, const PlanFrame& f, const HeightGrid& g) {
   const double top = *std::max_element(g.h.begin(), g.h.end());
   const double floor = f.part.min.z() + f.allowance;
-  std::vector<double> levels;
-  for (double z = top - f.stepdown; z > floor + 1e-9; z -= f.stepdown) levels.push_back(z);
-  return levels;
+  return roughing_levels(top, floor, f.stepdown, flat_face_heights(s, f));
 }
 
 }  // namespace
@@ -230,7 +275,7 @@ WaterlineWalls::WaterlineWalls(const Surface& surface, const PlanParams& params,
   const double step = std::min(0.25 * f_.cutter.radius(), 0.5);
   // The grid's nodes are dropped once; each level walks every cell (about a tenth of a drop each) and bisects
   // where the contour crosses.
-  const double reach = 2 * (f_.cutter.radius() + f_.allowance + 2 * step);
+  const double reach = 2 * (f_.cutter.radius() + f_.allowance + surface.held_reach() + 2 * step);
   const double cells = step_count(f_.part.size().x() + reach, step) * step_count(f_.part.size().y() + reach, step);
   const double n_levels = levels > 0 ? double(levels) : step_count(f_.part.size().z(), f_.stepdown);
   check_plan_work("waterline", {cells * (1 + n_levels / 10), cells,
@@ -241,21 +286,31 @@ WaterlineWalls::WaterlineWalls(const Surface& surface, const PlanParams& params,
 
 WaterlineWalls::~WaterlineWalls() = default;
 
+std::vector<std::vector<WallContour>> WaterlineWalls::contours(const std::vector<double>& levels,
+                                                           const PlanProgress& progress, double from,
+                                                           double to) const {
+  std::vector<std::vector<WallContour>> out(levels.size());
+  parallel_blocks(levels.size(), progress, from, to,
+                  [&](size_t i) { out[i] = LevelContour(surface_, f_, grid_->g, levels[i]).contours(); });
+  return out;
+}
+
 std::vector<std::vector<Loop>> WaterlineWalls::loops(const std::vector<double>& levels, const PlanProgress& progress,
                                                      double from, double to) const {
+  const std::vector<std::vector<WallContour>> all = contours(levels, progress, from, to);
   std::vector<std::vector<Loop>> loops(levels.size());
-  parallel_blocks(levels.size(), progress, from, to,
-                  [&](size_t i) { loops[i] = LevelContour(surface_, f_, grid_->g, levels[i]).loops(); });
+  for (size_t i = 0; i < levels.size(); ++i)
+    for (const WallContour& c : all[i]) loops[i].push_back(c.points);
   return loops;
 }
 
-std::vector<double> WaterlineWalls::default_levels() const { return core::default_levels(f_, grid_->g); }
+std::vector<double> WaterlineWalls::default_levels() const { return core::default_levels(surface_, f_, grid_->g); }
 
 Job waterline_on(const Surface& surface, const PlanParams& params, const WaterlineOptions& options,
                  const PlanProgress& progress, std::vector<std::vector<Loop>>* loops_out) {
   const WaterlineWalls walls(surface, params, options.levels.size(), progress);
   const std::vector<double> levels = options.levels.empty() ? walls.default_levels() : options.levels;
-  std::vector<std::vector<Loop>> loops = walls.loops(levels, progress, 0.2, 0.95);
+  const std::vector<std::vector<WallContour>> contours = walls.contours(levels, progress, 0.2, 0.95);
 
   Toolpath tp;
   tp.strategy = "waterline";
@@ -263,14 +318,18 @@ Job waterline_on(const Surface& surface, const PlanParams& params, const Waterli
   MoveWriter w(tp, walls.frame());
   for (size_t i = 0; i < levels.size(); ++i) {
     w.begin_pass("z " + std::to_string(levels[i]));
-    for (const Loop& loop : loops[i]) {
-      w.enter(loop.front());
-      for (size_t k = 1; k < loop.size(); ++k) w.feed(loop[k]);
-      w.feed(loop.front());
+    for (const WallContour& c : contours[i]) {
+      w.enter(c.points.front());
+      for (size_t k = 1; k < c.points.size(); ++k) w.feed(c.points[k]);
+      if (c.closed) w.feed(c.points.front());
       w.retract();
     }
   }
-  if (loops_out) *loops_out = std::move(loops);
+  if (loops_out) {
+    loops_out->assign(levels.size(), {});
+    for (size_t i = 0; i < levels.size(); ++i)
+      for (const WallContour& c : contours[i]) (*loops_out)[i].push_back(c.points);
+  }
   check_cancel(progress, 1.0);
   return {tp};
 }

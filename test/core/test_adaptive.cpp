@@ -84,6 +84,7 @@ Mesh ring_groove_block(double S, double H, double outer, double inner, double de
 PlanParams flat(double diameter, double stepover, double stepdown, double allowance) {
   PlanParams p;
   p.tool = default_tool(Cutter{CutterType::FlatEnd, diameter, 0});
+  p.tool.id = 1;  // its number in the controller's table: a program loads it by that
   p.stepover = stepover;
   p.stepdown = stepdown;
   p.allowance = allowance;
@@ -191,7 +192,7 @@ TEST(Adaptive, CubeRoughingLeavesTheAllowanceAdaptiveAndZigzag) {
   for (const char* strategy : {"rough", "adaptive"}) {
     const job::JobSpec spec = job::parse_job(
         std::string("part: primitive:cube\nresolution: 0.5\noperations:\n  - {strategy: ") + strategy +
-            ", tool: flat:10, stepover: 4, stepdown: 3, allowance: 0.5}\n",
+            ", tool: flat:10@1, stepover: 4, stepdown: 3, allowance: 0.5}\n",
         "cube.yaml", ROSMILL_SOURCE_DIR);
     const job::JobReport r = job::run_job(spec, job_test::options());
     const job::OperationReport& op = r.operations.at(0);
@@ -366,8 +367,8 @@ TEST(Adaptive, RestAfterALargerToolTouchesOnlyWhatThatToolLeft) {
   const auto job_with = [](const std::string& rest) {
     return job::parse_job(
         "part: data/pocket.stl\nresolution: 0.5\nstock:\n  mesh: data/pocket_casting.stl\noperations:\n"
-        "  - {name: rough, strategy: adaptive, tool: flat:10, stepdown: 2, allowance: 0.5}\n"
-        "  - {name: rest, strategy: adaptive, tool: flat:6, stepdown: 2, allowance: 0.5" + rest + "}\n",
+        "  - {name: rough, strategy: adaptive, tool: flat:10@1, stepdown: 2, allowance: 0.5}\n"
+        "  - {name: rest, strategy: adaptive, tool: flat:6@5, stepdown: 2, allowance: 0.5" + rest + "}\n",
         "rest_adaptive.yaml", ROSMILL_SOURCE_DIR "/config/jobs");
   };
   const job::JobReport r = job::run_job(job_with(", rest: true, rest_threshold: 0.1"), job_test::options());

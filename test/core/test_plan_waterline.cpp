@@ -10,8 +10,10 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/plan/checked_surface.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/plan/waterline.hpp"
+#include "rosmill/testing/reference_drop.hpp"
 #include "rosmill/testing/sanitized.hpp"
 #include "test_plan_check.hpp"
 
@@ -180,4 +182,41 @@ TEST(PlanWaterline, LoopsOfTheMeshQuestionsEqualTheLoopsOfTheDrops) {
       std::printf("  %s z %.3f: %zu loops, Hausdorff distance %.3g mm\n", file, o.levels[i], fast[i].size(), h);
     }
   }
+}
+
+// What holds the cutter beyond the part (a check box, as a job's fixture is, reaching far past the grid the waterline
+// contours): its contour runs off the grid and stays open there, never closed by a chord across the box. Every feed
+// of the toolpath, sampled every 0.1 mm, keeps the cutter clear of the part and the box (the independent reference
+// over all their triangles). The 40 x 30 mm block stands in a frame 70 mm long beside it.
+TEST(PlanWaterline, AContourRunningOffTheGridIsLeftOpen) {
+  const Mesh block = build_mesh(box_corners(Box3::between(Vec3(0, 0, 0), Vec3(40, 30, 20))));
+  const Mesh frame = build_mesh(box_corners(Box3::between(Vec3(-30, 33, 0), Vec3(70, 40, 25))));
+  const MeshSurface part(block), check(frame);
+  const CheckedSurface both(part, check);
+  PlanParams p;
+  p.tool = default_tool(Cutter::flat(6));
+  WaterlineOptions o;
+  o.levels = {10.0};
+  std::vector<std::vector<Loop>> loops;
+  const Toolpath tp = waterline_on(both, p, o, {}, &loops).at(0);
+  ASSERT_FALSE(loops[0].empty());
+  std::vector<Vec3> corners = box_corners(Box3::between(Vec3(0, 0, 0), Vec3(40, 30, 20)));
+  const std::vector<Vec3> frame_corners = box_corners(Box3::between(Vec3(-30, 33, 0), Vec3(70, 40, 25)));
+  corners.insert(corners.end(), frame_corners.begin(), frame_corners.end());
+  const Mesh solids = build_mesh(corners);
+  Vec3 at = tp.start;
+  size_t checked = 0;
+  for (const ToolpathPass& pass : tp.passes)
+    for (const Move& m : pass.moves) {
+      if (m.type == MoveType::Feed && std::abs(m.to.z() - 10.0) < 1e-9 && std::abs(at.z() - 10.0) < 1e-9) {
+        const int n = std::max(1, static_cast<int>(std::ceil((m.to - at).norm() / 0.1)));
+        for (int k = 0; k <= n; ++k) {
+          const Vec3 q = at + (m.to - at) * (double(k) / n);
+          EXPECT_LE(reference_drop(p.tool.cutter, solids, q.x(), q.y()), 10.0 + 1e-6) << q.transpose();
+          ++checked;
+        }
+      }
+      at = m.to;
+    }
+  EXPECT_GT(checked, 1000u);
 }

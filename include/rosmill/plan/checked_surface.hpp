@@ -19,6 +19,7 @@ class CheckedSurface : public Surface {
   bool held_above(const Cutter& cutter, double x, double y, double z) const override;
   SweepHit sweep(const Cutter& cutter, const Vec3& a, const Vec3& b, double floor) const override;
   bool skips(double x, double y, double radius) const override { return drive_.skips(x, y, radius); }
+  double held_reach() const override;
 
  private:
   const Surface& drive_;

@@ -50,6 +50,13 @@ struct MaterialTop {
   // centre, and its neighbour's another half). -infinity when none.
   double highest_along(const Vec2& a, const Vec2& b, double radius) const;
   double highest_under(const Vec2& p, double radius) const { return highest_along(p, p, radius); }
+  // The same for every cell at once: a grid grown by the reach on every side whose cell holds the highest material
+  // (or fixture) of the cells within `reach` of its centre, each cell's material reaching half a diagonal beyond its
+  // own centre (the disc as rows, each row's running maximum in van Herk and Gil-Werman's two passes). What a body
+  // much wider than the cutter (a holder) asks at every sample of a level.
+  MaterialTop highest_within(double reach) const;
+  // The top of the cell holding p; -infinity outside the grid.
+  double top_at(const Vec2& p) const;
   // The same over the material an operation may remove (`cut`, else `top`).
   double highest_cut_under(const Vec2& p, double radius) const;
   // The lowest tip height at p at which a cutter (`radius`; lift(d): its bottom's height above the tip at distance d

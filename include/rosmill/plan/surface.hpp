@@ -56,6 +56,10 @@ class Surface {
   // True when a cutter footprint of `radius` at (x, y) reaches where the input says not to cut (a cloud's holes
   // under the Skip policy); strategies leave such positions out. The default: nowhere.
   virtual bool skips(double x, double y, double radius) const;
+  // How far beyond bounds() in XY, past the cutter's own radius, the surface may hold a cutter: 0 for a part alone;
+  // a fixture beside it, or a tool's holder wider than its cutter, reaches further. A strategy that contours
+  // where the cutter is held (a waterline) covers that much more, so that no contour runs off its grid.
+  virtual double held_reach() const { return 0.0; }
 };
 
 }  // namespace rosmill::core
