@@ -31,6 +31,36 @@ struct JobArgs {
 // A length as printed to three decimals, without a "-0.000" from rounding.
 double shown(double mm) { return std::abs(mm) < 5e-4 ? 0.0 : mm; }
 
+// The whole surface after the job: every face the job was to finish and left above its limit, with where, how
+// much and why.
+void print_surface(const job::JobReport& r) {
+  const job::SurfaceAccount& s = r.surface;
+  if (!s.done) return;
+  std::printf("faces: %zu to finish, %zu above their limit over %.1f mm2 (%zu surface samples, %.2f s)\n",
+              s.asked_faces, s.unfinished_faces, s.unfinished_area, s.samples, s.seconds);
+  for (const job::FaceLeft& f : s.faces) {
+    if (f.verdict != job::FaceVerdict::Above) continue;
+    const std::string setup = f.setup >= 0 ? "setup " + std::to_string(f.setup + 1) + " " + r.setups[f.setup].name
+                                           : "no setup";
+    std::printf("    face %u (%s, normal %.2f %.2f %.2f): %.1f of %.1f mm2 above %.3f mm, up to %.3f mm at %.2f %.2f "
+                "%.2f: %s\n",
+                f.face, setup.c_str(), shown(f.normal.x()), shown(f.normal.y()), shown(f.normal.z()), f.above_area,
+                f.area, f.limit, f.max_left_mm, f.most_at.x(), f.most_at.y(), f.most_at.z(),
+                job::reason_name(f.main_reason()));
+  }
+}
+
+// A job that leaves a face it was to finish above its limit fails (exit status 4) unless it accepts that.
+void refuse_unfinished(const job::JobReport& r) {
+  if (!r.unfinished()) return;
+  std::fprintf(stderr,
+               "rosmill: job: %zu faces it was to finish are left above their limit (%.1f mm2, up to %.3f mm): "
+               "the next tool would meet that material (give the job accept_unfinished: true to accept it); exit "
+               "status 4\n",
+               r.surface.unfinished_faces, r.surface.unfinished_area, r.surface.max_left_mm);
+  throw CLI::RuntimeError(4);
+}
+
 void run(const JobArgs& a) {
   const job::JobSpec spec = job::read_job(a.file);
   const ToolTable tools = read_tool_table(a.tools.empty() ? default_config("tools.yaml") : a.tools);
@@ -73,6 +103,7 @@ void run(const JobArgs& a) {
   }
   if (a.json) {
     std::printf("%s\n", job::to_json(r).dump().c_str());
+    refuse_unfinished(r);
     return;
   }
   std::printf("job %s: stock %.0f mm3 (model %.1f MB)\n", a.file.c_str(), r.stock_mm3, r.stock_bytes / 1e6);
@@ -111,9 +142,12 @@ void run(const JobArgs& a) {
     if (op.gouge_mm > 0)
       std::printf("    cuts %.3f mm below the design at toolpath move %u (the verifier)\n", op.gouge_mm, op.gouge_move);
   }
-  std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s, material left on the part "
+  std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s, material left on the %s "
               "%.3f to %.3f mm, deepest gouge (the verifier) %.3f mm\n",
-              r.removed_mm3, r.left_mm3, 100 * r.air_cut_share, r.time_s, r.min_left_mm, r.max_left_mm, r.gouge_mm);
+              r.removed_mm3, r.left_mm3, 100 * r.air_cut_share, r.time_s,
+              r.surface.asked_faces ? "faces it was to finish" : "part", shown(r.min_left_mm), shown(r.max_left_mm),
+              r.gouge_mm);
+  print_surface(r);
   if (r.program_check.done) {
     const job::JobReport::ProgramCheck& c = r.program_check;
     std::printf("3+2 program read back and simulated through its %zu indexings: deepest gouge %.3f mm%s, material "
@@ -121,6 +155,7 @@ void run(const JobArgs& a) {
                 c.runs, c.gouge_mm, c.gouge_line ? (" at line " + std::to_string(c.gouge_line)).c_str() : "",
                 c.min_left_mm, c.max_left_mm, c.left_mm3, c.seconds);
   }
+  refuse_unfinished(r);
 }
 
 CommandRegistration reg([](CLI::App& app) {

@@ -9,10 +9,22 @@ nlohmann::json vec(const Vec3& v) { return {v.x() + 0.0, v.y() + 0.0, v.z() + 0.
 
 nlohmann::json box(const Box3& b) { return {{"min", vec(b.min)}, {"max", vec(b.max)}}; }
 
+// A placement's 4x4 matrix, row-major: a point of its child frame in its parent's.
+nlohmann::json matrix(const Placement& p) {
+  nlohmann::json m = nlohmann::json::array();
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 4; ++k) m.push_back(p.pose.matrix()(i, k) + 0.0);
+  return m;
+}
+
 nlohmann::json operation_json(const OperationReport& r) {
+  const Cutter& c = r.tool_used.cutter;
   nlohmann::json o = {{"name", r.name},
                       {"strategy", r.strategy},
                       {"tool", r.tool},
+                      {"tool_number", r.tool_used.id},
+                      {"cutter", {{"type", cutter_type_name(c.type)}, {"diameter", c.diameter},
+                                  {"corner_radius", c.corner_radius}}},
                       {"setup", r.setup},
                       {"setup_index", r.setup_index},
                       {"moves", r.moves},
@@ -23,6 +35,9 @@ nlohmann::json operation_json(const OperationReport& r) {
                       {"removed_mm3", r.removed_mm3},
                       {"time_s", r.time_s},
                       {"plan_seconds", r.plan_seconds},
+                      {"engagement_seconds", r.engagement_seconds},
+                      {"remove_seconds", r.remove_seconds},
+                      {"verify_seconds", r.verify_seconds},
                       {"rapid_collision_line", r.collision_line},
                       {"min_left_mm", r.min_left_mm},
                       {"max_left_mm", r.max_left_mm},
@@ -49,6 +64,7 @@ nlohmann::json setup_json(const SetupReport& s) {
                       {"face_down", s.face_down},
                       {"datum", datum_name(s.datum)},
                       {"datum_point", vec(s.datum_point)},
+                      {"frame", matrix(s.frame.placement)},
                       {"stock", box(s.stock)},
                       {"fixture", {{"description", s.fixture.description}, {"seat", s.fixture.seat},
                                    {"boxes", fixture_boxes}}},
@@ -63,6 +79,37 @@ nlohmann::json setup_json(const SetupReport& s) {
   if (s.index) j["index"] = {{"a_deg", s.index->a}, {"c_deg", s.index->c}, {"indexing_s", s.indexing_s}};
   if (!s.program.empty()) j["program"] = s.program;
   return j;
+}
+
+nlohmann::json face_json(const FaceLeft& f) {
+  nlohmann::json j = {{"face", f.face},
+                      {"area", f.area},
+                      {"centroid", vec(f.centroid)},
+                      {"normal", vec(f.normal)},
+                      {"setup", f.setup},
+                      {"verdict", verdict_name(f.verdict)},
+                      {"min_left_mm", f.min_left_mm},
+                      {"max_left_mm", f.max_left_mm},
+                      {"most_at", vec(f.most_at)},
+                      {"least_at", vec(f.least_at)},
+                      {"facets", f.facets}};
+  if (f.verdict != FaceVerdict::NotAsked) j["allowance"] = f.allowance, j["limit"] = f.limit;
+  if (f.verdict == FaceVerdict::Above) {
+    nlohmann::json reasons = nlohmann::json::object();
+    for (int r = 0; r < kLeftReasons; ++r)
+      if (f.reason_area[r] > 0) reasons[reason_name(static_cast<LeftReason>(r))] = f.reason_area[r];
+    j["above"] = {{"area", f.above_area}, {"centroid", vec(f.above_centroid)},
+                  {"reason", reason_name(f.main_reason())}, {"reasons", reasons}};
+  }
+  return j;
+}
+
+nlohmann::json surface_json(const SurfaceAccount& a) {
+  nlohmann::json faces = nlohmann::json::array();
+  for (const FaceLeft& f : a.faces) faces.push_back(face_json(f));
+  return {{"samples", a.samples},         {"asked_faces", a.asked_faces},   {"min_left_mm", a.min_left_mm},
+          {"max_left_mm", a.max_left_mm}, {"unfinished_faces", a.unfinished_faces},
+          {"unfinished_area", a.unfinished_area}, {"seconds", a.seconds}, {"faces", faces}};
 }
 
 }  // namespace
@@ -85,6 +132,11 @@ nlohmann::json to_json(const JobReport& report) {
                       {"stock_bytes", report.stock_bytes},
                       {"cancelled", report.cancelled}};
   j["indexed"] = report.indexed;
+  if (report.surface.done) {
+    j["surface"] = surface_json(report.surface);
+    j["accept_unfinished"] = report.accept_unfinished;
+    j["unfinished"] = report.unfinished();
+  }
   if (report.workpiece_on_table)
     j["workpiece_on_table"] = {{"translation", vec(report.workpiece_on_table->pose.translation())}};
   if (report.program_check.done) {

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/input_file.hpp"
 #include "rosmill/gcode/work_offset.hpp"
@@ -43,6 +44,45 @@ StockSpec read_stock(const YAML::Node& node, const std::string& file, const std:
   return s;
 }
 
+// {number: 7, type: flat, diameter: 4} as the spec resolve_tool reads ("flat:4@7").
+std::string read_tool_mapping(const Fields& t) {
+  const double number = t.number("number", NAN, 1, kMaxToolNumber);
+  if (std::isnan(number))
+    throw Error(t.where("number"), "missing (required): the tool's number in the controller's tool table");
+  if (number != std::floor(number)) throw Error(t.where("number"), "must be a whole number");
+  const std::string type = t.text("type", "", true);
+  const double d = t.number("diameter", NAN, 1e-3, 500);
+  if (std::isnan(d)) throw Error(t.where("diameter"), "missing (required)");
+  const double r = t.number("corner_radius", NAN, 1e-3, 250);
+  if (type != "bull" && t.has("corner_radius"))
+    throw Error(t.where("corner_radius"), "only a bull nose (type: bull) has one");
+  Cutter c;
+  if (type == "flat") c = Cutter::flat(d);
+  else if (type == "ball") c = Cutter::ball(d);
+  else if (type != "bull") throw Error(t.where("type"), "must be flat, ball or bull, got '" + type + "'");
+  else if (std::isnan(r)) throw Error(t.where("corner_radius"), "missing (required for a bull nose)");
+  else if (r > 0.5 * d) throw Error(t.where("corner_radius"), "is larger than half the diameter");
+  else c = Cutter::bull(d, r);
+  return inline_tool_spec(c, static_cast<int>(number));
+}
+
+// An operation's tool: an id of the tool table, an inline cutter with its number ("flat:4@7"), or the same as a
+// mapping ({number: 7, type: flat, diameter: 4}, corner_radius for a bull nose). Every tool of a job is loaded by
+// its number, so an inline tool without one is refused here, before anything is planned.
+std::string read_operation_tool(const Fields& f, const std::string& file) {
+  if (!f.has("tool")) throw Error(f.where("tool"), "missing (required)");
+  const YAML::Node node = f.node("tool");
+  if (node.IsMap()) return read_tool_mapping(Fields(node, file, f.place("tool"), {"number", "type", "diameter",
+                                                                                   "corner_radius"}));
+  const std::string spec = f.text("tool", "", true);
+  const bool table_id = spec.find_first_not_of("0123456789") == std::string::npos;
+  if (!table_id && resolve_tool(spec, nullptr, f.where("tool")).id == kNoToolNumber)
+    throw Error(f.where("tool"), "'" + spec + "' has no number in the controller's tool table: write " + spec +
+                                     "@N (N: its tool number), a mapping {number: N, type: ..., diameter: ...}, or a "
+                                     "tool id of the tool table");
+  return spec;
+}
+
 // One operation at `place` ("operations[2]", "setups[1].operations[0]"). `first_on_box`: the first operation of
 // the job on a box stock, where no earlier one left rest material to keep to (a stock scanned after machining, or
 // a casting, may well start with one). `setup_field`: the older form, where an operation names its setup.
@@ -55,7 +95,7 @@ OperationSpec read_operation(const YAML::Node& node, const std::string& file, co
   op.line = node.Mark().line + 1;
   op.strategy = f.text("strategy", "", true);
   op.name = f.text("name", op.strategy);
-  op.tool = f.text("tool", "", true);
+  op.tool = read_operation_tool(f, file);
   op.stepover = f.number("stepover", NAN, 1e-3, 1000);
   op.stepdown = f.number("stepdown", NAN, 1e-3, 1000);
   op.allowance = f.number("allowance", 0.0, 0, 100);
@@ -164,9 +204,10 @@ JobSpec parse_job(const std::string& text, const std::string& name, const std::s
   }
   const Fields f(root, name, "",
                  {"part", "units", "resolution", "rapid_feed", "stock", "operations", "setups", "fixture", "datum",
-                  "overlap", "held_face", "auto"});
+                  "overlap", "held_face", "auto", "accept_unfinished"});
   JobSpec job;
   job.source = name;
+  job.accept_unfinished = f.flag("accept_unfinished", false);
   job.part = resolve(f.text("part", "", true), folder);
   if (job.part.rfind("primitive:", 0) != 0 && !file_exists(job.part, f.where("part")))
     throw Error(f.where("part"), "no file " + job.part);

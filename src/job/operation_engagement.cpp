@@ -31,9 +31,8 @@ stock::HeightField finer(const stock::HeightField& view, const stock::GridSpec& 
 
 }  // namespace
 
-verify::EngagementReport EngagementStock::measure(const stock::MachineProgram& program,
-                                                  const stock::InProcessStock& stock, const SetupFrame& frame,
-                                                  size_t setup_index) {
+void EngagementStock::prepare(const stock::MachineProgram& program, const stock::InProcessStock& stock,
+                              const SetupFrame& frame, size_t setup_index) {
   if (setup_ != setup_index) {
     const stock::HeightField view = stock.view(frame);
     const stock::GridSpec& g = view.grid;
@@ -42,6 +41,10 @@ verify::EngagementReport EngagementStock::measure(const stock::MachineProgram& p
     field_ = finer(view, verify::engagement_grid_over(lo, hi, verify::engagement_cell(program), defaults.max_cells));
     setup_ = setup_index;
   }
+}
+
+verify::EngagementReport EngagementStock::measure(const stock::MachineProgram& program) {
+  if (!setup_) throw Error("engagement", "measured before the stock was read");
   return verify::measure_engagement(program, field_);
 }
 

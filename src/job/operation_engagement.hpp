@@ -19,9 +19,12 @@ namespace rosmill::core::job {
 // stands where it was cut for the next one, not where the coarse cells put it.
 class EngagementStock {
  public:
+  // Reads the stock as it stands, seen from the setup, when the setup is new (its first operation, before that
+  // one cuts): from then on the measurement needs no more of the in-process stock.
+  void prepare(const stock::MachineProgram& program, const stock::InProcessStock& stock, const SetupFrame& frame,
+               size_t setup_index);
   // Measures `program` (in the setup's frame) against the stock before it and sweeps it through.
-  verify::EngagementReport measure(const stock::MachineProgram& program, const stock::InProcessStock& stock,
-                                   const SetupFrame& frame, size_t setup_index);
+  verify::EngagementReport measure(const stock::MachineProgram& program);
 
  private:
   std::optional<size_t> setup_;

@@ -11,13 +11,17 @@
 #include "job_setup.hpp"
 #include "operation_engagement.hpp"
 #include "rosmill/number_text.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/plan/plan_params.hpp"
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/segment/surface_patches.hpp"
+#include "rosmill/stock/body_collision.hpp"
 #include "rosmill/stock/fixture_collision.hpp"
+#include "rosmill/toolpath/move_place.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
 #include "rosmill/gcode/cycle_time.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
@@ -206,12 +210,11 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
   return plan(request);
 }
 
-// The operation's engagement against the stock before it; a roughing operation's feeds set from it (toolpaths and
-// program both), and its removal rate then timed by those feeds.
+// The operation's engagement against the stock before it (EngagementStock::prepare has read it); a roughing
+// operation's feeds set from it (toolpaths and program both), and its removal rate then timed by those feeds.
 void measure_operation(stock::MachineProgram& program, Job& toolpaths, EngagementStock& engagement,
-                       const stock::InProcessStock& stock, const SetupFrame& frame, const JobOptions& options,
-                       OperationReport& r) {
-  r.engagement = engagement.measure(program, stock, frame, r.setup_index);
+                       const JobOptions& options, OperationReport& r) {
+  r.engagement = engagement.measure(program);
   r.engagement_measured = true;
   if (r.roughing && options.feeds_from_engagement) {
     const double max_feed = options.checks.machine ? options.checks.machine->max_feed : 0.0;
@@ -222,6 +225,53 @@ void measure_operation(stock::MachineProgram& program, Job& toolpaths, Engagemen
   r.engagement.move_deg = {};
 }
 
+// Every operation runs the same stages, in order (as noether chains its planner and its modifiers):
+//   plan           the strategy on the stock as it stands (plan_operation)
+//   crash checks   the tool, its shank and its holder against the fixture; the shank and the holder against the
+//                  material the stock holds
+//   cut            side by side: the engagement against the stock before the cut and a roughing's feeds from it;
+//                  the moves removed from the stock; the verifier's sweep over a fresh height field of the part
+//   timing         the program as the post writes it, timed as the controller's planner runs it
+// A stage that finds a crash or a cut below the design refuses the job: no program is written.
+
+// The crash checks: a tool, shank or holder in the fixture, a shank or holder in the stock's material.
+void crash_checks(const stock::MachineProgram& program, const SetupReport& sr, const stock::InProcessStock& stock,
+                  const std::string& where) {
+  if (const auto hit = stock::first_fixture_collision(program, sr.fixture))
+    throw Error(where, hit->message() + " of its toolpaths: move the fixture, grip lower, or leave that area to "
+                                        "another setup");
+  if (const auto hit = stock::first_body_collision(program, stock, sr.frame))
+    throw Error(where, hit->message() + " of its toolpaths: a longer tool (stick_out), or leave that depth to "
+                                        "another setup");
+}
+
+// The cut: the feeds from the engagement, the removal and the verification, on both cores. The three read the
+// moves' geometry, which the feeds do not change; the engagement reads the stock before the removal changes it.
+stock::RemovalReport cut(stock::MachineProgram& program, Job& toolpaths, const JobSetup& setup,
+                         stock::InProcessStock& stock, EngagementStock& engagement, const JobOptions& options,
+                         double resolution, OperationReport& r) {
+  const SetupFrame& frame = setup.report.frame;
+  const bool measure = options.measure_engagement && !program.moves.empty();
+  if (measure) engagement.prepare(program, stock, frame, r.setup_index);
+  const stock::MachineProgram geometry = program;
+  stock::RemovalReport removal;
+  run_both(
+      [&] {
+        const auto t0 = std::chrono::steady_clock::now();
+        if (measure) measure_operation(program, toolpaths, engagement, options, r);
+        r.engagement_seconds = since(t0);
+      },
+      [&] {
+        run_both([&] { removal = stock.remove(geometry, frame); },
+                 [&] {
+                   const auto t0 = std::chrono::steady_clock::now();
+                   std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(setup, geometry, resolution);
+                   r.verify_seconds = since(t0);
+                 });
+      });
+  return removal;
+}
+
 // The job's setups: as the job names them, or chosen from the segmentation; and who finishes which faces.
 struct Setups {
   std::vector<SetupSpec> specs;
@@ -229,6 +279,38 @@ struct Setups {
   std::optional<setups::SetupChoice> faces;
   std::vector<int> chosen;  // per setup, its index in faces->setups (-1: it finishes no face)
 };
+
+// The room the job's machine has for a setup clamped on its table (none for a trunnion, whose setups turn the part
+// in one clamping, or without a machine).
+std::optional<setups::MachineRoom> machine_room(const std::vector<OperationSpec>& operations,
+                                                const JobOptions& options) {
+  const std::optional<gcode::MachineLimits>& m = options.checks.machine;
+  if (!m || m->trunnion) return std::nullopt;
+  setups::MachineRoom room;
+  room.name = m->name;
+  room.travel = m->envelope;
+  room.table_z = m->table_z;
+  room.fixture_position = m->fixture_position;
+  room.clearance = PlanParams{}.safe_clearance;
+  for (const OperationSpec& op : operations)  // adaptive clearing works up to 2R + 1 past the stock
+    room.beyond = std::max(room.beyond, resolve_tool(op.tool, options.tools).cutter.diameter + 1.0);
+  return room;
+}
+
+// A job whose surface some setup is needed for, and whose every such setup does not fit the machine, is refused
+// before anything is planned (unless it accepts faces left unfinished).
+void refuse_unfit(const JobSpec& job, const setups::SetupChoice& choice) {
+  double lost = 0;
+  for (size_t k = 0; k < choice.samples.size(); ++k)
+    if (choice.unmachined[k] == setups::Unmachined::Machine) lost += choice.samples.weights[k];
+  if (job.accept_unfinished || lost <= job.auto_options.min_gain * choice.total_area) return;
+  std::string why;
+  for (size_t c = 0; c < choice.candidates.size(); ++c)
+    if (choice.candidate_unfit[c]) why += "; " + choice.candidates[c].name + ": " + choice.candidate_refused[c];
+  throw Error(job.source + " setups",
+              decimal_text(lost, 1) + " mm2 of the part are reached only by setups that do not fit the machine" + why +
+                  " (a smaller fixture or stock, another machine, or accept_unfinished: true to machine the rest)");
+}
 
 Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProcessStock& stock,
                       const JobOptions& options) {
@@ -247,6 +329,7 @@ Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProce
   o.min_gain_share = job.auto_options.min_gain;
   o.held_face = job.auto_options.held_face;
   o.stock = stock.bounds_in(SetupFrame{});
+  if (job.auto_setups) o.machine = machine_room(job.operations, options);
   if (job.auto_setups && job.setup_defaults.fixture.kind != fixture::FixtureSpec::Kind::None)
     o.fixture = job.setup_defaults.fixture;
   if (!job.auto_setups) {
@@ -262,6 +345,7 @@ Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProce
     return out;
   }
   if (out.faces->setups.empty()) throw Error(job.source + " setups", "no candidate setup reaches the part");
+  refuse_unfit(job, *out.faces);
   if (out.faces->setups.size() > size_t(gcode::kWorkOffsets))
     throw Error(job.source + " setups", std::to_string(out.faces->setups.size()) +
                                            " setups chosen, more than the six work offsets (G54..G59)");
@@ -279,6 +363,28 @@ Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProce
     out.specs.push_back(s);
   }
   return out;
+}
+
+// Every operation's tool resolved before anything is planned: one number is one cutter in all of the job's
+// programs (a tool of the table and an inline tool with its number must not share one).
+void check_tool_numbers(const std::vector<OperationSpec>& operations, const JobOptions& options,
+                        const std::string& source) {
+  std::vector<std::pair<Tool, size_t>> seen;
+  for (size_t k = 0; k < operations.size(); ++k) {
+    const std::string where = source + ":" + std::to_string(operations[k].line) + " operations[" +
+                              std::to_string(k) + "].tool";
+    Tool t;
+    try {
+      t = resolve_tool(operations[k].tool, options.tools, where);
+    } catch (const Error& e) {
+      throw Error(where, e.what());
+    }
+    for (const auto& [other, at] : seen)
+      if (other.id == t.id && !same_cutter(other.cutter, t.cutter))
+        throw Error(where, "tool T" + std::to_string(t.id) + " is another cutter in operations[" + std::to_string(at) +
+                               "] (" + operations[at].tool + "): one number, one tool");
+    seen.emplace_back(t, k);
+  }
 }
 
 std::string setup_note(const SetupReport& s, size_t index) {
@@ -365,6 +471,54 @@ void check_indexed_program(const JobSpec& job, const machine::Trunnion& trunnion
   c.seconds = v.seconds;
 }
 
+// Who machines which sample, for a job that did not choose its setups by faces (the older form, every operation
+// over the whole part): each of its setups' directions is a candidate, and reaches what it reaches.
+setups::SetupChoice reach_of_setups(const JobSpec& job, const Mesh& part, const JobReport& report,
+                                    const JobOptions& options, const Box3& raw_box) {
+  setups::ChoiceOptions o;
+  o.tool = resolve_tool(job.operations.back().tool, options.tools);
+  o.search = false;
+  o.stock = raw_box;
+  for (const SetupReport& s : report.setups) o.directions.push_back(s.direction);
+  return setups::choose_setups(part, segment::segment_surface(part), o);
+}
+
+// The material left on the whole part after the job (surface_account.hpp).
+SurfaceAccount account_of_job(const JobSpec& job, const std::vector<OperationSpec>& operations, const Setups& setups,
+                              const Mesh& part, const stock::InProcessStock& stock, const JobReport& report,
+                              const JobOptions& options, const Box3& raw_box) {
+  std::optional<setups::SetupChoice> own;
+  if (!setups.faces) own = reach_of_setups(job, part, report, options, raw_box);
+  const setups::SetupChoice& choice = setups.faces ? *setups.faces : *own;
+  AccountInput in;
+  in.part = &part;
+  in.stock = &stock;
+  in.choice = &choice;
+  in.whole_part = job.auto_setups;
+  in.job_setup.assign(choice.setups.size(), -1);
+  for (size_t j = 0; j < report.setups.size(); ++j) {
+    const int c = setups.faces ? setups.chosen[j] : int(j);
+    if (c >= 0 && size_t(c) < choice.setups.size()) in.job_setup[size_t(c)] = int(j);
+    in.setups.push_back({report.setups[j].frame, report.setups[j].fixture});
+  }
+  for (size_t k = 0; k < report.operations.size(); ++k) {
+    const OperationReport& r = report.operations[k];
+    const OperationSpec& spec = operations[k];
+    AccountOperation op;
+    op.setup = r.setup_index;
+    op.finishing = !r.roughing;
+    op.tool = r.tool_used;
+    op.allowance = spec.allowance;
+    op.tolerance = std::isnan(spec.tolerance) ? kDefaultTolerance : spec.tolerance;
+    op.scallop = nominal_scallop(op.tool.cutter, spec.strategy, std::isnan(spec.stepover) ? op.tool.stepover
+                                                                                          : spec.stepover,
+                                 std::isnan(spec.stepdown) ? op.tool.stepdown : spec.stepdown);
+    in.operations.push_back(op);
+  }
+  in.march_step = std::max(0.05, 0.5 * job.resolution);
+  return account_surface(in);
+}
+
 }  // namespace
 
 Mesh read_part(const JobSpec& job) { return read_mesh(job.part, job.units); }
@@ -395,6 +549,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   JobReport report;
   report.stock_mm3 = stock.volume();
   report.stock_box = raw_box;
+  check_tool_numbers(job.operations, options, job.source);
   const Setups setups = resolve_setups(job, part, stock, options);
   if (options.operations_known) options.operations_known(setups.operations);
   // A registration places the part as it sits: the setup whose datum is the part's own origin (the others' fixtures
@@ -479,13 +634,9 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     if (sr.index)
       for (Toolpath& tp : toolpaths) tp.indexed = true, tp.a = sr.index->a, tp.c = sr.index->c;
     stock::MachineProgram program = stock::program_from_job(toolpaths);
-    // The tool, its shank or its holder in the fixture is a crash: no program of this job is written.
-    if (const auto hit = stock::first_fixture_collision(program, sr.fixture))
-      throw Error(where + " (" + op.name + ", setup " + sr.name + ")",
-                  hit->message() + " of its toolpaths: move the fixture, grip lower, or leave that area to another setup");
-    if (options.measure_engagement && !program.moves.empty())
-      measure_operation(program, toolpaths, engagement, stock, sr.frame, options, r);
-    const stock::RemovalReport removal = stock.remove(program, sr.frame);
+    const std::string named = where + " (" + op.name + ", setup " + sr.name + ")";
+    crash_checks(program, sr, stock, named);
+    const stock::RemovalReport removal = cut(program, toolpaths, *setup, stock, engagement, options, job.resolution, r);
     // A rapid through material is a crash: no program of this job is written.
     if (removal.collided())
       throw Error(where, "a rapid runs into the stock at toolpath move " + std::to_string(removal.first_rapid_source) +
@@ -500,13 +651,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     r.remove_seconds = removal.seconds;
     const stock::HeightField after = stock.view(sr.frame);
     std::tie(r.min_left_mm, r.max_left_mm) = material_left(*setup, after);
-    std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(*setup, program, job.resolution);
     // A cut into the design, as the independent simulation finds it, is a defect of the plan, never a figure to
     // report beside a program: no program of this job is written.
     if (r.gouge_mm > 0)
-      throw Error(where + " (" + op.name + ", setup " + sr.name + ")",
-                  "the verifier finds the cutter " + decimal_text(r.gouge_mm, 3) + " mm below the design at toolpath move " +
-                      std::to_string(r.gouge_move) + ": no program is written");
+      throw Error(named,
+                  "the verifier finds the cutter " + decimal_text(r.gouge_mm, 3) + " mm below the design at toolpath " +
+                      move_place(toolpaths, r.gouge_move) + " (setup frame, mm): no program is written");
     for (const Toolpath& tp : toolpaths) {
       const ToolpathStats s = toolpath_stats(tp);
       r.cutting_mm += s.cutting_length;
@@ -540,7 +690,6 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     air_mm += removal.air_feed_mm;
     report.removed_mm3 += r.removed_mm3;
     report.time_s += r.time_s;
-    report.min_left_mm = std::min(report.min_left_mm, r.min_left_mm);
     report.gouge_mm = std::max(report.gouge_mm, r.gouge_mm);
     report.setups.back().operations.push_back(report.operations.size());
     report.setups.back().time_s += r.time_s;
@@ -559,7 +708,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
       check_indexed_program(job, *trunnion, part, stock_mesh ? &*stock_mesh : nullptr, raw_box, planned, report);
   }
   report.left_mm3 = stock.volume();
-  if (!report.operations.empty()) report.max_left_mm = report.operations.back().max_left_mm;
+  report.accept_unfinished = job.accept_unfinished;
+  if (!report.cancelled && !report.operations.empty()) {
+    report.surface = account_of_job(job, setups.operations, setups, part, stock, report, options, raw_box);
+    report.min_left_mm = report.surface.min_left_mm;
+    report.max_left_mm = report.surface.max_left_mm;
+  }
   report.air_cut_share = feed_mm > 0 ? air_mm / feed_mm : 0.0;
   report.stock_bytes = stock.bytes();
   return report;

@@ -31,6 +31,8 @@ class Fields {
   }
 
   bool has(const std::string& key) const { return static_cast<bool>(node_[key]); }
+  // The place of a field within the file ("operations[2].tool"), for a mapping nested in it.
+  std::string place(const std::string& key) const { return place_.empty() ? key : place_ + "." + key; }
   YAML::Node node(const std::string& key) const { return node_[key]; }
   std::string where(const std::string& key) const { return where_at(node_[key] ? node_[key] : node_, key); }
 

@@ -9,6 +9,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/job/job_progress.hpp"
 #include "rosmill/job/job_spec.hpp"
+#include "rosmill/number_text.hpp"
 #include "rosmill/ros/convert.hpp"
 #include "rosmill/ros/finish_goal.hpp"
 #include "rosmill/ros/job_markers.hpp"
@@ -86,6 +87,10 @@ PlanJobResult to_job_result(const job::JobReport& report) {
   result.time = report.time_s;
   result.min_left = to_metres(report.operations.empty() ? 0.0 : report.min_left_mm);
   result.max_left = to_metres(report.max_left_mm);
+  result.faces_to_finish = static_cast<uint32_t>(report.surface.asked_faces);
+  result.unfinished_faces = static_cast<uint32_t>(report.surface.unfinished_faces);
+  result.unfinished_area = report.surface.unfinished_area * kMetrePerMm * kMetrePerMm;
+  result.accept_unfinished = report.accept_unfinished;
   result.report_json = job::to_json(report).dump();
   return result;
 }
@@ -142,6 +147,8 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
     });
     const job::JobReport report = job::run_job(spec, options);
     result = to_job_result(report);
+    if (context.show_surface && report.surface.done)
+      context.show_surface(received ? *received : job::read_part(spec), report.surface);
     for (size_t k = 0; k < report.setups.size() && k < frames.size(); ++k)
       result.setups.push_back(to_setup_msg(report.setups[k], frames[k]));
     for (const auto& [first, end] : job::program_groups(report, goal.per_operation)) {
@@ -177,10 +184,18 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
       sheet::write_setup_sheet(goal.output_dir + "/setup_sheet.html", sheet);
     }
     cancelled = report.cancelled;
-    result.success = !report.cancelled;
+    // Faces the job was to finish, left above their limit, fail it as they fail `rosmill job` (exit status 4).
+    result.success = !report.cancelled && !report.unfinished();
     result.message = report.cancelled ? "cancelled after " + std::to_string(report.operations.size()) + " of " +
                                             std::to_string(operations) + " operations"
-                                      : "ran " + std::to_string(operations) + " operations";
+                     : report.unfinished()
+                         ? "ran " + std::to_string(operations) + " operations, but " +
+                               std::to_string(report.surface.unfinished_faces) +
+                               " faces it was to finish are left above their limit (" +
+                               decimal_text(report.surface.unfinished_area, 1) + " mm^2, up to " +
+                               decimal_text(report.surface.max_left_mm, 3) +
+                               " mm; the job's accept_unfinished: true accepts it)"
+                         : "ran " + std::to_string(operations) + " operations";
   } catch (const std::exception& e) {
     result.success = false;
     result.message = e.what();
@@ -227,6 +242,9 @@ void JobActionServer::on_goal(const PlanJobGoalConstPtr& goal) {
   context.show = [&](const job::OperationView& v) {
     job_markers_.publish(view.add_operation(v));
     stock_markers_.publish(view.stock(v));
+  };
+  context.show_surface = [&](const Mesh& part, const job::SurfaceAccount& surface) {
+    job_markers_.publish(view.add_surface(part, surface));
   };
   bool cancelled = false;
   PlanJobResult result;

@@ -72,6 +72,33 @@ const visualization_msgs::MarkerArray& JobMarkers::add_operation(const job::Oper
   return toolpaths_;
 }
 
+const visualization_msgs::MarkerArray& JobMarkers::add_surface(const Mesh& part, const job::SurfaceAccount& surface) {
+  if (toolpaths_.markers.empty()) toolpaths_.markers.push_back(delete_all_marker(header_));
+  visualization_msgs::Marker m = base_marker(header_, "surface", 0, visualization_msgs::Marker::TRIANGLE_LIST);
+  m.color = rgba(1, 1, 1);
+  int note = 0;
+  for (const job::FaceLeft& face : surface.faces) {
+    const std_msgs::ColorRGBA colour = face.verdict == job::FaceVerdict::Within  ? rgba(0.1f, 0.8f, 0.1f)
+                                       : face.verdict == job::FaceVerdict::Above ? rgba(0.9f, 0.1f, 0.1f)
+                                                                                 : rgba(0.6f, 0.6f, 0.6f, 0.5f);
+    for (const uint32_t f : face.facets) {
+      add_facet(m, part, f);
+      m.colors.resize(m.points.size(), colour);
+    }
+    if (face.verdict != job::FaceVerdict::Above) continue;
+    char text[160];
+    std::snprintf(text, sizeof text, "face %u: up to %.2f mm (%s)", face.face, face.max_left_mm,
+                  job::reason_name(face.main_reason()));
+    visualization_msgs::Marker label =
+        text_from_left(header_, "surface_notes", note++, face.most_at + 2.0 * face.normal, text, kLegendHeight,
+                       kLegendChars);
+    label.color = rgba(0.9f, 0.1f, 0.1f);
+    toolpaths_.markers.push_back(label);
+  }
+  toolpaths_.markers.push_back(m);
+  return toolpaths_;
+}
+
 visualization_msgs::MarkerArray JobMarkers::stock(const job::OperationView& view) const {
   const Mesh surface = stock::stock_surface(view.stock);
   std::vector<Vec3> centres(surface.faces.size());

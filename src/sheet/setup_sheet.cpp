@@ -2,6 +2,7 @@
 // as base64 PNG data, so that it can be mailed, opened offline and printed as it is. Printed, each setup starts a
 // page of its own (the machinist takes one page to the machine per clamping). Every text that comes from the job
 // (names, descriptions, paths, reasons) is escaped: a job file is input, and must not become markup.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -114,6 +115,59 @@ std::string fact(const std::string& name, const std::string& html) {
   return "<tr><th>" + name + "</th><td>" + html + "</td></tr>\n";
 }
 
+// Every tool the job's programs load, by its number in the controller's tool table: what the operator puts in each
+// pocket before the run.
+void tools_table(std::ostream& out, const job::JobReport& report) {
+  std::vector<const job::OperationReport*> tools;
+  for (const job::OperationReport& op : report.operations) {
+    bool seen = false;
+    for (const job::OperationReport* t : tools) seen |= t->tool_used.id == op.tool_used.id;
+    if (!seen) tools.push_back(&op);
+  }
+  std::sort(tools.begin(), tools.end(), [](const job::OperationReport* a, const job::OperationReport* b) {
+    return a->tool_used.id < b->tool_used.id;
+  });
+  out << "<h3>Tools</h3>\n<table class=\"operations\">\n<thead><tr><th class=\"n\">T</th><th>Tool</th><th>Cutter</th>"
+         "<th class=\"n\">&Oslash; mm</th><th class=\"n\">Corner mm</th><th class=\"n\">Stick-out mm</th></tr>"
+         "</thead>\n<tbody>\n";
+  for (const job::OperationReport* op : tools) {
+    const Tool& t = op->tool_used;
+    out << "<tr><td class=\"n\">T" << t.id << "</td><td>" << escape(t.name.empty() ? op->tool : t.name) << "</td><td>"
+        << cutter_type_name(t.cutter.type) << "</td><td class=\"n\">" << number(t.cutter.diameter)
+        << "</td><td class=\"n\">" << number(t.cutter.corner_radius) << "</td><td class=\"n\">"
+        << number(t.stick_out_mm()) << "</td></tr>\n";
+  }
+  out << "</tbody>\n</table>\n";
+}
+
+// The whole surface after the job: how many faces are within their limit, and each one left above it (where, how
+// much, why), so that the operator knows before the next tool meets it.
+void surface_html(std::ostream& out, const job::JobReport& report) {
+  const job::SurfaceAccount& a = report.surface;
+  if (!a.done) return;
+  out << "<h3>Material left on the part</h3>\n<p>" << a.asked_faces << " faces to finish; "
+      << (a.unfinished_faces ? std::to_string(a.unfinished_faces) + " left above their limit over " +
+                                   number(a.unfinished_area, 1) + " mm&sup2;" + (report.accept_unfinished
+                                                                                      ? " (the job accepts it)"
+                                                                                      : " (the job is refused)")
+                             : std::string("every one within its limit"))
+      << "; material left " << number(a.min_left_mm, 3) << " to " << number(a.max_left_mm, 3) << " mm.</p>\n";
+  if (!a.unfinished_faces) return;
+  out << "<table class=\"unreachable\">\n<thead><tr><th class=\"n\">Face</th><th>Setup</th><th>Why</th>"
+         "<th class=\"n\">Above mm&sup2;</th><th class=\"n\">Limit mm</th><th class=\"n\">Most left mm</th>"
+         "<th>Where (workpiece frame, mm)</th></tr></thead>\n<tbody>\n";
+  for (const job::FaceLeft& f : a.faces) {
+    if (f.verdict != job::FaceVerdict::Above) continue;
+    const std::string setup = f.setup >= 0 ? std::to_string(f.setup + 1) + " " + escape(report.setups[f.setup].name)
+                                           : "none";
+    out << "<tr><td class=\"n\">" << f.face << "</td><td>" << setup << "</td><td>"
+        << job::reason_name(f.main_reason()) << "</td><td class=\"n\">" << number(f.above_area, 1)
+        << "</td><td class=\"n\">" << number(f.limit, 3) << "</td><td class=\"n\">" << number(f.max_left_mm, 3)
+        << "</td><td>" << point(f.most_at) << "</td></tr>\n";
+  }
+  out << "</tbody>\n</table>\n";
+}
+
 void job_header(std::ostream& out, const SheetJob& job) {
   const job::JobReport& report = *job.report;
   out << "<header>\n<h1>Setup sheet</h1>\n<table class=\"facts\">\n"
@@ -135,6 +189,8 @@ void job_header(std::ostream& out, const SheetJob& job) {
       out << "</tbody>\n</table>\n";
     }
   }
+  tools_table(out, report);
+  surface_html(out, report);
   out << "</header>\n";
 }
 

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "job_test_options.hpp"
 #include "rosmill/testing/sanitized.hpp"
 #include "rosmill/gcode/post.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
@@ -40,7 +41,7 @@ std::string error_of(const std::string& text) {
 }  // namespace
 
 TEST(Job, FieldsAreCheckedWithTheirLine) {
-  const std::string ops = "operations:\n  - {strategy: rough, tool: flat:10}\n";
+  const std::string ops = "operations:\n  - {strategy: rough, tool: flat:10@1}\n";
   EXPECT_EQ(error_of("part: primitive:cube\n" + ops), "");
   EXPECT_NE(error_of("part: primitive:cube\nresolutoin: 0.5\n" + ops).find("job.yaml:2 resolutoin: unknown field"),
             std::string::npos);
@@ -53,13 +54,13 @@ TEST(Job, FieldsAreCheckedWithTheirLine) {
   EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: rough}\n")
                 .find("job.yaml:3 operations[0].tool"),
             std::string::npos);
-  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: rough, tool: flat:10}\n"
-                     "  - {strategy: raster, tool: ball:6, stepover: -1}\n")
+  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: rough, tool: flat:10@1}\n"
+                     "  - {strategy: raster, tool: ball:6@2, stepover: -1}\n")
                 .find("job.yaml:4 operations[1].stepover: must lie in"),
             std::string::npos);
   EXPECT_NE(error_of("part: primitive:cube\nstock: {box: {margin: 5}, mesh: a.stl}\n" + ops).find("exactly one of"),
             std::string::npos);
-  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: raster, tool: ball:3, rest: true}\n")
+  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: raster, tool: ball:3@3, rest: true}\n")
                 .find("job.yaml:3 operations[0].rest: the first operation on a box stock has no earlier one"),
             std::string::npos);
   EXPECT_NE(error_of("part: primitive:cube\noperations: [\n").find("not valid YAML"), std::string::npos);
@@ -67,7 +68,7 @@ TEST(Job, FieldsAreCheckedWithTheirLine) {
   JobSpec bad = parse_job("part: primitive:cube\n" + ops, "job.yaml", ROSMILL_SOURCE_DIR);
   bad.operations[0].strategy = "sculpt";
   EXPECT_THROW(run_job(bad, {}), Error);
-  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: rough, tool: flat:10, setup: +W}\n")
+  EXPECT_NE(error_of("part: primitive:cube\noperations:\n  - {strategy: rough, tool: flat:10@1, setup: +W}\n")
                 .find("job.yaml:3 operations[0].setup: unknown setup '+W'"),
             std::string::npos);
 }
@@ -82,13 +83,19 @@ JobOptions with_tools() {
 
 TEST(Job, OperationsRunOnTheStockTheOnesBeforeLeft) {
   const JobSpec spec = read_job(kJob);
-  ASSERT_EQ(spec.operations.size(), 2u);
+  ASSERT_EQ(spec.operations.size(), 3u);
   const JobReport r = run_job(spec, with_tools());
-  ASSERT_EQ(r.operations.size(), 2u);
+  ASSERT_EQ(r.operations.size(), 3u);
   // The stock: the cube's bounds grown by 5 mm sideways and up, at 0.5 mm cells that fall on its sides.
   EXPECT_NEAR(r.stock_mm3, 70.0 * 70 * 65, 1e-6);
   EXPECT_NEAR(r.removed_mm3, r.stock_mm3 - r.left_mm3, 1e-6 * r.stock_mm3);
-  EXPECT_NEAR(r.removed_mm3, r.operations[0].removed_mm3 + r.operations[1].removed_mm3, 1e-6 * r.stock_mm3);
+  EXPECT_NEAR(r.removed_mm3, r.operations[0].removed_mm3 + r.operations[1].removed_mm3 + r.operations[2].removed_mm3,
+              1e-6 * r.stock_mm3);
+  // Every face the job was to finish (the top and the walls; the bottom stands on the table) is within its limit:
+  // the top within the ball's scallop, the walls flat.
+  EXPECT_EQ(r.surface.asked_faces, 5u);
+  EXPECT_EQ(r.surface.unfinished_faces, 0u);
+  EXPECT_LE(r.max_left_mm, 0.105);
   // Neither operation cuts into the cube: at least its volume is left.
   EXPECT_GE(r.left_mm3, 60.0 * 60 * 60 - 1e-6);
   // Roughing takes the top down to the allowance over the whole box where it fits: at least the 4.5 mm over the cube.
@@ -113,7 +120,7 @@ TEST(Job, CommandLineWritesCheckedProgramsAndJson) {
   const CliRun run = run_rosmill_in(::testing::TempDir(), "job '" + kJob + "' -o '" + dir + "' --json");
   ASSERT_EQ(run.status, 0) << run.out;
   const nlohmann::json j = nlohmann::json::parse(run.out);
-  ASSERT_EQ(j["operations"].size(), 2u);
+  ASSERT_EQ(j["operations"].size(), 3u);
   for (const auto& op : j["operations"]) {
     EXPECT_TRUE(op.contains("air_cut_share"));
     EXPECT_TRUE(op.contains("removed_mm3"));
@@ -121,12 +128,14 @@ TEST(Job, CommandLineWritesCheckedProgramsAndJson) {
     EXPECT_TRUE(std::filesystem::exists(op["program"].get<std::string>())) << op.dump();
   }
   EXPECT_TRUE(j.contains("air_cut_share") && j.contains("removed_mm3") && j.contains("time_s"));
-  // Both operations are in the +Z setup: one program, with a tool change before each operation's tool.
+  // Every operation is in the +Z setup: one program, with a tool change before each operation's tool.
   const std::string program = j["operations"][0]["program"];
   EXPECT_EQ(j["operations"][1]["program"], program);
+  EXPECT_EQ(j["operations"][2]["program"], program);
   size_t changes = 0;
   for (const std::string& line : gcode::read_program_lines(program)) changes += line.find("M6") != std::string::npos;
-  EXPECT_EQ(changes, 2u) << program;
+  EXPECT_EQ(changes, 3u) << program;
+  EXPECT_FALSE(j["unfinished"].get<bool>());
   // On request, one program per operation.
   const CliRun apart = run_rosmill_in(::testing::TempDir(), "job '" + kJob + "' -o '" + dir + "' --per-operation --json");
   ASSERT_EQ(apart.status, 0) << apart.out;
@@ -147,7 +156,7 @@ TEST(Job, CastStockFromAMesh) {
   std::filesystem::create_directories(dir);
   write_stl(dir + "/cast.stl", build_mesh(stock_test::box_corners(Vec3(-2, -2, 0), Vec3(62, 62, 64))));
   const JobSpec spec = parse_job("part: primitive:cube\nresolution: 0.5\nstock: {mesh: cast.stl}\noperations:\n"
-                                 "  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 2, allowance: 0.5}\n",
+                                 "  - {strategy: rough, tool: flat:10@1, stepover: 4, stepdown: 2, allowance: 0.5}\n",
                                  "job.yaml", dir);
   const JobReport r = run_job(spec, {});
   EXPECT_NEAR(r.stock_mm3, 64.0 * 64 * 64, 1e-6);
@@ -237,7 +246,7 @@ TEST(Job, ProgressReportsEachOperationAndCancelKeepsTheFinishedOnes) {
   };
   const JobReport full = run_job(spec, options);
   EXPECT_FALSE(full.cancelled);
-  ASSERT_EQ(full.operations.size(), 2u);
+  ASSERT_EQ(full.operations.size(), 3u);
   ASSERT_GE(calls.size(), 4u);
   for (size_t i = 1; i < calls.size(); ++i) {
     // Never backwards: the operation index grows, and within one operation the fraction does too.
@@ -247,7 +256,7 @@ TEST(Job, ProgressReportsEachOperationAndCancelKeepsTheFinishedOnes) {
     }
   }
   EXPECT_EQ(calls.front(), std::make_pair(size_t(0), 0.0));
-  EXPECT_EQ(calls.back(), std::make_pair(size_t(1), 1.0));
+  EXPECT_EQ(calls.back(), std::make_pair(size_t(2), 1.0));
   EXPECT_GT(calls.size(), 6u) << "progress is reported while an operation is planned, not only between them";
 
   // Cancelled while the second operation is planned: the first is kept with its figures, the second is not run.
@@ -263,4 +272,39 @@ TEST(Job, ProgressReportsEachOperationAndCancelKeepsTheFinishedOnes) {
   EXPECT_TRUE(none.cancelled);
   EXPECT_TRUE(none.operations.empty());
   EXPECT_NEAR(none.left_mm3, none.stock_mm3, 1e-9);
+}
+
+// Every tool of a job is loaded by its number: an inline tool without one is refused with its line before anything
+// is planned; `flat:4@6` and {number: 6, type: flat, diameter: 4} name the same tool; two cutters under one number
+// are refused.
+TEST(Job, InlineToolsNeedTheirNumber) {
+  const std::string head = "part: primitive:cube\noperations:\n  - {strategy: rough, tool: 1}\n";
+  const std::string unnumbered = error_of(head + "  - {strategy: waterline, tool: flat:4}\n");
+  EXPECT_NE(unnumbered.find("job.yaml:4 operations[1].tool: 'flat:4' has no number in the controller's tool table: "
+                            "write flat:4@N"),
+            std::string::npos)
+      << unnumbered;
+  EXPECT_EQ(error_of(head + "  - {strategy: waterline, tool: flat:4@6}\n"), "");
+  const JobSpec mapped =
+      parse_job(head + "  - {strategy: waterline, tool: {number: 6, type: flat, diameter: 4}}\n", "job.yaml", ".");
+  EXPECT_EQ(mapped.operations[1].tool, "flat:4@6");
+  EXPECT_NE(error_of(head + "  - {strategy: waterline, tool: {type: flat, diameter: 4}}\n").find("number: missing"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "  - {strategy: waterline, tool: {number: 6, type: drill, diameter: 4}}\n")
+                .find("must be flat, ball or bull, got 'drill'"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "  - {strategy: waterline, tool: {number: 6, type: flat, diameter: 4, corner_radius: 1}}\n")
+                .find("only a bull nose"),
+            std::string::npos);
+  // T1 of the table is the 10 mm end mill: a 4 mm cutter under its number is another tool.
+  const std::string dir = ::testing::TempDir();
+  std::string clash;
+  try {
+    run_job(parse_job(head + "  - {strategy: waterline, tool: flat:4@1}\n", "job.yaml", dir), job_test::options());
+  } catch (const Error& e) {
+    clash = e.what();
+  }
+  EXPECT_NE(clash.find("operations[1].tool: tool T1 is another cutter in operations[0] (1): one number, one tool"),
+            std::string::npos)
+      << clash;
 }

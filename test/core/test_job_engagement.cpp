@@ -60,8 +60,8 @@ TEST(JobEngagement, RoughingReportsItsEngagementAndFeedsFollowIt) {
   std::vector<Job> toolpaths;
   const JobOptions options = job_test::options();
   const JobReport r = run_keeping_toolpaths(options, toolpaths);
-  ASSERT_EQ(r.operations.size(), 2u);
-  ASSERT_EQ(toolpaths.size(), 2u);
+  ASSERT_EQ(r.operations.size(), 3u);
+  ASSERT_EQ(toolpaths.size(), 3u);
   const OperationReport& rough = r.operations[0];
   ASSERT_TRUE(rough.roughing);
   ASSERT_TRUE(rough.engagement_measured);
@@ -113,7 +113,7 @@ TEST(JobEngagement, JsonCarriesEachOperationsEngagement) {
   const CliRun run = run_rosmill_in(::testing::TempDir(), "job '" + kJob + "' --json");
   ASSERT_EQ(run.status, 0) << run.out;
   const nlohmann::json j = nlohmann::json::parse(run.out);
-  ASSERT_EQ(j["operations"].size(), 2u);
+  ASSERT_EQ(j["operations"].size(), 3u);
   const nlohmann::json& rough = j["operations"][0];
   EXPECT_TRUE(rough["roughing"].get<bool>());
   EXPECT_NEAR(rough["engagement"]["max_deg"].get<double>(), 90.0, verify::kEngagementToleranceDeg);

@@ -68,7 +68,7 @@ TEST(MachiningTime, TrapezoidalMoveHasTheClosedFormTime) {
 TEST(StockAwareRough, BoxOverTheCubeRemovesTheSlabOnceAndThenNothing) {
   const std::string dir = scratch("slab");
   write_stl(dir + "/box.stl", build_mesh(stock_test::box_corners(Vec3(0, 0, 0), Vec3(60, 60, 65))));
-  const std::string op = "  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 2.5, allowance: 0}\n";
+  const std::string op = "  - {strategy: rough, tool: flat:10@1, stepover: 4, stepdown: 2.5, allowance: 0}\n";
   const std::string head = "part: primitive:cube\nresolution: 0.5\nstock: {mesh: box.stl}\noperations:\n";
   const JobSpec spec = parse_job(head + op + op, "job.yaml", dir);
   const JobReport r = run_job(spec, {});
@@ -98,8 +98,8 @@ struct PocketRun {
 
 PocketRun run_pocket(const std::string& dir, const std::string& last) {
   const std::string jobs = "part: pocket.stl\nresolution: 0.5\nstock: {mesh: block.stl}\noperations:\n"
-                           "  - {name: rough, strategy: rough, tool: flat:10, stepover: 4, stepdown: 2, allowance: 0}\n"
-                           "  - {name: walls, strategy: waterline, tool: flat:10, stepdown: 2}\n" + last;
+                           "  - {name: rough, strategy: rough, tool: flat:10@1, stepover: 4, stepdown: 2, allowance: 0}\n"
+                           "  - {name: walls, strategy: waterline, tool: flat:10@1, stepdown: 2}\n" + last;
   const JobSpec spec = parse_job(jobs, "pocket.yaml", dir);
   const Mesh part = read_stl(dir + "/pocket.stl");
   PocketRun run;
@@ -115,7 +115,7 @@ TEST(RestMachining, PocketCornersAfterATenMillimetreEndMill) {
   const std::string dir = scratch("pocket");
   write_stl(dir + "/pocket.stl", build_mesh(pocket_test::pocket_corners()));
   write_stl(dir + "/block.stl", build_mesh(stock_test::box_corners(Vec3(0, 0, 0), Vec3(50, 40, 20))));
-  const std::string ball = "tool: ball:3, stepover: 0.5";
+  const std::string ball = "tool: ball:3@3, stepover: 0.5";
   const PocketRun rest = run_pocket(dir, "  - {name: rest, strategy: raster, " + ball + ", rest: true}\n");
   const PocketRun full = run_pocket(dir, "  - {name: finish, strategy: raster, " + ball + "}\n");
   ASSERT_EQ(rest.report.operations.size(), 3u);
@@ -154,9 +154,9 @@ TEST(StockAndVerifier, AgreeOnTheMaterialLeftByAStockAwareJob) {
   const std::string dir = scratch("agree");
   write_stl(dir + "/pocket.stl", build_mesh(pocket_test::pocket_corners()));
   const std::string text = "part: pocket.stl\nresolution: 0.5\nstock: {box: {margin: 0}}\noperations:\n"
-                           "  - {name: rough, strategy: rough, tool: flat:10, stepover: 4, stepdown: 2, allowance: 0}\n"
-                           "  - {name: walls, strategy: waterline, tool: flat:10, stepdown: 2}\n"
-                           "  - {name: rest, strategy: raster, tool: ball:3, stepover: 0.5, rest: true}\n";
+                           "  - {name: rough, strategy: rough, tool: flat:10@1, stepover: 4, stepdown: 2, allowance: 0}\n"
+                           "  - {name: walls, strategy: waterline, tool: flat:10@1, stepdown: 2}\n"
+                           "  - {name: rest, strategy: raster, tool: ball:3@3, stepover: 0.5, rest: true}\n";
   const JobSpec spec = parse_job(text, "agree.yaml", dir);
   const Mesh part = read_stl(dir + "/pocket.stl");
   std::vector<Toolpath> moves;  // every operation's toolpaths, in order (one setup, +Z)
@@ -203,17 +203,17 @@ TEST(RestMachining, FieldsAreChecked) {
     }
     return std::string();
   };
-  const std::string rough = "  - {strategy: rough, tool: flat:10}\n";
-  EXPECT_EQ(error_of(rough + "  - {strategy: raster, tool: ball:3, rest: true, rest_threshold: 0.05}\n"), "");
-  EXPECT_NE(error_of("  - {strategy: raster, tool: ball:3, rest: true}\n").find("job.yaml:3 operations[0].rest: the "
+  const std::string rough = "  - {strategy: rough, tool: flat:10@1}\n";
+  EXPECT_EQ(error_of(rough + "  - {strategy: raster, tool: ball:3@3, rest: true, rest_threshold: 0.05}\n"), "");
+  EXPECT_NE(error_of("  - {strategy: raster, tool: ball:3@3, rest: true}\n").find("job.yaml:3 operations[0].rest: the "
                                                                                   "first operation on a box stock"),
             std::string::npos);
-  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3, rest: maybe}\n")
+  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3@3, rest: maybe}\n")
                 .find("rest: expected true or false"),
             std::string::npos);
-  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3, rest_threshold: 0.2}\n").find("only a rest"),
+  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3@3, rest_threshold: 0.2}\n").find("only a rest"),
             std::string::npos);
-  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3, rest: true, rest_threshold: -1}\n")
+  EXPECT_NE(error_of(rough + "  - {strategy: raster, tool: ball:3@3, rest: true, rest_threshold: -1}\n")
                 .find("rest_threshold: must lie in"),
             std::string::npos);
 }
@@ -245,7 +245,7 @@ TEST(StockAwareRough, ScannedStockCutsLessAirThanItsBoundingBox) {
   const std::string dir = scratch("scan");
   write_scan(dir + "/scan.pcd");
   const std::string op =
-      "operations:\n  - {strategy: rough, tool: flat:10, stepover: 4, stepdown: 3, allowance: 0.5}\n";
+      "operations:\n  - {strategy: rough, tool: flat:10@1, stepover: 4, stepdown: 3, allowance: 0.5}\n";
   const JobSpec spec =
       parse_job("part: primitive:dome\nstock: {cloud: scan.pcd, units: mm, table_z: 0}\n" + op, "scan.yaml", dir);
   const JobReport scan = run_job(spec, {});
@@ -317,7 +317,7 @@ TEST(RestMachining, ARescanWithABumpIsInspectedAndMachinedOnlyThere) {
   write_cloud(dir + "/rescan.pcd", stock, Units::Millimetre);
 
   const std::string head = "part: primitive:dome\nresolution: 0.5\nstock: {cloud: rescan.pcd, units: mm, table_z: 0}\n"
-                           "operations:\n  - {name: last, strategy: raster, tool: ball:6, stepover: 0.5";
+                           "operations:\n  - {name: last, strategy: raster, tool: ball:6@2, stepover: 0.5";
   // The material over the design per cell before the rest job (the stock as the job reads it) and after.
   CloudReadOptions in_mm;
   in_mm.units = Units::Millimetre;

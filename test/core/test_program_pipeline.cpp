@@ -131,7 +131,7 @@ TEST(ProgramPipelineCli, PlanToGcodeIsCheckedAgainstTheMachine) {
   std::ofstream(dir + "/small.yaml") << "name: small\nenvelope: {x: [-20, 20], y: [-20, 20], z: [-60, 100]}\n"
                                         "table_z: -55\nmax_feed: 5000\nmax_spindle_rpm: 24000\n"
                                         "clearance_over_stock: 2\n";
-  const std::string plan = "plan cube.stl --strategy contour --tool flat:6 --stepdown 20 ";
+  const std::string plan = "plan cube.stl --strategy contour --tool flat:6@5 --stepdown 20 ";
   CliRun r = run_rosmill_in(dir, plan + "--machine small.yaml -o refused.ngc 2>&1");
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("line "), std::string::npos) << r.out;

@@ -543,6 +543,41 @@ TEST(SetupSheet, TellsWhatNoSetupMachinesWhenSetupsWereChosen) {
   EXPECT_NE(row.find("(30, 0, 2.5)"), std::string::npos) << row;
 }
 
+// Every tool by its T number, once each in order, and the faces the job left above their limit: where, how much,
+// why; with none, the sheet says every face is within its limit.
+TEST(SetupSheet, ListsTheToolsByNumberAndTheFacesLeftAboveTheirLimit) {
+  auto s = sample();
+  s->report.surface.done = true;
+  s->report.surface.asked_faces = 6;
+  s->report.surface.max_left_mm = 0.004;
+  std::string html = setup_sheet_html(s->job);
+  EXPECT_NE(html.find("6 faces to finish; every one within its limit"), std::string::npos);
+  const size_t t3 = html.find(">T3<"), t5 = html.find(">T5<"), t7 = html.find(">T7<");
+  ASSERT_NE(t3, std::string::npos);
+  EXPECT_LT(t3, t5);
+  EXPECT_LT(t5, t7);
+  EXPECT_EQ(occurrences(html, ">T5<"), 1u);
+  job::FaceLeft f;
+  f.face = 12;
+  f.setup = 1;
+  f.verdict = job::FaceVerdict::Above;
+  f.limit = 0.01;
+  f.max_left_mm = 8.0;
+  f.above_area = 180.5;
+  f.most_at = Vec3(8, 15.5, 12);
+  f.reason_area[static_cast<int>(job::LeftReason::ToolDoesNotFit)] = 180.5;
+  s->report.surface.faces.push_back(f);
+  s->report.surface.unfinished_faces = 1;
+  s->report.surface.unfinished_area = 180.5;
+  html = setup_sheet_html(s->job);
+  EXPECT_NE(html.find("1 left above their limit over 180.5 mm&sup2; (the job is refused)"), std::string::npos);
+  const std::string row = row_of(html, "tool does not fit");
+  EXPECT_NE(row.find(">12<"), std::string::npos) << row;
+  EXPECT_NE(row.find("2 bottom"), std::string::npos) << row;
+  EXPECT_NE(row.find(">8<"), std::string::npos) << row;
+  EXPECT_NE(row.find("(8, 15.5, 12)"), std::string::npos) << row;
+}
+
 TEST(SetupSheet, EscapesEveryTextFromTheJob) {
   auto s = sample();
   s->job.title = "a&b <job>.yaml";

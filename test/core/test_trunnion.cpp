@@ -24,7 +24,7 @@
 #include "rosmill/setups/reach.hpp"
 #include "rosmill/testing/sanitized.hpp"
 #include "job_test_options.hpp"
-#include "swept_check.hpp"
+#include "rosmill/testing/swept_check.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::job;
@@ -362,5 +362,35 @@ TEST(Trunnion, PartTurningIntoTheSpindleIsRefusedNamingTheBlock) {
   const std::string z = error_of([&] { run_job(under, job_test::options("", "machine_xyzac.yaml")); });
   EXPECT_NE(z.find("this machine cannot index the part for it"), std::string::npos) << z;
   EXPECT_NE(z.find("A = 180"), std::string::npos) << z;
+  std::filesystem::remove_all(dir);
+}
+
+// A 40 x 30 x 25 mm block with a pocket on top, a slot in -Y, a blind hole in +X and a step at -X, setups chosen,
+// in the small vise on the trunnion: the +X setup's waterline once closed a contour of the vise, which runs off its
+// grid, with a chord through the part (a 13.5 mm gouge the verifier refused). Now no operation cuts into the part,
+// the 3+2 program read back and simulated through its indexings finds no gouge, and on the 3-axis mill the same
+// job's figures are over the whole surface (the slot's sharp corners keep the end mill out, its full depth).
+TEST(Trunnion, ChosenSetupsOnTheTrunnionPlanNoGouge) {
+  const std::string dir = job_test::scratch("trunnion_block");
+  const std::string job =
+      "part: " ROSMILL_TEST_DATA "/parts/trunnion_block.stl\nstock: {box: {margin: 0}}\ndatum: workpiece\n"
+      "held_face: -Z\nsetups: auto\naccept_unfinished: true\n"
+      "fixture: {vise: {jaw_width: 40, jaw_height: 12, jaw_thickness: 10, opening: 60, grip: 4, floor: 10, clamp: x}}\n"
+      "operations:\n"
+      "  - {name: rough, strategy: rough, tool: 5, stepover: 2.4, stepdown: 2, allowance: 0.3}\n"
+      "  - {name: walls, strategy: waterline, tool: 5, stepdown: 0.5}\n"
+      "  - {name: floors, strategy: raster, tool: 5, stepover: 2}\n";
+  const JobSpec spec = parse_job(job, "block.yaml", dir);
+  const JobReport r = run_job(spec, job_test::options(dir, "machine_xyzac.yaml"));
+  EXPECT_TRUE(r.indexed);
+  EXPECT_GE(r.setups.size(), 3u);
+  EXPECT_EQ(r.gouge_mm, 0.0);
+  ASSERT_TRUE(r.program_check.done);
+  EXPECT_EQ(r.program_check.gouge_mm, 0.0);
+  EXPECT_GE(r.surface.min_left_mm, -0.01);
+  const JobReport mill = run_job(spec, job_test::options());
+  EXPECT_EQ(mill.gouge_mm, 0.0);
+  EXPECT_EQ(mill.max_left_mm, mill.surface.max_left_mm);
+  EXPECT_NEAR(mill.max_left_mm, 8.0, 0.01);  // the slot's corner, 8 mm deep
   std::filesystem::remove_all(dir);
 }

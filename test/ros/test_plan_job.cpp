@@ -65,7 +65,7 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
                   [&](const PlanJobFeedbackConstPtr& fb) {
                     std::lock_guard<std::mutex> lock(m);
-                    EXPECT_EQ(fb->operations, 2u);
+                    EXPECT_EQ(fb->operations, 3u);
                     EXPECT_GE(fb->progress, 0.0f);
                     EXPECT_LE(fb->progress, 1.0f);
                     if (fb->stage == "done") done.insert(fb->name);
@@ -73,17 +73,21 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
   ASSERT_TRUE(client.waitForResult(ros::Duration(100.0)));
   ASSERT_EQ(client.getState(), actionlib::SimpleClientGoalState::SUCCEEDED) << client.getResult()->message;
   const PlanJobResult& r = *client.getResult();
-  ASSERT_EQ(r.operations.size(), 2u);
+  ASSERT_EQ(r.operations.size(), 3u);
   EXPECT_EQ(r.operations[0].name, "rough");
   EXPECT_EQ(r.operations[1].name, "finish");
+  EXPECT_EQ(r.operations[2].name, "walls");
   EXPECT_FALSE(r.cancelled);
   {
     std::lock_guard<std::mutex> lock(m);
-    EXPECT_EQ(done, (std::set<std::string>{"rough", "finish"}));
+    EXPECT_EQ(done, (std::set<std::string>{"rough", "finish", "walls"}));
   }
+  // Every face it was to finish (the top and the four walls) is within its limit.
+  EXPECT_EQ(r.faces_to_finish, 5u);
+  EXPECT_EQ(r.unfinished_faces, 0u);
   const nlohmann::json json = nlohmann::json::parse(r.report_json);
-  ASSERT_EQ(json["operations"].size(), 2u);
-  for (size_t k = 0; k < 2; ++k) {
+  ASSERT_EQ(json["operations"].size(), 3u);
+  for (size_t k = 0; k < 3; ++k) {
     const PlanJobResult::_operations_type::value_type& op = r.operations[k];
     EXPECT_GT(op.removed_volume, 0.0);
     EXPECT_NEAR(op.removed_volume, json["operations"][k]["removed_mm3"].get<double>() * 1e-9, 1e-12);
@@ -93,10 +97,10 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
     EXPECT_GT(op.time, 0.0);
     EXPECT_TRUE(op.program.empty());  // no output_dir
   }
-  // One program for the one setup, both operations' toolpaths in it, in the workpiece frame (+Z).
+  // One program for the one setup, every operation's toolpaths in it, in the workpiece frame (+Z).
   ASSERT_EQ(r.programs.size(), 1u);
   EXPECT_EQ(r.programs[0].header.frame_id, "workpiece");
-  EXPECT_GE(r.programs[0].toolpaths.size(), 2u);
+  EXPECT_GE(r.programs[0].toolpaths.size(), 3u);
   EXPECT_TRUE(r.programs[0].rapids_checked_by_stock);
   EXPECT_GT(r.stock_volume, r.left_volume);
   EXPECT_GE(r.min_left, -1e-6);  // never below the design (1 micrometre)
@@ -129,7 +133,8 @@ TEST_F(PlanJob, ExampleJobRunsWithFeedbackAndMarkers) {
   std::set<std::string> operations;
   for (const auto& marker : p->markers)
     if (!marker.ns.empty()) operations.insert(marker.ns.substr(0, marker.ns.find('/')));
-  EXPECT_EQ(operations, (std::set<std::string>{"1_rough", "2_finish"}));
+  // Each operation's toolpaths, then the part's faces by what the job left on them.
+  EXPECT_EQ(operations, (std::set<std::string>{"1_rough", "2_finish", "3_walls", "surface"}));
 }
 
 // A job given as text on the mesh the planner received: the box stock is the received part's bounds grown by the
@@ -146,7 +151,7 @@ TEST_F(PlanJob, TextJobOnTheReceivedMeshWritesCheckedPrograms) {
   char folder[] = "/tmp/rosmill-plan-job-XXXXXX";
   ASSERT_NE(mkdtemp(folder), nullptr);
   PlanJobGoal goal;
-  goal.job_yaml = yaml_job("primitive:cube", "  - {name: rough, strategy: rough, tool: flat:10, stepover: 4, "
+  goal.job_yaml = yaml_job("primitive:cube", "  - {name: rough, strategy: rough, tool: flat:10@1, stepover: 4, "
                                               "stepdown: 3, allowance: 0.5}\n");
   goal.part_source = "mesh";
   goal.output_dir = folder;
@@ -213,13 +218,16 @@ TEST_F(PlanJob, ChosenSetupsInAViseAreOnTfAndInTheResult) {
   const auto p = paths.wait(10.0);
   ASSERT_TRUE(p);
   size_t fixtures = 0;
-  bool by_setup = false;
+  bool by_setup = false, by_verdict = false;
   for (const auto& marker : p->markers) {
     fixtures += marker.ns.rfind("fixture/", 0) == 0;
     by_setup = by_setup || marker.ns == "setups";
+    // After the job: the part's faces by what it left on them (a roughing finishes none: every face grey).
+    by_verdict = by_verdict || (marker.ns == "surface" && !marker.points.empty());
   }
   EXPECT_EQ(fixtures, 5u);
   EXPECT_TRUE(by_setup);
+  EXPECT_TRUE(by_verdict);
   std::filesystem::remove_all(folder);
 }
 
@@ -227,13 +235,13 @@ TEST_F(PlanJob, ChosenSetupsInAViseAreOnTfAndInTheResult) {
 TEST_F(PlanJob, BadGoalsAreRefusedWithTheirReason) {
   Client client("plan_job", true);
   ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
-  const std::string op = "  - {name: rough, strategy: rough, tool: flat:10}\n";
+  const std::string op = "  - {name: rough, strategy: rough, tool: flat:10@1}\n";
   const std::vector<std::pair<PlanJobGoal, std::string>> cases = [&] {
     std::vector<std::pair<PlanJobGoal, std::string>> c(5);
     c[0].second = "names no job";
     c[1].first.job_file = "/nonexistent/job.yaml";
     c[1].second = "/nonexistent/job.yaml";
-    c[2].first.job_yaml = yaml_job("primitive:cube", "  - {name: rough, strategy: rough, tool: flat:10, stepover: -4}\n");
+    c[2].first.job_yaml = yaml_job("primitive:cube", "  - {name: rough, strategy: rough, tool: flat:10@1, stepover: -4}\n");
     c[2].second = "stepover";
     c[3].first.job_yaml = yaml_job("primitive:cube", op);
     c[3].first.part_source = "cloud";
@@ -260,7 +268,7 @@ TEST_F(PlanJob, CancelKeepsTheFinishedOperations) {
   ASSERT_TRUE(client.waitForServer(ros::Duration(10.0)));
   std::string ops;
   for (int k = 0; k < 20; ++k)
-    ops += "  - {name: pass" + std::to_string(k) + ", strategy: raster, tool: ball:6, stepover: 1}\n";
+    ops += "  - {name: pass" + std::to_string(k) + ", strategy: raster, tool: ball:6@2, stepover: 1}\n";
   PlanJobGoal goal;
   goal.job_yaml = yaml_job("primitive:dome", ops);
   client.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),

@@ -21,6 +21,8 @@
 //       fixture: {vise: {clamp: x, grip: 4}}
 //       operations: [{strategy: waterline, tool: 5, stepdown: 1}]
 //
+// `accept_unfinished: true` lets a job that leaves a face it was to finish above its limit pass (its report still
+// lists the face, the material left and why).
 // `held_face: -Z` names the face the part is held by in every setup (never machined). `setups: auto` chooses the
 // setups (setups/setup_choice.hpp) with `auto: {tool, min_gain}`, and runs the top-level `operations` in each. A job in the older form has `operations`
 // only, each with an optional `setup` (+Z, -X, ...): consecutive operations of one setup are that setup, and every
@@ -98,6 +100,9 @@ struct JobSpec {
   // where every operation works over the whole part.
   bool finish_by_setup = true;
   std::vector<OperationSpec> operations;  // in machining order; with auto_setups, each chosen setup's
+  // A face the job was to finish that it leaves above its limit (job/surface_account.hpp) fails the job (its report
+  // says so, `rosmill job` exits with status 4, the PlanJob action does not succeed) unless this is true.
+  bool accept_unfinished = false;
 };
 
 JobSpec read_job(const std::string& path);

@@ -19,6 +19,7 @@
 #include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/job/job_spec.hpp"
+#include "rosmill/job/surface_account.hpp"
 #include "rosmill/machine/trunnion.hpp"
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/setups/setup_choice.hpp"
@@ -76,7 +77,10 @@ struct OperationReport {
   bool nothing_to_cut = false;  // no material stood above the design and the allowance where it works: not planned
   size_t moves = 0;
   double cutting_mm = 0, rapid_mm = 0, air_feed_mm = 0, air_cut_share = 0;
-  double removed_mm3 = 0, time_s = 0, plan_seconds = 0, remove_seconds = 0;
+  double removed_mm3 = 0, time_s = 0;
+  // Where the job's own time went, per stage (s): planning, the engagement's measurement, the removal from the
+  // stock and the verifier's sweep (the last three side by side).
+  double plan_seconds = 0, engagement_seconds = 0, remove_seconds = 0, verify_seconds = 0;
   uint32_t collision_line = 0;  // the toolpath move number of the first rapid into material (0: none)
   // Material left on the part after the operation, seen from its setup (mm; negative: cut below the design).
   double min_left_mm = 0, max_left_mm = 0;
@@ -144,9 +148,14 @@ struct JobReport {
   Box3 stock_box;             // its bounds, workpiece frame (rosmill verify --stock)
   double left_mm3 = 0;        // the stock after the job
   double removed_mm3 = 0, air_cut_share = 0, time_s = 0;
-  // After the job: the least material left on the part over every operation's view (negative: a gouge, the
-  // depth below the design), and the most left as the last operation sees it (mm).
+  // After the job, on the whole surface of the part, all setups together (surface_account.hpp): the least and the
+  // most material left over the faces the job was to finish (over every face when it was to finish none; negative:
+  // a gouge, the depth below the design), in mm.
   double min_left_mm = INFINITY, max_left_mm = 0;
+  SurfaceAccount surface;     // per face: within its limit, above it (where, how much, why), or not asked
+  bool accept_unfinished = false;  // the job's accept_unfinished
+  // Faces the job was to finish and left above their limit, and the job does not accept it.
+  bool unfinished() const { return surface.unfinished_faces > 0 && !accept_unfinished; }
   double gouge_mm = 0;        // the deepest of the operations' (the verifier's)
   size_t stock_bytes = 0;
   bool cancelled = false;     // the progress hook said stop: `operations` holds the finished ones

@@ -31,6 +31,8 @@ struct JobGoalContext {
   std::function<bool()> cancel_requested;
   std::function<void(const PlanJobFeedback&)> feedback;
   std::function<void(const job::OperationView&)> show;
+  // After the job: the part (workpiece frame) with what the job left on each of its faces.
+  std::function<void(const Mesh& part, const job::SurfaceAccount&)> show_surface;
   // Publishes the frame of the job's setup `index` on tf; returns its name (job_setup_frame_id).
   std::function<std::string(const SetupFrame&, size_t index)> setup_frame;
   // Where G54 is for the written programs (G10 L2 P1 in each); none: the controller's G54 as it stands.

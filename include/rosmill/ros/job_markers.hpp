@@ -2,7 +2,8 @@
 // each hideable; a job's setups each in their own colour), each setup's fixture ("fixture/<setup>"), the part's
 // faces coloured by the setup that finishes them ("setups"; grey where none does), and the stock after the latest
 // operation as a triangle mesh coloured by the material it leaves on the part (the stock's top above the design's,
-// seen from the operation's setup), with a legend of the colours. All in the workpiece frame.
+// seen from the operation's setup), with a legend of the colours; after the job, the faces by the material left on
+// them. All in the workpiece frame.
 #pragma once
 #include <std_msgs/Header.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -32,6 +33,10 @@ class JobMarkers {
   const visualization_msgs::MarkerArray& add_operation(const job::OperationView& view);
   // The stock the operation left, coloured, and the legend beside it (namespaces "stock", "legend").
   visualization_msgs::MarkerArray stock(const job::OperationView& view) const;
+  // After the job: the part's faces by what the job left on them ("surface": green within their limit, red above
+  // it, grey not to be finished) and a label at each face above its limit ("surface_notes": how much, why); returns
+  // every marker so far.
+  const visualization_msgs::MarkerArray& add_surface(const Mesh& part, const job::SurfaceAccount& surface);
 
  private:
   std_msgs::Header header_;
