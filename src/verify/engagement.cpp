@@ -2,8 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <string>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "recent_path.hpp"
 #include "rosmill/error.hpp"
@@ -109,8 +113,9 @@ class Measurer {
     lowest_.resize(bins_);
   }
 
-  // Measures a move before it cuts; returns its largest engagement (degrees).
-  double move(size_t index) {
+  // Measures a move before it cuts; returns its largest engagement (degrees). Unmeasured, the move only passes
+  // through the stock and the recent path as a measured one would: a later chunk's measurer catches up so.
+  double move(size_t index, bool measured = true) {
     const CanonMove& m = program_.moves[index];
     if (m.rapid || !m.from_known() || (!recent_.empty() && recent_.oldest().move.tool != m.tool)) flush();
     if (m.rapid || !m.from_known()) {
@@ -119,12 +124,12 @@ class Measurer {
     }
     const double along = xy_length(m);
     if (along < kAxialMove) {
-      if (m.to.z() < m.from.z()) ++plunges_, plunge_mm_ += move_length(m);
+      if (measured && m.to.z() < m.from.z()) ++plunges_, plunge_mm_ += move_length(m);
       recent_.add(m, index, path_);
       return 0;
     }
     const double length = move_length(m);
-    radial_mm_ += length;
+    if (measured) radial_mm_ += length;
     const double R = program_.tools[m.tool].cutter.radius();
     const double lag = std::max(4 * stock_.grid.cell, 2 * std::sqrt(R * stock_.grid.cell));
     const int n = std::max(1, static_cast<int>(std::ceil(length / step_)));
@@ -135,7 +140,7 @@ class Measurer {
         sweeper_.sweep(recent_.oldest().index);
         recent_.drop_oldest();
       }
-      most = std::max(most, sample(m, s, length / n, R));
+      if (measured) most = std::max(most, sample(m, s, length / n, R));
     }
     path_ += along;
     recent_.add(m, index, path_);
@@ -145,6 +150,14 @@ class Measurer {
   // Sweeps what the cells do not hold yet.
   void flush() {
     for (; !recent_.empty(); recent_.drop_oldest()) sweeper_.sweep(recent_.oldest().index);
+  }
+
+  // Adds another measurer's counts (of other moves of the same program) to this one's.
+  void absorb(const Measurer& other) {
+    radial_mm_ += other.radial_mm_;
+    plunge_mm_ += other.plunge_mm_;
+    plunges_ += other.plunges_;
+    for (size_t c = 0; c < length_by_count_.size(); ++c) length_by_count_[c] += other.length_by_count_[c];
   }
 
   void finish(EngagementReport& r) const {
@@ -254,6 +267,31 @@ class Measurer {
   size_t plunges_ = 0;
 };
 
+// The moves' measuring work, in samples (a move along the axis or a rapid costs about one).
+size_t samples_of(const CanonMove& m, double step) {
+  if (m.rapid || !m.from_known() || xy_length(m) < kAxialMove) return 1;
+  return 1 + static_cast<size_t>(std::ceil(move_length(m) / step));
+}
+
+// Where each chunk of the program starts: equal shares of the samples, as many chunks as the cores while the
+// stock's copies (one per chunk) stay within a budget and each chunk has enough work to pay for its copy.
+std::vector<size_t> chunk_starts(const stock::MachineProgram& program, const stock::HeightField& stock, double step) {
+  constexpr size_t kCopyBudget = size_t(1) << 29;  // bytes of stock copies
+  constexpr size_t kLeastSamples = 20000;          // per chunk
+  const size_t copy = stock.top.size() * (sizeof(float) + sizeof(uint32_t));
+  size_t total = 0;
+  for (const CanonMove& m : program.moves) total += samples_of(m, step);
+  size_t chunks = std::min<size_t>(tbb::this_task_arena::max_concurrency(), total / kLeastSamples);
+  chunks = std::max<size_t>(1, std::min(chunks, kCopyBudget / std::max<size_t>(1, copy)));
+  std::vector<size_t> starts{0};
+  size_t done = 0;
+  for (size_t k = 0; k < program.moves.size() && starts.size() < chunks; ++k) {
+    done += samples_of(program.moves[k], step);
+    if (done * chunks >= total * starts.size()) starts.push_back(k + 1);
+  }
+  return starts;
+}
+
 }  // namespace
 
 double engagement_cell(const stock::MachineProgram& program) {
@@ -317,11 +355,26 @@ EngagementReport measure_engagement(const stock::MachineProgram& program, stock:
   const double radius = smallest_feeding_radius(program);
   if (radius > 0) r.tolerance_deg = engagement_tolerance_deg(radius, r.cell_mm, options.angle_step_deg);
   const double before = volume(stock);
-  Measurer measure(program, stock, options, step);
-  r.move_deg.reserve(program.moves.size());
-  for (size_t k = 0; k < program.moves.size(); ++k) r.move_deg.push_back(static_cast<float>(measure.move(k)));
-  measure.flush();
-  measure.finish(r);
+  // The program in chunks measured side by side, each on its own copy of the stock: a chunk's measurer first
+  // passes the moves before it unmeasured (sweeping the stock is much cheaper than reading it), so that it meets
+  // its chunk with the stock and the recent path a single measurer would have there, and every move reads the same.
+  // The last chunk's copy ends as the whole program leaves the stock.
+  const std::vector<size_t> starts = chunk_starts(program, stock, step);
+  const size_t chunks = starts.size();
+  std::vector<stock::HeightField> copies(chunks - 1, stock);
+  std::vector<std::unique_ptr<Measurer>> measurers(chunks);
+  r.move_deg.assign(program.moves.size(), 0.0f);
+  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+    stock::HeightField& field = c + 1 == chunks ? stock : copies[c];
+    measurers[c] = std::make_unique<Measurer>(program, field, options, step);
+    Measurer& m = *measurers[c];
+    const size_t end = c + 1 == chunks ? program.moves.size() : starts[c + 1];
+    for (size_t k = 0; k < starts[c]; ++k) m.move(k, false);
+    for (size_t k = starts[c]; k < end; ++k) r.move_deg[k] = static_cast<float>(m.move(k));
+    if (c + 1 == chunks) m.flush();
+  });
+  for (size_t c = 1; c < chunks; ++c) measurers[0]->absorb(*measurers[c]);
+  measurers[0]->finish(r);
   r.removed_mm3 = std::max(0.0, before - volume(stock));
   retime_engagement(r, program);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include <tbb/task_arena.h>
+
 #include "error_of.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/stock/material_removal.hpp"
@@ -241,4 +243,41 @@ TEST(Engagement, BadInputIsRefusedWithTheMove) {
   EngagementOptions o;
   o.angle_step_deg = 0;
   EXPECT_NE(error_of([&] { measure_engagement(p, stock, o); }).find("angle_step_deg"), std::string::npos);
+}
+
+// The program is measured in chunks side by side, each chunk's measurer first passing the moves before it: every
+// move must read as one measurer reading them all reads it, and the stock end the same. A zigzag pocketing of the
+// block, six levels 1.5 mm apart with a helix-free plunge and a circle at each, long enough for two chunks.
+TEST(Engagement, ChunksSideBySideReadAsOneMeasurerReadsThemAll) {
+  MachineProgram p = program_with_tool();
+  for (int level = 1; level <= 6; ++level) {
+    const double z = 10 - 1.5 * level;
+    p.moves.push_back(line(Vec3(-6, -2, 12), Vec3(-6, -2, z), true));
+    for (int row = 0; row <= 16; ++row) {
+      const double y = -2 + 4 * row, x0 = row % 2 ? 106 : -6, x1 = row % 2 ? -6 : 106;
+      p.moves.push_back(line(Vec3(x0, y, z), Vec3(x1, y, z)));
+      if (row < 16) p.moves.push_back(line(Vec3(x1, y, z), Vec3(x1, y + 4, z)));
+    }
+    const Vec3 s(58, 30, z - 0.5);
+    p.moves.push_back(line(Vec3(-6, 62, z), Vec3(-6, 62, 12), true));
+    p.moves.push_back(line(Vec3(58, 30, 12), s, true));
+    p.moves.push_back(arc(s, s, Vec2(50, 30), true));
+  }
+  const auto measured = [&](int cores, HeightField& stock) {
+    tbb::task_arena arena(cores);
+    return arena.execute([&] { return measure_engagement(p, stock); });
+  };
+  HeightField one = block(p), two = block(p);
+  const EngagementReport a = measured(1, one), b = measured(2, two);
+  ASSERT_EQ(a.move_deg.size(), p.moves.size());
+  EXPECT_EQ(a.move_deg, b.move_deg);
+  EXPECT_EQ(one.top, two.top);
+  EXPECT_EQ(one.cut_by, two.cut_by);
+  EXPECT_EQ(a.max_deg, b.max_deg);
+  EXPECT_EQ(a.p95_deg, b.p95_deg);
+  EXPECT_EQ(a.plunges, b.plunges);
+  for (int k = 0; k < kEngagementBins; ++k) EXPECT_NEAR(a.histogram_mm[k], b.histogram_mm[k], 1e-12 * a.radial_mm) << k;  // summed in another order
+  EXPECT_NEAR(a.radial_mm, b.radial_mm, 1e-12 * a.radial_mm);
+  EXPECT_GT(a.radial_mm, 10000.0);  // two chunks' worth of samples at the 0.2 mm step
+  EXPECT_EQ(a.max_deg, 180.0);      // the first row of each level is a slot
 }
