@@ -42,11 +42,14 @@ void print_surface(const job::JobReport& r) {
     if (f.verdict != job::FaceVerdict::Above) continue;
     const std::string setup = f.setup >= 0 ? "setup " + std::to_string(f.setup + 1) + " " + r.setups[f.setup].name
                                            : "no setup";
-    std::printf("    face %u (%s, normal %.2f %.2f %.2f): %.1f of %.1f mm2 above %.3f mm, up to %.3f mm at %.2f %.2f "
-                "%.2f: %s\n",
-                f.face, setup.c_str(), shown(f.normal.x()), shown(f.normal.y()), shown(f.normal.z()), f.above_area,
-                f.area, f.limit, f.max_left_mm, f.most_at.x(), f.most_at.y(), f.most_at.z(),
-                job::reason_name(f.main_reason()));
+    // A face's normal is its area's mean: a curved face (an island's round wall) has none to show.
+    char normal[64] = "curved";
+    if (f.normal.norm() > 0.9)
+      std::snprintf(normal, sizeof normal, "normal %.2f %.2f %.2f", shown(f.normal.x()), shown(f.normal.y()),
+                    shown(f.normal.z()));
+    std::printf("    face %u (%s, %s): %.1f of %.1f mm2 above %.3f mm, up to %.3f mm at %.2f %.2f %.2f: %s\n", f.face,
+                setup.c_str(), normal, f.above_area, f.area, f.limit, f.max_left_mm, f.most_at.x(), f.most_at.y(),
+                f.most_at.z(), job::reason_name(f.main_reason()));
   }
 }
 
