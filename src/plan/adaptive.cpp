@@ -11,6 +11,7 @@
 #include <tbb/task_group.h>
 
 #include "adaptive_regions.hpp"
+#include "body_guard.hpp"
 #include "rosmill/cutter/chip_thinning.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
@@ -242,6 +243,9 @@ class AdaptivePlanner {
     if (clip::area(r.target) < 1e-3 * R_ * R_) return;
     z_ = z;
     allowed_ = r.allowed;
+    // The shank and holder keep off what the levels above left (beside the walls, in corners), as zigzag
+    // roughing's do: where they would meet it the cutter may not go.
+    if (params_.material) guard_.at_level(top_, params_.tool, f_.allowance, z);
     const Vec2 big_lo = map_lo(), big_hi = map_hi();
     // The material map and the lookup of where the cutter may go, side by side (isolated: waiting for the other,
     // this thread takes none of the other levels' walls, which may be being found meanwhile).
@@ -419,12 +423,14 @@ class AdaptivePlanner {
         }
         size_t len = 0;
         while (k + len < n && keep[(first + k + len) % n]) ++len;
-        if (material_.disc_clear(p[i], R_)) {
+        if (material_.disc_clear(p[i], R_) && in_part_clearance(p[i])) {
           // Up to where the engagement would pass the target (a corner the passes left thick): the rest stays.
           size_t end = 1;
           for (; end <= len; ++end) {
             const size_t at = (i + end) % n;
-            if (material_.engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > target_) break;
+            if (!in_part_clearance(p[at]) ||
+                material_.engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > target_)
+              break;
           }
           if (end > 1) reach_air(p[i], (p[(i + 1) % n] - p[i]).normalized());
           for (size_t j = 1; j < end; ++j) {
@@ -807,7 +813,8 @@ class AdaptivePlanner {
   }
 
   // p keeps the cutter out of the part (on the boundary too: a ring runs along the wall).
-  bool in_part_clearance(const Vec2& p) const { return allowed_lookup_.contains(p); }
+  // The tool's bodies above the cutter keep off the material left too (body_guard.hpp).
+  bool in_part_clearance(const Vec2& p) const { return allowed_lookup_.contains(p) && !guard_.blocked(p); }
 
   // Up over what stands on the way, across, down to just above the material under the cutter, and into the air
   // cleared at the level.
@@ -945,7 +952,10 @@ class AdaptivePlanner {
     allowed.reset(corner, corner + Vec2((wx - 0.5) * cell, (wy - 0.5) * cell), cell);  // wx x wy cells
     allowed.fill(allowed_, LevelMaterial::kMaterial);
     for (size_t w = 0; w < n; ++w)
-      depth[w] = allowed.value(w) == LevelMaterial::kMaterial && to_material[w] <= reach ? INFINITY : 0;
+      depth[w] = allowed.value(w) == LevelMaterial::kMaterial && to_material[w] <= reach &&
+                         !guard_.blocked(allowed.centre(w))
+                     ? INFINITY
+                     : 0;
     chamfer(depth, wx, wy, cell);
     // The deepest cells (as deep as the helix needs), and of them the one nearest their centroid: the middle of
     // a slot, where a ramp reaches both ends.
@@ -1167,6 +1177,7 @@ class AdaptivePlanner {
   Toolpath tp_;
   MoveWriter* w_ = nullptr;
   MaterialTop top_;
+  BodyGuard guard_;  // the shank and holder over what the levels above left (with a job's material)
   // The level being cut.
   double z_ = 0;
   clip::Paths allowed_;
