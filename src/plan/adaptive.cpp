@@ -141,6 +141,7 @@ class AdaptivePlanner {
   }
 
   Job plan(const Surface& surface, const PlanProgress& progress) {
+    surface_ = &surface;
     const std::vector<double> levels = level_heights(surface);
     std::vector<std::vector<Loop>> loops(levels.size());
     PlanParams loose = params_;
@@ -282,7 +283,110 @@ class AdaptivePlanner {
     }
     wall_pass();
     take_pins();
+    // Where the passes and the wall pass left material they reach (a channel whose centres have no room for a
+    // pass at the limit, a corner the walls' turn radius rounds), the wall pass again, as a slot: at whatever
+    // engagement, at the feed that keeps the chip load there (chip_thinning.hpp), stated in the report.
+    if (material_.material_area_off_walls(2) > 0.01 * R_ * R_) {
+      slotting_ = true;
+      wall_pass();
+      slotting_ = false;
+    }
     report_.left_area_mm2 += material_.material_area_off_walls(2);
+    report_left(r);
+  }
+
+  // ---- what a level left, and why (PlanReport::left)
+
+  // The patches of material the level left: what the passes did not reach in the level's map (the holder kept
+  // them off, or no pass got there at the limit), and the material no cutter centre out of the part reaches.
+  void report_left(const LevelRegions& r) {
+    const double least = 0.05 * R_ * R_;  // the skin the chords leave on a curved wall, a cell or two wide
+    for (const std::vector<size_t>& patch : material_.islands_off_walls(2)) {
+      const double area = double(patch.size()) * cell_ * cell_;
+      if (area < least) continue;
+      Vec2 sum = Vec2::Zero();
+      for (size_t c : patch) sum += material_.centre(c);
+      const Vec2 c = sum / double(patch.size());
+      add_left(area, c, held_off_by_the_body(c) ? LeftReason::kHolder : LeftReason::kEngagement);
+    }
+    report_unreached(r);
+  }
+
+  // Whether some centre within R of p keeps the cutter out of the part but the shank or holder there would meet
+  // the material above, and none the body lets through does.
+  bool held_off_by_the_body(const Vec2& p) const {
+    if (!guard_.any()) return false;
+    bool blocked = false;
+    for (double d : {0.0, 0.5 * R_, 0.9 * R_})
+      for (int k = 0; k < (d > 0 ? 16 : 1); ++k) {
+        const Vec2 q = p + d * Vec2(std::cos(k * M_PI / 8), std::sin(k * M_PI / 8));
+        if (!allowed_lookup_.contains(q)) continue;
+        if (!guard_.blocked(q)) return false;
+        blocked = true;
+      }
+    return blocked;
+  }
+
+  // The material standing where no cutter centre out of the part reaches (beyond R of every allowed centre) and
+  // the part does not stand within the allowance: a gap narrower than the tool, an inner corner tighter than its
+  // radius. Sought on points R / 10 apart, each asked of the surface with a cutter of the allowance: from those
+  // within 2 R of the allowed centres (a corner's material lies within R (sqrt 2 - 1) of them, a gap's mouth
+  // within R) along the gaps as far as they go, grouped into patches across the grid's edges.
+  void report_unreached(const LevelRegions& r) {
+    const clip::Paths unreached = clip::subtract(r.material, clip::offset(r.allowed, R_, arc_));
+    const clip::Paths band = clip::intersect(unreached, clip::offset(r.allowed, 2 * R_, arc_));
+    if (clip::area(band) < 1e-3 * R_ * R_) return;
+    const double s = 0.1 * R_;
+    Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+    for (const clip::Path& path : unreached)
+      for (const auto& q : path) {
+        const Vec2 v = clip::from_point(q);
+        lo = Vec2(std::min(lo.x(), v.x()), std::min(lo.y(), v.y()));
+        hi = Vec2(std::max(hi.x(), v.x()), std::max(hi.y(), v.y()));
+      }
+    const long nx = long(std::ceil((hi.x() - lo.x()) / s)), ny = long(std::ceil((hi.y() - lo.y()) / s));
+    const RegionLookup in_band(band, std::max(s, 4 * cell_)), in_unreached(unreached, std::max(s, 4 * cell_));
+    const Cutter probe = Cutter::flat(2 * std::max(f_.allowance + f_.tolerance, 0.01));
+    const auto at = [&](long i, long j) -> Vec2 { return lo + Vec2((i + 0.5) * s, (j + 0.5) * s); };
+    const auto left_at = [&](const Vec2& p) { return !surface_->held_above(probe, p.x(), p.y(), z_); };
+    // 0 not asked, 1 material left, 2 left and grouped, 3 none.
+    std::vector<uint8_t> state(size_t(nx) * size_t(ny), 0);
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i) {
+        const size_t c = size_t(j * nx + i);
+        if (state[c] != 0) continue;
+        const Vec2 p = at(i, j);
+        if (!in_band.contains(p)) continue;
+        if (!left_at(p)) {
+          state[c] = 3;
+          continue;
+        }
+        std::vector<size_t> open{c};
+        state[c] = 2;
+        size_t n = 0;
+        Vec2 sum = Vec2::Zero();
+        while (!open.empty()) {
+          const size_t k = open.back();
+          open.pop_back();
+          const long kj = long(k) / nx, ki = long(k) % nx;
+          ++n, sum += at(ki, kj);
+          for (const auto& [di, dj] : {std::pair{1L, 0L}, {-1L, 0L}, {0L, 1L}, {0L, -1L}}) {
+            if (ki + di < 0 || kj + dj < 0 || ki + di >= nx || kj + dj >= ny) continue;
+            const size_t m = size_t((kj + dj) * nx + ki + di);
+            if (state[m] != 0) continue;
+            const Vec2 q = at(ki + di, kj + dj);
+            state[m] = in_unreached.contains(q) && left_at(q) ? 2 : 3;
+            if (state[m] == 2) open.push_back(m);
+          }
+        }
+        if (double(n) * s * s >= 0.05 * R_ * R_) add_left(double(n) * s * s, sum / double(n), LeftReason::kNarrowerThanTheTool);
+      }
+  }
+
+  void add_left(double area, const Vec2& p, LeftReason reason) {
+    LeftRegion l;
+    l.z = z_, l.area_mm2 = area, l.x = p.x(), l.y = p.y(), l.reason = reason;
+    report_.left.push_back(l);
   }
 
   // ---- steered passes
@@ -392,7 +496,18 @@ class AdaptivePlanner {
   // the walls within their turn radius. Each stretch that cuts, widened by a radius of air either side, is
   // entered from air.
   void wall_pass() {
-    for (const clip::Path& path : clip::open(allowed_, r_min_, arc_)) {
+    // A slot goes to any engagement (up to the whole diameter), only where the centres have no room for the turn
+    // radius (a channel narrower than the tool and two turn radii: the opened region leaves it out; a corner's
+    // rounding, under half a turn radius deep, is not such a place), along the allowed region's own boundary.
+    const double most = slotting_ ? 181.0 : target_;
+    const clip::Paths opened = clip::open(allowed_, r_min_, arc_);
+    RegionLookup narrow;
+    if (slotting_) {
+      const clip::Paths cramped = clip::subtract(allowed_, clip::offset(opened, 0.5 * r_min_, arc_));
+      if (clip::area(cramped) < 1e-3 * R_ * R_) return;
+      narrow = RegionLookup(cramped, 4 * cell_);
+    }
+    for (const clip::Path& path : slotting_ ? allowed_ : opened) {
       std::vector<Vec2> p;
       std::vector<uint8_t> corner;
       const size_t m = path.size();
@@ -407,7 +522,7 @@ class AdaptivePlanner {
       const size_t pad = static_cast<size_t>(std::ceil(R_ / cell_));
       for (size_t k = 0; k < n; ++k) {
         const Vec2 dir = (p[(k + 1) % n] - p[k]).normalized();
-        if (material_.engagement(p[k], dir, R_ - cell_) > kAirDeg)
+        if ((!slotting_ || narrow.contains(p[k])) && material_.engagement(p[k], dir, R_ - cell_) > kAirDeg)
           for (size_t d = 0; d <= 2 * pad; ++d) keep[(k + n + d - pad) % n] = 1;
       }
       if (std::none_of(keep.begin(), keep.end(), [](uint8_t b) { return b; })) continue;
@@ -429,7 +544,7 @@ class AdaptivePlanner {
           for (; end <= len; ++end) {
             const size_t at = (i + end) % n;
             if (!in_part_clearance(p[at]) ||
-                material_.engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > target_)
+                material_.engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > most)
               break;
           }
           if (end > 1) reach_air(p[i], (p[(i + 1) % n] - p[i]).normalized());
@@ -859,7 +974,8 @@ class AdaptivePlanner {
   void write_feed(const Vec2& p, double e) {
     const Vec2 a = w_->position().head<2>();
     w_->feed(Vec3(p.x(), p.y(), z_));
-    engagement_of_move(e);
+    if (slotting_ && e > limit_) slot_move((p - a).norm(), e);
+    else engagement_of_move(e);
     top_.lower_along(a, p, R_, z_, [&](double d) { return profile_.height(d); });
   }
 
@@ -871,6 +987,16 @@ class AdaptivePlanner {
     const double r = std::isnan(radius) ? R_ : radius;
     material_.cut_along(a, b, r);
     top_.lower_along(a, b, r, z_, [&](double d) { return profile_.height(d); });
+  }
+
+  // A move of the slot pass over the limit: its feed from its engagement, counted apart from the passes'.
+  void slot_move(double length, double e) {
+    const double feed = feed_for(std::min(e, 180.0));
+    tp_.passes.back().moves.back().feed = feed;
+    if (report_.slot_length_mm == 0) report_.slot_feed = feed;
+    report_.slot_length_mm += length;
+    report_.slot_max_engagement_deg = std::max(report_.slot_max_engagement_deg, e);
+    report_.slot_feed = std::min(report_.slot_feed, feed);
   }
 
   void engagement_of_move(double e) {
@@ -1166,6 +1292,7 @@ class AdaptivePlanner {
   }
 
   const PlanParams& params_;
+  const Surface* surface_ = nullptr;
   PlanFrame f_;
   CutterProfile profile_;
   PlanReport& report_;
@@ -1193,6 +1320,7 @@ class AdaptivePlanner {
   std::vector<size_t> ahead_;      // the material cells a pass's step would cut
   int min_steps_ = kMinPassSteps;  // the fewest cutting steps a pass is made with
   int failed_entries_ = 0;         // entries at the level that took next to nothing
+  bool slotting_ = false;          // the wall pass as a slot (level())
   Attempt attempt_;
   Vec2 last_start_ = Vec2::Zero();  // where the last pass began
   Vec2 heading_ = Vec2::UnitX();    // of the cutter's last move at the level
