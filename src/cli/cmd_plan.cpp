@@ -225,6 +225,7 @@ void run(const Options& o) {
                          {"levels", r.levels},
                          {"passes", r.passes},
                          {"corner_links", r.corner_links},
+                         {"air_links", r.air_links},
                          {"short_passes", r.short_passes},
                          {"helices", r.helices},
                          {"ramps", r.ramps},

@@ -456,6 +456,7 @@ class AdaptivePlanner {
     std::vector<Vec2> moves;          // feed moves along the level
     std::vector<double> engagement;   // of each
     size_t corner_links = 0;          // links among them that turn on the spot
+    size_t air_links = 0;             // links among them round what stands between, through cleared air
     Vec2 heading = Vec2::UnitX();     // the cutter's heading before the attempt
     std::vector<size_t> cut_cells;    // the material cells it cut, to restore
   };
@@ -467,6 +468,7 @@ class AdaptivePlanner {
     attempt_.moves.clear();
     attempt_.engagement.clear();
     attempt_.corner_links = 0;
+    attempt_.air_links = 0;
     attempt_.heading = heading_;
     attempt_.cut_cells.clear();
     material_.log_cuts(&attempt_.cut_cells);
@@ -484,6 +486,7 @@ class AdaptivePlanner {
     attempt_.active = false;
     if (attempt_.descent) descend(*attempt_.descent);
     report_.corner_links += attempt_.corner_links;
+    report_.air_links += attempt_.air_links;
     for (size_t k = 0; k < attempt_.moves.size(); ++k) write_feed(attempt_.moves[k], attempt_.engagement[k]);
   }
 
@@ -885,6 +888,14 @@ class AdaptivePlanner {
           ++(attempt_.active ? attempt_.corner_links : report_.corner_links);
           return cut_to(p);
         }
+        // Round what stands between, through the air cleared at the level, rather than a lift.
+        if (const std::optional<std::vector<Vec2>> way = air_route(from, p)) {
+          // Each of its straight pieces turns on the spot at its ends: a corner link of its own.
+          ++(attempt_.active ? attempt_.air_links : report_.air_links);
+          (attempt_.active ? attempt_.corner_links : report_.corner_links) += way->size();
+          for (const Vec2& w : *way) cut_to(w);
+          return;
+        }
       } else {
         return;
       }
@@ -895,6 +906,94 @@ class AdaptivePlanner {
       return;
     }
     descend(p);
+  }
+
+  // A way along the level from a to b through air (the cutter's disc clear of material, its centre out of the
+  // part and the fixture) that no straight link or curve finds: a breadth-first search over cells of about R / 8
+  // whose centres stand more than R and a cell's diagonal from the material (a 3-4 chamfer distance, as seed_on's),
+  // within 6 R of the two ends' box, then pulled taut: each point one of the search's way seen straight from the
+  // one before, as far on as a doubling search finds. None when the search finds no way.
+  std::optional<std::vector<Vec2>> air_route(const Vec2& a, const Vec2& b) {
+    const long f = coarse_cells();
+    const double c = f * cell_;
+    const long nx = material_.nx(), ny = material_.ny();
+    const Vec2 o = material_.centre(0) - Vec2::Constant(0.5 * cell_);
+    const auto fine = [&](double v, double o0, long n) {
+      return std::clamp(static_cast<long>(std::floor((v - o0) / cell_)), 0L, n - 1);
+    };
+    const double grow = 6 * R_;
+    const long i0 = fine(std::min(a.x(), b.x()) - grow, o.x(), nx) / f * f;
+    const long j0 = fine(std::min(a.y(), b.y()) - grow, o.y(), ny) / f * f;
+    const long i1 = fine(std::max(a.x(), b.x()) + grow, o.x(), nx), j1 = fine(std::max(a.y(), b.y()) + grow, o.y(), ny);
+    const long wx = (i1 - i0) / f + 1, wy = (j1 - j0) / f + 1;
+    std::vector<float>& to_material = scratch_[0];
+    to_material.assign(size_t(wx) * wy, INFINITY);
+    const uint8_t* const cells = material_.values();
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i)
+        if (cells[size_t(j) * nx + i] == LevelMaterial::kMaterial) to_material[size_t((j - j0) / f) * wx + (i - i0) / f] = 0;
+    chamfer(to_material, wx, wy, c);
+    const Vec2 corner = o + Vec2(i0 * cell_, j0 * cell_);
+    const auto centre = [&](long w) -> Vec2 { return corner + Vec2((w % wx + 0.5) * c, (w / wx + 0.5) * c); };
+    const float room = static_cast<float>(R_ + 1.5 * c);
+    std::vector<long> came(size_t(wx) * wy, -2);  // -2 unseen, -1 a start, else the cell it was reached from
+    std::vector<long> open;
+    const auto free = [&](long w) { return to_material[size_t(w)] > room && in_part_clearance(centre(w)); };
+    const auto cell_of = [&](const Vec2& p) {
+      const long i = std::clamp(static_cast<long>(std::floor((p.x() - corner.x()) / c)), 0L, wx - 1);
+      const long j = std::clamp(static_cast<long>(std::floor((p.y() - corner.y()) / c)), 0L, wy - 1);
+      return j * wx + i;
+    };
+    // The search begins at the cells beside a that a straight way from a reaches, ends at one that reaches b.
+    const auto near = [&](const Vec2& p, const auto& each) {
+      const long w = cell_of(p), i = w % wx, j = w / wx;
+      for (long dj = -3; dj <= 3; ++dj)
+        for (long di = -3; di <= 3; ++di)
+          if (i + di >= 0 && j + dj >= 0 && i + di < wx && j + dj < wy) each((j + dj) * wx + i + di);
+    };
+    near(a, [&](long w) {
+      if (came[size_t(w)] == -2 && free(w) && straight_in_air(a, centre(w))) came[size_t(w)] = -1, open.push_back(w);
+    });
+    std::vector<uint8_t> goal(size_t(wx) * wy, 0);
+    near(b, [&](long w) { goal[size_t(w)] = 1; });
+    long end = -1;
+    for (size_t k = 0; k < open.size() && end < 0; ++k) {
+      const long w = open[k], i = w % wx, j = w / wx;
+      if (goal[size_t(w)] && straight_in_air(centre(w), b)) end = w;
+      for (long dj = -1; dj <= 1 && end < 0; ++dj)
+        for (long di = -1; di <= 1; ++di) {
+          if ((di == 0 && dj == 0) || i + di < 0 || j + dj < 0 || i + di >= wx || j + dj >= wy) continue;
+          const long m = (j + dj) * wx + i + di;
+          if (came[size_t(m)] != -2 || !free(m)) continue;
+          came[size_t(m)] = w;
+          open.push_back(m);
+        }
+    }
+    if (end < 0) return std::nullopt;
+    std::vector<Vec2> way{b};
+    for (long w = end; w >= 0; w = came[size_t(w)]) way.push_back(centre(w));
+    way.push_back(a);
+    std::reverse(way.begin(), way.end());
+    // Pulled taut from a: the farthest point seen straight from the last kept.
+    std::vector<Vec2> taut;
+    for (size_t k = 0; k + 1 < way.size();) {
+      // Neighbouring cells of the search see each other; the farthest seen is sought by doubling strides, then
+      // halving (last_passing): a few long checks rather than one per cell.
+      const int last = int(way.size() - 1 - k);
+      const int next = int(k) + last_passing(1, last + 1, 2, [&](int d) { return straight_in_air(way[k], way[k + size_t(d)]); });
+      taut.push_back(way[size_t(next)]);
+      k = size_t(next);
+    }
+    return taut;
+  }
+
+  // A straight way at the level whose cutter meets no material and whose centre keeps out of the part, any length.
+  bool straight_in_air(const Vec2& a, const Vec2& b) const {
+    if (!material_.capsule_clear(a, b, R_)) return false;
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.5 * cell_))));
+    for (int k = 0; k <= n; ++k)
+      if (!in_part_clearance(a + (b - a) * (double(k) / n))) return false;
+    return true;
   }
 
   // Every chord of the way from `from` keeps out of the part and cuts at most at the target engagement (it sets

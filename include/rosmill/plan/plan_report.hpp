@@ -51,7 +51,9 @@ struct PlanReport {
   double max_engagement_deg = 0.0;
   double min_turn_radius = 0.0;  // mm
   size_t passes = 0, helices = 0, ramps = 0, lifts = 0;
-  size_t corner_links = 0;  // links at the level that turn on the spot: no curve of the turn radius fitted
+  size_t corner_links = 0;  // links at the level that turn on the spot: no curve of the turn radius fitted (each
+                            // straight piece of an air link counts as one)
+  size_t air_links = 0;     // links at the level round what stands between, through the air cleared, for a lift
   size_t short_passes = 0;  // passes that cut for fewer than 3 steps of R / 10 (made only where no longer one can)
   double left_area_mm2 = 0.0;
   // Where no pass reached the material at the limit, the wall pass cut it as a slot: its length over the limit, the
