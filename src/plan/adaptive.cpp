@@ -11,6 +11,7 @@
 #include <tbb/task_group.h>
 
 #include "adaptive_regions.hpp"
+#include "body_guard.hpp"
 #include "rosmill/cutter/chip_thinning.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
@@ -140,6 +141,7 @@ class AdaptivePlanner {
   }
 
   Job plan(const Surface& surface, const PlanProgress& progress) {
+    surface_ = &surface;
     const std::vector<double> levels = level_heights(surface);
     std::vector<std::vector<Loop>> loops(levels.size());
     PlanParams loose = params_;
@@ -242,6 +244,9 @@ class AdaptivePlanner {
     if (clip::area(r.target) < 1e-3 * R_ * R_) return;
     z_ = z;
     allowed_ = r.allowed;
+    // The shank and holder keep off what the levels above left (beside the walls, in corners), as zigzag
+    // roughing's do: where they would meet it the cutter may not go.
+    if (params_.material) guard_.at_level(top_, params_.tool, f_.allowance, z);
     const Vec2 big_lo = map_lo(), big_hi = map_hi();
     // The material map and the lookup of where the cutter may go, side by side (isolated: waiting for the other,
     // this thread takes none of the other levels' walls, which may be being found meanwhile).
@@ -278,7 +283,110 @@ class AdaptivePlanner {
     }
     wall_pass();
     take_pins();
+    // Where the passes and the wall pass left material they reach (a channel whose centres have no room for a
+    // pass at the limit, a corner the walls' turn radius rounds), the wall pass again, as a slot: at whatever
+    // engagement, at the feed that keeps the chip load there (chip_thinning.hpp), stated in the report.
+    if (material_.material_area_off_walls(2) > 0.01 * R_ * R_) {
+      slotting_ = true;
+      wall_pass();
+      slotting_ = false;
+    }
     report_.left_area_mm2 += material_.material_area_off_walls(2);
+    report_left(r);
+  }
+
+  // ---- what a level left, and why (PlanReport::left)
+
+  // The patches of material the level left: what the passes did not reach in the level's map (the holder kept
+  // them off, or no pass got there at the limit), and the material no cutter centre out of the part reaches.
+  void report_left(const LevelRegions& r) {
+    const double least = 0.05 * R_ * R_;  // the skin the chords leave on a curved wall, a cell or two wide
+    for (const std::vector<size_t>& patch : material_.islands_off_walls(2)) {
+      const double area = double(patch.size()) * cell_ * cell_;
+      if (area < least) continue;
+      Vec2 sum = Vec2::Zero();
+      for (size_t c : patch) sum += material_.centre(c);
+      const Vec2 c = sum / double(patch.size());
+      add_left(area, c, held_off_by_the_body(c) ? LeftReason::kHolder : LeftReason::kEngagement);
+    }
+    report_unreached(r);
+  }
+
+  // Whether some centre within R of p keeps the cutter out of the part but the shank or holder there would meet
+  // the material above, and none the body lets through does.
+  bool held_off_by_the_body(const Vec2& p) const {
+    if (!guard_.any()) return false;
+    bool blocked = false;
+    for (double d : {0.0, 0.5 * R_, 0.9 * R_})
+      for (int k = 0; k < (d > 0 ? 16 : 1); ++k) {
+        const Vec2 q = p + d * Vec2(std::cos(k * M_PI / 8), std::sin(k * M_PI / 8));
+        if (!allowed_lookup_.contains(q)) continue;
+        if (!guard_.blocked(q)) return false;
+        blocked = true;
+      }
+    return blocked;
+  }
+
+  // The material standing where no cutter centre out of the part reaches (beyond R of every allowed centre) and
+  // the part does not stand within the allowance: a gap narrower than the tool, an inner corner tighter than its
+  // radius. Sought on points R / 10 apart, each asked of the surface with a cutter of the allowance: from those
+  // within 2 R of the allowed centres (a corner's material lies within R (sqrt 2 - 1) of them, a gap's mouth
+  // within R) along the gaps as far as they go, grouped into patches across the grid's edges.
+  void report_unreached(const LevelRegions& r) {
+    const clip::Paths unreached = clip::subtract(r.material, clip::offset(r.allowed, R_, arc_));
+    const clip::Paths band = clip::intersect(unreached, clip::offset(r.allowed, 2 * R_, arc_));
+    if (clip::area(band) < 1e-3 * R_ * R_) return;
+    const double s = 0.1 * R_;
+    Vec2 lo = Vec2::Constant(INFINITY), hi = Vec2::Constant(-INFINITY);
+    for (const clip::Path& path : unreached)
+      for (const auto& q : path) {
+        const Vec2 v = clip::from_point(q);
+        lo = Vec2(std::min(lo.x(), v.x()), std::min(lo.y(), v.y()));
+        hi = Vec2(std::max(hi.x(), v.x()), std::max(hi.y(), v.y()));
+      }
+    const long nx = long(std::ceil((hi.x() - lo.x()) / s)), ny = long(std::ceil((hi.y() - lo.y()) / s));
+    const RegionLookup in_band(band, std::max(s, 4 * cell_)), in_unreached(unreached, std::max(s, 4 * cell_));
+    const Cutter probe = Cutter::flat(2 * std::max(f_.allowance + f_.tolerance, 0.01));
+    const auto at = [&](long i, long j) -> Vec2 { return lo + Vec2((i + 0.5) * s, (j + 0.5) * s); };
+    const auto left_at = [&](const Vec2& p) { return !surface_->held_above(probe, p.x(), p.y(), z_); };
+    // 0 not asked, 1 material left, 2 left and grouped, 3 none.
+    std::vector<uint8_t> state(size_t(nx) * size_t(ny), 0);
+    for (long j = 0; j < ny; ++j)
+      for (long i = 0; i < nx; ++i) {
+        const size_t c = size_t(j * nx + i);
+        if (state[c] != 0) continue;
+        const Vec2 p = at(i, j);
+        if (!in_band.contains(p)) continue;
+        if (!left_at(p)) {
+          state[c] = 3;
+          continue;
+        }
+        std::vector<size_t> open{c};
+        state[c] = 2;
+        size_t n = 0;
+        Vec2 sum = Vec2::Zero();
+        while (!open.empty()) {
+          const size_t k = open.back();
+          open.pop_back();
+          const long kj = long(k) / nx, ki = long(k) % nx;
+          ++n, sum += at(ki, kj);
+          for (const auto& [di, dj] : {std::pair{1L, 0L}, {-1L, 0L}, {0L, 1L}, {0L, -1L}}) {
+            if (ki + di < 0 || kj + dj < 0 || ki + di >= nx || kj + dj >= ny) continue;
+            const size_t m = size_t((kj + dj) * nx + ki + di);
+            if (state[m] != 0) continue;
+            const Vec2 q = at(ki + di, kj + dj);
+            state[m] = in_unreached.contains(q) && left_at(q) ? 2 : 3;
+            if (state[m] == 2) open.push_back(m);
+          }
+        }
+        if (double(n) * s * s >= 0.05 * R_ * R_) add_left(double(n) * s * s, sum / double(n), LeftReason::kNarrowerThanTheTool);
+      }
+  }
+
+  void add_left(double area, const Vec2& p, LeftReason reason) {
+    LeftRegion l;
+    l.z = z_, l.area_mm2 = area, l.x = p.x(), l.y = p.y(), l.reason = reason;
+    report_.left.push_back(l);
   }
 
   // ---- steered passes
@@ -348,6 +456,7 @@ class AdaptivePlanner {
     std::vector<Vec2> moves;          // feed moves along the level
     std::vector<double> engagement;   // of each
     size_t corner_links = 0;          // links among them that turn on the spot
+    size_t air_links = 0;             // links among them round what stands between, through cleared air
     Vec2 heading = Vec2::UnitX();     // the cutter's heading before the attempt
     std::vector<size_t> cut_cells;    // the material cells it cut, to restore
   };
@@ -359,6 +468,7 @@ class AdaptivePlanner {
     attempt_.moves.clear();
     attempt_.engagement.clear();
     attempt_.corner_links = 0;
+    attempt_.air_links = 0;
     attempt_.heading = heading_;
     attempt_.cut_cells.clear();
     material_.log_cuts(&attempt_.cut_cells);
@@ -376,6 +486,7 @@ class AdaptivePlanner {
     attempt_.active = false;
     if (attempt_.descent) descend(*attempt_.descent);
     report_.corner_links += attempt_.corner_links;
+    report_.air_links += attempt_.air_links;
     for (size_t k = 0; k < attempt_.moves.size(); ++k) write_feed(attempt_.moves[k], attempt_.engagement[k]);
   }
 
@@ -388,7 +499,18 @@ class AdaptivePlanner {
   // the walls within their turn radius. Each stretch that cuts, widened by a radius of air either side, is
   // entered from air.
   void wall_pass() {
-    for (const clip::Path& path : clip::open(allowed_, r_min_, arc_)) {
+    // A slot goes to any engagement (up to the whole diameter), only where the centres have no room for the turn
+    // radius (a channel narrower than the tool and two turn radii: the opened region leaves it out; a corner's
+    // rounding, under half a turn radius deep, is not such a place), along the allowed region's own boundary.
+    const double most = slotting_ ? 181.0 : target_;
+    const clip::Paths opened = clip::open(allowed_, r_min_, arc_);
+    RegionLookup narrow;
+    if (slotting_) {
+      const clip::Paths cramped = clip::subtract(allowed_, clip::offset(opened, 0.5 * r_min_, arc_));
+      if (clip::area(cramped) < 1e-3 * R_ * R_) return;
+      narrow = RegionLookup(cramped, 4 * cell_);
+    }
+    for (const clip::Path& path : slotting_ ? allowed_ : opened) {
       std::vector<Vec2> p;
       std::vector<uint8_t> corner;
       const size_t m = path.size();
@@ -403,7 +525,7 @@ class AdaptivePlanner {
       const size_t pad = static_cast<size_t>(std::ceil(R_ / cell_));
       for (size_t k = 0; k < n; ++k) {
         const Vec2 dir = (p[(k + 1) % n] - p[k]).normalized();
-        if (material_.engagement(p[k], dir, R_ - cell_) > kAirDeg)
+        if ((!slotting_ || narrow.contains(p[k])) && material_.engagement(p[k], dir, R_ - cell_) > kAirDeg)
           for (size_t d = 0; d <= 2 * pad; ++d) keep[(k + n + d - pad) % n] = 1;
       }
       if (std::none_of(keep.begin(), keep.end(), [](uint8_t b) { return b; })) continue;
@@ -419,12 +541,14 @@ class AdaptivePlanner {
         }
         size_t len = 0;
         while (k + len < n && keep[(first + k + len) % n]) ++len;
-        if (material_.disc_clear(p[i], R_)) {
+        if (material_.disc_clear(p[i], R_) && in_part_clearance(p[i])) {
           // Up to where the engagement would pass the target (a corner the passes left thick): the rest stays.
           size_t end = 1;
           for (; end <= len; ++end) {
             const size_t at = (i + end) % n;
-            if (material_.engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > target_) break;
+            if (!in_part_clearance(p[at]) ||
+                material_.engagement(p[at], (p[at] - p[(at + n - 1) % n]).normalized(), R_) > most)
+              break;
           }
           if (end > 1) reach_air(p[i], (p[(i + 1) % n] - p[i]).normalized());
           for (size_t j = 1; j < end; ++j) {
@@ -764,6 +888,14 @@ class AdaptivePlanner {
           ++(attempt_.active ? attempt_.corner_links : report_.corner_links);
           return cut_to(p);
         }
+        // Round what stands between, through the air cleared at the level, rather than a lift.
+        if (const std::optional<std::vector<Vec2>> way = air_route(from, p)) {
+          // Each of its straight pieces turns on the spot at its ends: a corner link of its own.
+          ++(attempt_.active ? attempt_.air_links : report_.air_links);
+          (attempt_.active ? attempt_.corner_links : report_.corner_links) += way->size();
+          for (const Vec2& w : *way) cut_to(w);
+          return;
+        }
       } else {
         return;
       }
@@ -774,6 +906,94 @@ class AdaptivePlanner {
       return;
     }
     descend(p);
+  }
+
+  // A way along the level from a to b through air (the cutter's disc clear of material, its centre out of the
+  // part and the fixture) that no straight link or curve finds: a breadth-first search over cells of about R / 8
+  // whose centres stand more than R and a cell's diagonal from the material (a 3-4 chamfer distance, as seed_on's),
+  // within 6 R of the two ends' box, then pulled taut: each point one of the search's way seen straight from the
+  // one before, as far on as a doubling search finds. None when the search finds no way.
+  std::optional<std::vector<Vec2>> air_route(const Vec2& a, const Vec2& b) {
+    const long f = coarse_cells();
+    const double c = f * cell_;
+    const long nx = material_.nx(), ny = material_.ny();
+    const Vec2 o = material_.centre(0) - Vec2::Constant(0.5 * cell_);
+    const auto fine = [&](double v, double o0, long n) {
+      return std::clamp(static_cast<long>(std::floor((v - o0) / cell_)), 0L, n - 1);
+    };
+    const double grow = 6 * R_;
+    const long i0 = fine(std::min(a.x(), b.x()) - grow, o.x(), nx) / f * f;
+    const long j0 = fine(std::min(a.y(), b.y()) - grow, o.y(), ny) / f * f;
+    const long i1 = fine(std::max(a.x(), b.x()) + grow, o.x(), nx), j1 = fine(std::max(a.y(), b.y()) + grow, o.y(), ny);
+    const long wx = (i1 - i0) / f + 1, wy = (j1 - j0) / f + 1;
+    std::vector<float>& to_material = scratch_[0];
+    to_material.assign(size_t(wx) * wy, INFINITY);
+    const uint8_t* const cells = material_.values();
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i)
+        if (cells[size_t(j) * nx + i] == LevelMaterial::kMaterial) to_material[size_t((j - j0) / f) * wx + (i - i0) / f] = 0;
+    chamfer(to_material, wx, wy, c);
+    const Vec2 corner = o + Vec2(i0 * cell_, j0 * cell_);
+    const auto centre = [&](long w) -> Vec2 { return corner + Vec2((w % wx + 0.5) * c, (w / wx + 0.5) * c); };
+    const float room = static_cast<float>(R_ + 1.5 * c);
+    std::vector<long> came(size_t(wx) * wy, -2);  // -2 unseen, -1 a start, else the cell it was reached from
+    std::vector<long> open;
+    const auto free = [&](long w) { return to_material[size_t(w)] > room && in_part_clearance(centre(w)); };
+    const auto cell_of = [&](const Vec2& p) {
+      const long i = std::clamp(static_cast<long>(std::floor((p.x() - corner.x()) / c)), 0L, wx - 1);
+      const long j = std::clamp(static_cast<long>(std::floor((p.y() - corner.y()) / c)), 0L, wy - 1);
+      return j * wx + i;
+    };
+    // The search begins at the cells beside a that a straight way from a reaches, ends at one that reaches b.
+    const auto near = [&](const Vec2& p, const auto& each) {
+      const long w = cell_of(p), i = w % wx, j = w / wx;
+      for (long dj = -3; dj <= 3; ++dj)
+        for (long di = -3; di <= 3; ++di)
+          if (i + di >= 0 && j + dj >= 0 && i + di < wx && j + dj < wy) each((j + dj) * wx + i + di);
+    };
+    near(a, [&](long w) {
+      if (came[size_t(w)] == -2 && free(w) && straight_in_air(a, centre(w))) came[size_t(w)] = -1, open.push_back(w);
+    });
+    std::vector<uint8_t> goal(size_t(wx) * wy, 0);
+    near(b, [&](long w) { goal[size_t(w)] = 1; });
+    long end = -1;
+    for (size_t k = 0; k < open.size() && end < 0; ++k) {
+      const long w = open[k], i = w % wx, j = w / wx;
+      if (goal[size_t(w)] && straight_in_air(centre(w), b)) end = w;
+      for (long dj = -1; dj <= 1 && end < 0; ++dj)
+        for (long di = -1; di <= 1; ++di) {
+          if ((di == 0 && dj == 0) || i + di < 0 || j + dj < 0 || i + di >= wx || j + dj >= wy) continue;
+          const long m = (j + dj) * wx + i + di;
+          if (came[size_t(m)] != -2 || !free(m)) continue;
+          came[size_t(m)] = w;
+          open.push_back(m);
+        }
+    }
+    if (end < 0) return std::nullopt;
+    std::vector<Vec2> way{b};
+    for (long w = end; w >= 0; w = came[size_t(w)]) way.push_back(centre(w));
+    way.push_back(a);
+    std::reverse(way.begin(), way.end());
+    // Pulled taut from a: the farthest point seen straight from the last kept.
+    std::vector<Vec2> taut;
+    for (size_t k = 0; k + 1 < way.size();) {
+      // Neighbouring cells of the search see each other; the farthest seen is sought by doubling strides, then
+      // halving (last_passing): a few long checks rather than one per cell.
+      const int last = int(way.size() - 1 - k);
+      const int next = int(k) + last_passing(1, last + 1, 2, [&](int d) { return straight_in_air(way[k], way[k + size_t(d)]); });
+      taut.push_back(way[size_t(next)]);
+      k = size_t(next);
+    }
+    return taut;
+  }
+
+  // A straight way at the level whose cutter meets no material and whose centre keeps out of the part, any length.
+  bool straight_in_air(const Vec2& a, const Vec2& b) const {
+    if (!material_.capsule_clear(a, b, R_)) return false;
+    const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.5 * cell_))));
+    for (int k = 0; k <= n; ++k)
+      if (!in_part_clearance(a + (b - a) * (double(k) / n))) return false;
+    return true;
   }
 
   // Every chord of the way from `from` keeps out of the part and cuts at most at the target engagement (it sets
@@ -807,7 +1027,8 @@ class AdaptivePlanner {
   }
 
   // p keeps the cutter out of the part (on the boundary too: a ring runs along the wall).
-  bool in_part_clearance(const Vec2& p) const { return allowed_lookup_.contains(p); }
+  // The tool's bodies above the cutter keep off the material left too (body_guard.hpp).
+  bool in_part_clearance(const Vec2& p) const { return allowed_lookup_.contains(p) && !guard_.blocked(p); }
 
   // Up over what stands on the way, across, down to just above the material under the cutter, and into the air
   // cleared at the level.
@@ -852,7 +1073,8 @@ class AdaptivePlanner {
   void write_feed(const Vec2& p, double e) {
     const Vec2 a = w_->position().head<2>();
     w_->feed(Vec3(p.x(), p.y(), z_));
-    engagement_of_move(e);
+    if (slotting_ && e > limit_) slot_move((p - a).norm(), e);
+    else engagement_of_move(e);
     top_.lower_along(a, p, R_, z_, [&](double d) { return profile_.height(d); });
   }
 
@@ -864,6 +1086,16 @@ class AdaptivePlanner {
     const double r = std::isnan(radius) ? R_ : radius;
     material_.cut_along(a, b, r);
     top_.lower_along(a, b, r, z_, [&](double d) { return profile_.height(d); });
+  }
+
+  // A move of the slot pass over the limit: its feed from its engagement, counted apart from the passes'.
+  void slot_move(double length, double e) {
+    const double feed = feed_for(std::min(e, 180.0));
+    tp_.passes.back().moves.back().feed = feed;
+    if (report_.slot_length_mm == 0) report_.slot_feed = feed;
+    report_.slot_length_mm += length;
+    report_.slot_max_engagement_deg = std::max(report_.slot_max_engagement_deg, e);
+    report_.slot_feed = std::min(report_.slot_feed, feed);
   }
 
   void engagement_of_move(double e) {
@@ -945,7 +1177,10 @@ class AdaptivePlanner {
     allowed.reset(corner, corner + Vec2((wx - 0.5) * cell, (wy - 0.5) * cell), cell);  // wx x wy cells
     allowed.fill(allowed_, LevelMaterial::kMaterial);
     for (size_t w = 0; w < n; ++w)
-      depth[w] = allowed.value(w) == LevelMaterial::kMaterial && to_material[w] <= reach ? INFINITY : 0;
+      depth[w] = allowed.value(w) == LevelMaterial::kMaterial && to_material[w] <= reach &&
+                         !guard_.blocked(allowed.centre(w))
+                     ? INFINITY
+                     : 0;
     chamfer(depth, wx, wy, cell);
     // The deepest cells (as deep as the helix needs), and of them the one nearest their centroid: the middle of
     // a slot, where a ramp reaches both ends.
@@ -1156,6 +1391,7 @@ class AdaptivePlanner {
   }
 
   const PlanParams& params_;
+  const Surface* surface_ = nullptr;
   PlanFrame f_;
   CutterProfile profile_;
   PlanReport& report_;
@@ -1167,6 +1403,7 @@ class AdaptivePlanner {
   Toolpath tp_;
   MoveWriter* w_ = nullptr;
   MaterialTop top_;
+  BodyGuard guard_;  // the shank and holder over what the levels above left (with a job's material)
   // The level being cut.
   double z_ = 0;
   clip::Paths allowed_;
@@ -1182,6 +1419,7 @@ class AdaptivePlanner {
   std::vector<size_t> ahead_;      // the material cells a pass's step would cut
   int min_steps_ = kMinPassSteps;  // the fewest cutting steps a pass is made with
   int failed_entries_ = 0;         // entries at the level that took next to nothing
+  bool slotting_ = false;          // the wall pass as a slot (level())
   Attempt attempt_;
   Vec2 last_start_ = Vec2::Zero();  // where the last pass began
   Vec2 heading_ = Vec2::UnitX();    // of the cutter's last move at the level

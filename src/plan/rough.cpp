@@ -9,7 +9,8 @@
 #include "rosmill/error.hpp"
 #include "rosmill/plan/levels.hpp"
 #include "rosmill/plan/stock.hpp"
-#include "rosmill/plan/tool_body_surface.hpp"
+
+#include "body_guard.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -52,31 +53,6 @@ std::vector<std::pair<double, double>> free_spans(const SampledLine& line, doubl
   for (auto& sp : spans) sp.first = std::max(sp.first, line.s.front()), sp.second = std::min(sp.second, line.s.back());
   return spans;
 }
-
-// The tool's shank (where wider than its cutter) and holder over the material the levels so far left: each a map of
-// the highest material within its reach (its radius, the allowance and the bodies' clearance) and its height above
-// the tip. The part itself the surface keeps them off (tool_body_surface.hpp); the material is what the levels
-// above could not clear (beside the part's walls, the fixture, a corner), which a body comes down onto at a level
-// a stick-out below.
-struct BodyGuard {
-  std::vector<std::pair<MaterialTop, double>> bodies;
-
-  void at_level(const MaterialTop& left, const Tool& tool, double allowance, double z) {
-    bodies.clear();
-    const double top = left.highest();
-    const Cutter& c = tool.cutter;
-    const double radius[2] = {0.5 * c.shank_diameter, 0.5 * tool.holder_mm()};
-    const double height[2] = {c.flute_length, tool.stick_out_mm()};
-    for (int b = 0; b < 2; ++b)
-      if (radius[b] > c.radius() && top > z + height[b])
-        bodies.emplace_back(left.highest_within(radius[b] + allowance + kBodyClearance), height[b]);
-  }
-  bool blocked(const Vec2& p, double z) const {
-    for (const auto& [near, height] : bodies)
-      if (near.top_at(p) > z + height) return true;
-    return false;
-  }
-};
 
 // Ramps from (a, z_from) down to z along the piece a-b (back and forth), ending at a at height z.
 void ramp_in(MoveWriter& w, const Vec2& a, const Vec2& b, double z_from, double z, double slope) {
@@ -195,7 +171,7 @@ Job rough_on(const Surface& surface, const PlanParams& params, const RoughOption
     if (left) guard.at_level(*left, params.tool, f.allowance, z);
     for (const SampledLine& L : lines) {
       if (L.s.empty()) continue;
-      auto spans = free_spans(L, z, half, [&](const Vec2& p) { return guard.blocked(p, z); });
+      auto spans = free_spans(L, z, half, [&](const Vec2& p) { return guard.blocked(p); });
       std::vector<std::pair<double, double>> keep;
       if (reach) keep = reach->along(li, L.origin, L.dir, L.s.back());
       if (left) keep = material_spans(L, z, half, air_gap);

@@ -3,8 +3,34 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace rosmill::core {
+
+// Why a strategy left material standing at a level that is not the part's.
+enum class LeftReason {
+  kNarrowerThanTheTool,  // no centre of the cutter out of the part reaches it: a gap narrower than the tool, an
+                         // inner corner tighter than its radius
+  kHolder,               // the cutter reaches it only where the shank or the holder would meet material left above
+  kEngagement,           // reached, but no pass got to it at the engagement limit and the turn radius
+};
+
+inline const char* left_reason_text(LeftReason r) {
+  switch (r) {
+    case LeftReason::kNarrowerThanTheTool: return "narrower than the tool";
+    case LeftReason::kHolder: return "the holder would meet the material above";
+    case LeftReason::kEngagement: return "no pass reached it within the engagement limit";
+  }
+  return "";
+}
+
+// One connected patch of material a level left: at height z, its area, a place inside or near it (its centroid).
+struct LeftRegion {
+  double z = 0.0;         // mm
+  double area_mm2 = 0.0;
+  double x = 0.0, y = 0.0;  // mm
+  LeftReason reason = LeftReason::kEngagement;
+};
 
 struct PlanReport {
   std::string strategy;
@@ -25,9 +51,19 @@ struct PlanReport {
   double max_engagement_deg = 0.0;
   double min_turn_radius = 0.0;  // mm
   size_t passes = 0, helices = 0, ramps = 0, lifts = 0;
-  size_t corner_links = 0;  // links at the level that turn on the spot: no curve of the turn radius fitted
+  size_t corner_links = 0;  // links at the level that turn on the spot: no curve of the turn radius fitted (each
+                            // straight piece of an air link counts as one)
+  size_t air_links = 0;     // links at the level round what stands between, through the air cleared, for a lift
   size_t short_passes = 0;  // passes that cut for fewer than 3 steps of R / 10 (made only where no longer one can)
   double left_area_mm2 = 0.0;
+  // Where no pass reached the material at the limit, the wall pass cut it as a slot: its length over the limit, the
+  // largest engagement there and the lowest feed it ran at (chip thinning keeps the chip load; mm/min).
+  double slot_length_mm = 0.0;
+  double slot_max_engagement_deg = 0.0;
+  double slot_feed = 0.0;
+  // What it left, patch by patch (the material the cutter cannot reach too, which left_area_mm2 does not count),
+  // and why; patches under R^2 / 20 are not listed (the skin the chords of a curved wall leave).
+  std::vector<LeftRegion> left;
 };
 
 }  // namespace rosmill::core
