@@ -53,6 +53,21 @@ void print_surface(const job::JobReport& r) {
   }
 }
 
+// What the operation's strategy itself says it slotted and could not clear (adaptive clearing), the first few
+// patches of it in full.
+void print_strategy_left(const job::OperationReport& op) {
+  constexpr size_t kShown = 8;
+  size_t patches = 0;
+  double rest_area = 0;
+  for (const PlanReport& p : op.plan_reports) {
+    if (p.slot_length_mm > 0) std::printf("    %s\n", slot_text(p).c_str());
+    for (const UnclearedPatch& l : p.uncleared)
+      if (++patches <= kShown) std::printf("    %s (setup frame)\n", uncleared_text(l).c_str());
+      else rest_area += l.area_mm2;
+  }
+  if (patches > kShown) std::printf("    ... and %zu more patches left, %.1f mm2\n", patches - kShown, rest_area);
+}
+
 // A job that leaves a face it was to finish above its limit fails (exit status 4) unless it accepts that.
 void refuse_unfinished(const job::JobReport& r) {
   if (!r.unfinished()) return;
@@ -144,6 +159,7 @@ void run(const JobArgs& a) {
                   op.feeds_from_engagement ? "; feeds from engagement" : "");
     if (op.gouge_mm > 0)
       std::printf("    cuts %.3f mm below the design at toolpath move %u (the verifier)\n", op.gouge_mm, op.gouge_move);
+    print_strategy_left(op);
   }
   std::printf("job: removed %.0f mm3, left %.0f mm3, air cutting %.1f %%, time %.0f s, material left on the %s "
               "%.3f to %.3f mm, deepest gouge (the verifier) %.3f mm\n",

@@ -215,10 +215,6 @@ void run(const Options& o) {
     if (!o.out.empty()) j["output"] = o.out;
     for (const PlanReport& r : reports)
       if (r.engagement_limit_deg > 0) {
-        nlohmann::json left = nlohmann::json::array();
-        for (const LeftRegion& l : r.left)
-          left.push_back({{"z", l.z}, {"area_mm2", l.area_mm2}, {"x", l.x}, {"y", l.y},
-                          {"reason", left_reason_text(l.reason)}});
         j["adaptive"] = {{"engagement_limit_deg", r.engagement_limit_deg},
                          {"max_engagement_deg", r.max_engagement_deg},
                          {"min_turn_radius", r.min_turn_radius},
@@ -234,7 +230,7 @@ void run(const Options& o) {
                          {"slot_length_mm", r.slot_length_mm},
                          {"slot_max_engagement_deg", r.slot_max_engagement_deg},
                          {"slot_feed", r.slot_feed},
-                         {"left", left}};
+                         {"uncleared", uncleared_json<nlohmann::json>(r.uncleared)}};
       }
     const Vec3& axis = setup.tool_axis;
     j["setup"] = {{"name", setup.name}, {"tool_axis", {axis.x(), axis.y(), axis.z()}}};
@@ -247,13 +243,9 @@ void run(const Options& o) {
                 estimated_seconds, seconds);
     // What adaptive clearing could not clear, and why (the part's own allowance not counted).
     for (const PlanReport& r : reports)
-      if (r.slot_length_mm > 0)
-        std::printf("  slotted %.1f mm where no pass fitted at the %.0f-degree limit: up to %.0f degrees, at %.0f mm/min "
-                    "and up\n", r.slot_length_mm, r.engagement_limit_deg, r.slot_max_engagement_deg, r.slot_feed);
+      if (r.slot_length_mm > 0) std::printf("  %s\n", slot_text(r).c_str());
     for (const PlanReport& r : reports)
-      for (const LeftRegion& l : r.left)
-        std::printf("  left at z %.3f: %.2f mm2 near x %.2f y %.2f, %s\n", l.z, l.area_mm2, l.x, l.y,
-                    left_reason_text(l.reason));
+      for (const UnclearedPatch& l : r.uncleared) std::printf("  %s\n", uncleared_text(l).c_str());
   }
 }
 

@@ -48,6 +48,14 @@ nlohmann::json operation_json(const OperationReport& r) {
                       {"nothing_to_cut", r.nothing_to_cut}};
   if (!r.program.empty()) o["program"] = r.program;
   o["roughing"] = r.roughing;
+  std::vector<UnclearedPatch> left;
+  for (const PlanReport& p : r.plan_reports) {
+    left.insert(left.end(), p.uncleared.begin(), p.uncleared.end());
+    if (p.slot_length_mm > 0)
+      o["slot"] = {{"length_mm", p.slot_length_mm}, {"max_engagement_deg", p.slot_max_engagement_deg},
+                   {"feed", p.slot_feed}};
+  }
+  o["uncleared"] = uncleared_json<nlohmann::json>(left);
   if (r.engagement_measured) {
     o["engagement"] = verify::engagement_json<nlohmann::json>(r.engagement);
     o["feeds_from_engagement"] = r.feeds_from_engagement;

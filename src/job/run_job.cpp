@@ -194,6 +194,7 @@ Job plan_operation(const JobSetup& s, const stock::InProcessStock& stock, const 
   r.tool = request.params.tool.name;
   r.tool_used = request.params.tool;
   r.roughing = kind.roughing;
+  request.reports = &r.plan_reports;
   if (!options.plan_on_stock) return plan(request);
   MaterialTop material;
   const size_t work = material_for(s, stock.view(s.report.frame), op, kind.roughing, material, r.rest_cells);

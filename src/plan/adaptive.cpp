@@ -307,7 +307,7 @@ class AdaptivePlanner {
       Vec2 sum = Vec2::Zero();
       for (size_t c : patch) sum += material_.centre(c);
       const Vec2 c = sum / double(patch.size());
-      add_left(area, c, held_off_by_the_body(c) ? LeftReason::kHolder : LeftReason::kEngagement);
+      add_left(area, c, held_off_by_the_body(c) ? UnclearedReason::kHolder : UnclearedReason::kEngagement);
     }
     report_unreached(r);
   }
@@ -379,14 +379,14 @@ class AdaptivePlanner {
             if (state[m] == 2) open.push_back(m);
           }
         }
-        if (double(n) * s * s >= 0.05 * R_ * R_) add_left(double(n) * s * s, sum / double(n), LeftReason::kNarrowerThanTheTool);
+        if (double(n) * s * s >= 0.05 * R_ * R_) add_left(double(n) * s * s, sum / double(n), UnclearedReason::kNarrowerThanTheTool);
       }
   }
 
-  void add_left(double area, const Vec2& p, LeftReason reason) {
-    LeftRegion l;
+  void add_left(double area, const Vec2& p, UnclearedReason reason) {
+    UnclearedPatch l;
     l.z = z_, l.area_mm2 = area, l.x = p.x(), l.y = p.y(), l.reason = reason;
-    report_.left.push_back(l);
+    report_.uncleared.push_back(l);
   }
 
   // ---- steered passes

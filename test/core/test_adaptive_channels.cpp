@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "job_test_options.hpp"
 #include "rosmill/cutter/chip_thinning.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/job/job_spec.hpp"
+#include "rosmill/job/run_job.hpp"
 #include "rosmill/plan/adaptive.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/stock/program.hpp"
@@ -97,7 +100,7 @@ TEST(AdaptiveChannels, ChannelsWiderThanTheToolAreClearedToTheAllowance) {
 TEST(AdaptiveChannels, AGapNarrowerThanTheToolIsListedWithItsReason) {
   const Planned& a = channels_pocket();
   size_t gap_levels = 0;
-  for (const LeftRegion& l : a.report.left) {
+  for (const UnclearedPatch& l : a.report.uncleared) {
     SCOPED_TRACE(testing::Message() << "z " << l.z << " at " << l.x << " " << l.y << ": " << l.area_mm2);
     if (l.z < 9) {  // the floor's level: nothing left in the channels
       EXPECT_FALSE(l.x > 25 && l.x < 35 && l.y > 44);  // the 6 mm channel
@@ -105,13 +108,13 @@ TEST(AdaptiveChannels, AGapNarrowerThanTheToolIsListedWithItsReason) {
     }
     if (std::abs(l.x - 49) < 1 && std::abs(l.y - 12) < 1) {
       ++gap_levels;
-      EXPECT_EQ(l.reason, LeftReason::kNarrowerThanTheTool);
+      EXPECT_EQ(l.reason, UnclearedReason::kNarrowerThanTheTool);
       EXPECT_GE(l.area_mm2, 4 * 14 * 0.9);
       EXPECT_LE(l.area_mm2, 4 * 14 + 2 * 2.5 * 2.5);
     }
   }
   EXPECT_EQ(gap_levels, 4u);  // every level under the block's top: 17, 14, 11 and the floor's 8.2
-  EXPECT_STREQ(left_reason_text(LeftReason::kNarrowerThanTheTool), "narrower than the tool");
+  EXPECT_STREQ(uncleared_reason_text(UnclearedReason::kNarrowerThanTheTool), "narrower than the tool");
 }
 
 // Between passes the cutter goes round the islands through the air the level cleared instead of lifting: 134 lifts
@@ -121,4 +124,27 @@ TEST(AdaptiveChannels, LinksGoThroughClearedAirRatherThanLifting) {
   const Planned& a = channels_pocket();
   EXPECT_GT(a.report.air_links, 0u);
   EXPECT_LE(a.report.lifts, 30u);
+}
+
+// The job says what adaptive clearing could not clear, as `plan` does: the operation's report keeps the strategy's
+// patches and slots, and the job's JSON lists them with their reasons.
+TEST(AdaptiveChannels, TheJobListsWhatItCouldNotClear) {
+  const job::JobSpec spec = job::parse_job(
+      "part: " ROSMILL_TEST_DATA "/parts/channels_pocket.stl\nstock: {box: {margin: 0}}\noperations:\n"
+      "  - {name: clear, strategy: adaptive, tool: flat:5@1, stepover: 1, stepdown: 5, allowance: 0.2}\n",
+      "channels.yaml", ROSMILL_SOURCE_DIR);
+  const job::JobReport r = job::run_job(spec, job_test::options());
+  const job::OperationReport& op = r.operations.at(0);
+  size_t gap = 0, listed = 0;
+  for (const PlanReport& p : op.plan_reports)
+    for (const UnclearedPatch& l : p.uncleared) {
+      ++listed;
+      gap += std::abs(l.x - 49) < 1 && std::abs(l.y - 12) < 1 && l.reason == UnclearedReason::kNarrowerThanTheTool;
+    }
+  EXPECT_GE(gap, 3u);  // the 4 mm gap at every level under the top
+  const nlohmann::json j = job::to_json(r)["operations"][0];
+  ASSERT_TRUE(j.contains("uncleared"));
+  EXPECT_EQ(j["uncleared"].size(), listed);
+  EXPECT_EQ(j["uncleared"][0]["reason"].get<std::string>().empty(), false);
+  EXPECT_LE(r.gouge_mm, 0.0);
 }

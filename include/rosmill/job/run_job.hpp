@@ -24,6 +24,7 @@
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/setups/setup_choice.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
+#include "rosmill/plan/plan_report.hpp"
 #include "rosmill/verify/engagement.hpp"
 
 namespace rosmill::core::job {
@@ -95,6 +96,9 @@ struct OperationReport {
   bool engagement_measured = false;
   verify::EngagementReport engagement;
   size_t feeds_from_engagement = 0;
+  // What the strategy reported of each toolpath it planned: for adaptive clearing, the channels it cut as slots and
+  // the material it could not clear, patch by patch with the reason (in the setup's frame).
+  std::vector<PlanReport> plan_reports;
 };
 
 // A setup as the job ran it: what the operator clamps and where the program's zero is.

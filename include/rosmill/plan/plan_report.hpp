@@ -8,28 +8,28 @@
 namespace rosmill::core {
 
 // Why a strategy left material standing at a level that is not the part's.
-enum class LeftReason {
+enum class UnclearedReason {
   kNarrowerThanTheTool,  // no centre of the cutter out of the part reaches it: a gap narrower than the tool, an
                          // inner corner tighter than its radius
   kHolder,               // the cutter reaches it only where the shank or the holder would meet material left above
   kEngagement,           // reached, but no pass got to it at the engagement limit and the turn radius
 };
 
-inline const char* left_reason_text(LeftReason r) {
+inline const char* uncleared_reason_text(UnclearedReason r) {
   switch (r) {
-    case LeftReason::kNarrowerThanTheTool: return "narrower than the tool";
-    case LeftReason::kHolder: return "the holder would meet the material above";
-    case LeftReason::kEngagement: return "no pass reached it within the engagement limit";
+    case UnclearedReason::kNarrowerThanTheTool: return "narrower than the tool";
+    case UnclearedReason::kHolder: return "the holder would meet the material above";
+    case UnclearedReason::kEngagement: return "no pass reached it within the engagement limit";
   }
   return "";
 }
 
 // One connected patch of material a level left: at height z, its area, a place inside or near it (its centroid).
-struct LeftRegion {
+struct UnclearedPatch {
   double z = 0.0;         // mm
   double area_mm2 = 0.0;
   double x = 0.0, y = 0.0;  // mm
-  LeftReason reason = LeftReason::kEngagement;
+  UnclearedReason reason = UnclearedReason::kEngagement;
 };
 
 struct PlanReport {
@@ -63,7 +63,22 @@ struct PlanReport {
   double slot_feed = 0.0;
   // What it left, patch by patch (the material the cutter cannot reach too, which left_area_mm2 does not count),
   // and why; patches under R^2 / 20 are not listed (the skin the chords of a curved wall leave).
-  std::vector<LeftRegion> left;
+  std::vector<UnclearedPatch> uncleared;
 };
+
+// "slotted 61.7 mm where no pass fitted at the 53-degree limit: up to 136 degrees, at 980 mm/min and up"; empty
+// when the strategy cut no slot.
+std::string slot_text(const PlanReport& r);
+// "left at z -3.000: 6.50 mm2 near x 1.00 y 2.00, narrower than the tool" (the plan's frame).
+std::string uncleared_text(const UnclearedPatch& l);
+
+// The patches as a JSON array of {z, area_mm2, x, y, reason} (Json: nlohmann::json, kept out of this header).
+template <class Json>
+Json uncleared_json(const std::vector<UnclearedPatch>& left) {
+  Json out = Json::array();
+  for (const UnclearedPatch& l : left)
+    out.push_back({{"z", l.z}, {"area_mm2", l.area_mm2}, {"x", l.x}, {"y", l.y}, {"reason", uncleared_reason_text(l.reason)}});
+  return out;
+}
 
 }  // namespace rosmill::core
