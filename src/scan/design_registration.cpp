@@ -308,6 +308,12 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   r.information = pose_information(icp.pairs(fine, estimate_normals(fine), best.scan_to_design, o.inlier_distance,
                                              o.information.outline_degrees),
                                    centre, design_frame.axes, 0.5 * size, icp.spacing(), o.information);
+  // A design that a small turn maps onto itself (a turned part's facets) fixes no turn about that axis finer
+  // than the turn: the kinks' information is the sampling's chance.
+  for (const Eigen::Matrix4d& sym : symmetries) {
+    const Eigen::AngleAxisd turn(Eigen::Matrix3d(sym.topLeftCorner<3, 3>()));
+    if (turn.angle() < M_PI / 2) widen_for_symmetry(r.information, turn.axis(), turn.angle() * 180 / M_PI);
+  }
   r.translation_sigma = r.information.translation_sigma;
   r.rotation_sigma_deg = r.information.rotation_sigma_deg;
   clock.lap("uncertainty");
