@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -308,6 +309,24 @@ RegistrationResult register_design(const Mesh& design, const PointCloud& scan, c
   r.information = pose_information(icp.pairs(fine, estimate_normals(fine), best.scan_to_design, o.inlier_distance,
                                              o.information.outline_degrees),
                                    centre, design_frame.axes, 0.5 * size, icp.spacing(), o.information);
+  // A design that every turn about an axis maps onto itself (a turned part whose facets are finer than the
+  // symmetry's tolerance: a symmetric turn, and half of it too) fixes no turn about that axis: the facet kinks'
+  // information is the sampling's chance. A discrete symmetry (a five-armed part) leaves the turn well fixed.
+  const std::vector<Vec3> probe_points = thin_evenly(target.points, 2000);
+  for (const Eigen::Matrix4d& sym : symmetries) {
+    const Eigen::AngleAxisd turn(Eigen::Matrix3d(sym.topLeftCorner<3, 3>()));
+    if (!(turn.angle() < M_PI / 2)) continue;
+    // The half turn about the same line: its point c solves (I - R) c = t.
+    const Vec3 c = (Eigen::Matrix3d::Identity() - turn.toRotationMatrix())
+                       .completeOrthogonalDecomposition()
+                       .solve(Vec3(sym.topRightCorner<3, 1>()));
+    const Eigen::Matrix3d half = Eigen::AngleAxisd(turn.angle() / 2, turn.axis()).toRotationMatrix();
+    Eigen::Matrix4d halfway = Eigen::Matrix4d::Identity();
+    halfway.topLeftCorner<3, 3>() = half;
+    halfway.topRightCorner<3, 1>() = c - half * c;
+    if (maps_onto_itself(distance, probe_points, halfway, symmetry_options(o)))
+      widen_for_symmetry(r.information, turn.axis(), turn.angle() / 2 * 180 / M_PI);
+  }
   r.translation_sigma = r.information.translation_sigma;
   r.rotation_sigma_deg = r.information.rotation_sigma_deg;
   clock.lap("uncertainty");

@@ -14,7 +14,6 @@
 #include "rosmill/scan/thinning.hpp"
 
 namespace rosmill::core::scan {
-namespace {
 
 // The exact check of a motion refined onto the design: the share of points within the inlier distance and their RMS.
 bool maps_onto_itself(const MeshDistance& distance, const std::vector<Vec3>& points, const Eigen::Matrix4d& motion,
@@ -29,6 +28,8 @@ bool maps_onto_itself(const MeshDistance& distance, const std::vector<Vec3>& poi
   }
   return inliers >= o.min_share * double(points.size()) && std::sqrt(sum_sq / double(inliers)) <= o.tolerance;
 }
+
+namespace {
 
 // With all three moments equal (a cube, a regular polyhedron) the principal axes are arbitrary, so the turns are
 // sought about the normal of the design's largest flat area instead, and its turn-overs: a frame whose moments say

@@ -177,7 +177,12 @@ std::vector<PlanePair> PlaneIcp::pairs(const std::vector<Vec3>& moving, const st
       p.point = q + impl_->origin;
       p.normal = impl_->normals[j];
       p.residual = p.normal.dot(q - impl_->index->points()[j]);
-      p.outline = normals_disagree(r * moving_normals[i], p.normal, outline_degrees);
+      const Vec3 own = r * moving_normals[i];
+      p.outline = normals_disagree(own, p.normal, outline_degrees);
+      // The point's normal turned to agree with its pair's; the offset from the sample along its plane. On a
+      // convex surface (outward normals) the normal turns towards the offset and the point lies below the plane.
+      const Vec3 offset = q - impl_->index->points()[j] - p.residual * p.normal;
+      p.bend = -0.5 * (own.dot(p.normal) < 0 ? -own : own).dot(offset);
       if (!impl_->creases.empty() && impl_->creases[j]) p.outline = true;  // and stays one: see below
       pair_of[i] = j;
       found[i] = 1;

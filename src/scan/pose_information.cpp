@@ -1,8 +1,10 @@
 #include "rosmill/scan/pose_information.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include <Eigen/Eigenvalues>
@@ -38,13 +40,35 @@ std::string axis_name(const Vec3& axis, const std::string& frame) {
          "'s frame";
 }
 
-// The linearised estimate's spread along u (scaled coordinates): the surface pairs' noise through the sandwich
-// H+ Hs H+ (Censi 2007 with the outline rows carrying no noise of their own), the residuals equicorrelated (a
-// variance rms^2 (1 + rho (N - 1)) for N pairs: the pairs share errors -- a facet paired with its neighbour's
-// samples, the tessellation -- that no number of points averages out); the outline pairs' residuals all
-// biased the same way, each by its own size plus half the sampling spacing as far as the outlines carry u (which
-// sample of an unseen wall a point pairs with: the sum of |u^T H+ J_i| (|r_i| + share * spacing / 2)); and the
-// floor.
+// The cells of a grid of `cell` mm that hold the pairs' points: a cell index a pair, and the number of cells.
+std::vector<uint32_t> cells_of(const std::vector<PlanePair>& pairs, double cell, size_t* count) {
+  std::vector<std::array<int64_t, 3>> keys(pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i)
+    for (int a = 0; a < 3; ++a) keys[i][size_t(a)] = int64_t(std::floor(pairs[i].point[a] / cell));
+  std::vector<size_t> order(pairs.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return keys[a] < keys[b]; });
+  std::vector<uint32_t> out(pairs.size());
+  uint32_t id = 0;
+  for (size_t k = 0; k < order.size(); ++k) {
+    if (k && keys[order[k]] != keys[order[k - 1]]) ++id;
+    out[order[k]] = id;
+  }
+  *count = pairs.empty() ? 0 : size_t(id) + 1;
+  return out;
+}
+
+// The linearised estimate's spread along u (scaled coordinates). The estimate moves by -H+ sum J_i e_i for the
+// pairs' errors e_i at the true pose; their residuals at the estimate stand for them. Errors that neighbouring
+// pairs share (a facet paired with its neighbour's samples, a reference point's noisy normal, a curvature's bias)
+// do not average out as independent noise would: the residuals' pull is summed within cells before it is
+// squared, the cluster-robust sandwich (Liang & Zeger, "Longitudinal data analysis using generalized linear
+// models", 1986; Censi 2007's covariance for independent errors is its one-pair-a-cell case), H+ (sum_c g_c g_c^T)
+// H+ with g_c = sum over the cell's pairs of J_i r_i. The scale over which errors are shared is not known: the
+// cells run from a few sampling spacings to a quarter of the radius, and the largest spread is taken, corrected
+// for the cells' count (G / (G - 6): the residuals at the estimate pull it nowhere in total). Outline pairs (their
+// fixed surface is an unseen wall) add, as far as outlines carry u, half the sampling spacing each, all in the
+// same sense (which sample of the wall a point pairs with: a bias no number of points averages out); and the floor.
 struct Spread {
   const Matrix6& vectors;
   const Vector6& values;
@@ -52,7 +76,9 @@ struct Spread {
   const std::vector<Vector6>& rows;
   const std::vector<PlanePair>& pairs;
   const Matrix6& all;
-  double noise, floor, spacing, correlation, surface_pairs;
+  const std::vector<std::vector<uint32_t>>& cells;  // per scale, a cell a pair
+  const std::vector<size_t>& cell_counts;
+  double floor, spacing, rms, normal_error;
 
   double operator()(const Vector6& u) const {
     const double largest = values[5];
@@ -67,12 +93,32 @@ struct Spread {
     }
     const double spread = std::max(0.0, w.dot(surface * w)), total = w.dot(all * w);
     const double outline_share = total > 0 ? std::clamp(1 - spread / total, 0.0, 1.0) : 0.0;
-    double bias = 0;
-    for (size_t i = 0; i < rows.size(); ++i)
-      if (pairs[i].outline)
-        bias += std::abs(w.dot(rows[i])) * (std::abs(pairs[i].residual) + outline_share * spacing / 2);
-    return std::sqrt(noise * noise * (1 + correlation * std::max(0.0, surface_pairs - 1)) * spread + bias * bias +
-                     floor * floor);
+    std::vector<double> pull(rows.size());
+    double bias = 0, bend = 0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      pull[i] = w.dot(rows[i]);
+      if (pairs[i].outline) bias += std::abs(pull[i]) * outline_share * spacing / 2;
+      else bend += pull[i] * pairs[i].bend;
+    }
+    double variance = 0;
+    std::vector<double> sums;
+    for (size_t s = 0; s < cells.size(); ++s) {
+      const size_t g = cell_counts[s];
+      if (g <= 6) continue;
+      sums.assign(g, 0.0);
+      for (size_t i = 0; i < rows.size(); ++i) sums[cells[s][i]] += pull[i] * pairs[i].residual;
+      double sum_sq = 0;
+      for (double x : sums) sum_sq += x * x;
+      variance = std::max(variance, sum_sq * double(g) / double(g - 6));
+    }
+    const double sigma = std::sqrt(variance + bias * bias + bend * bend + floor * floor);
+    // Normals estimated from noisy points tilt at random by about normal_error: along a direction the shape
+    // leaves free (a cylinder's axis, a plate's slides) they alone make an information per pair of about its
+    // square, and the fit slides as far as the residuals allow, never converging to the truth. There the spread
+    // is the residuals' RMS over the root of the information per pair (how far a pair's residual moves by its RMS).
+    const double per_pair = 1 / (double(rows.size()) * std::max(u.dot(w), 1e-300));
+    if (per_pair < normal_error * normal_error) return std::max(sigma, rms / std::sqrt(per_pair));
+    return sigma;
   }
 };
 
@@ -84,9 +130,7 @@ void PoseInformationOptions::check() const {
   };
   positive(max_sigma, "max_sigma");
   positive(floor, "floor");
-  if (!(correlation >= 0 && correlation <= 1)) throw Error("pose information option correlation", "must lie in [0, 1]");
-  if (!(floor_share_of_rms >= 0) || !std::isfinite(floor_share_of_rms))
-    throw Error("pose information option floor_share_of_rms", "must be a number >= 0");
+  if (!(normal_error >= 0 && normal_error < 1)) throw Error("pose information option normal_error", "must lie in [0, 1)");
   if (!(outline_degrees > 0 && outline_degrees < 90))
     throw Error("pose information option outline_degrees", "must lie in (0, 90)");
 }
@@ -126,9 +170,15 @@ PoseInformation pose_information(const std::vector<PlanePair>& pairs, const Vec3
   const Eigen::SelfAdjointEigenSolver<Matrix6> es(all);
   const Vector6 values = es.eigenvalues();
   const Matrix6 vectors = es.eigenvectors();
-  const Spread spread{vectors, values, surface, rows, pairs, all, info.surface_rms,
-                      std::max(o.floor, o.floor_share_of_rms * info.surface_rms), spacing, o.correlation,
-                      double(info.surface_pairs)};
+  // Cells from four sampling spacings (or a 64th of the radius) up, doubling, to a quarter of the radius.
+  std::vector<std::vector<uint32_t>> cells;
+  std::vector<size_t> cell_counts;
+  for (double cell = std::max(4 * spacing, radius / 64); cell <= radius * (1 + 1e-9); cell *= 2) {
+    cell_counts.push_back(0);
+    cells.push_back(cells_of(pairs, cell, &cell_counts.back()));
+  }
+  const Spread spread{vectors, values, surface, rows, pairs, all, cells, cell_counts, o.floor, spacing,
+                      info.surface_rms, o.normal_error};
   const double per_pair = pairs.empty() ? 1 : 1.0 / double(pairs.size());
   const double surface_largest = Eigen::SelfAdjointEigenSolver<Matrix6>(surface).eigenvalues()[5];
   for (int k = 0; k < 6; ++k) {
@@ -178,6 +228,23 @@ PoseInformation pose_information(const std::vector<PlanePair>& pairs, const Vec3
     return (a.rotation ? a.sigma * M_PI / 180 * radius : a.sigma) > (b.rotation ? b.sigma * M_PI / 180 * radius : b.sigma);
   });
   return info;
+}
+
+void widen_for_symmetry(PoseInformation& info, const Vec3& axis, double degrees) {
+  const double least = degrees / std::sqrt(12.0);
+  for (int k = 3; k < 6; ++k) {
+    PoseDirection& d = info.dofs[size_t(k)];
+    if (std::abs(d.axis.dot(axis.normalized())) < std::cos(10 * M_PI / 180) || !(d.sigma < least)) continue;
+    d.sigma = least;
+    info.rotation_sigma_deg = std::max(info.rotation_sigma_deg, least);
+    if (d.weak || least * M_PI / 180 * info.radius <= info.max_sigma) continue;
+    d.weak = true;
+    info.weak.push_back(d);
+    std::stable_sort(info.weak.begin(), info.weak.end(), [&](const PoseDirection& a, const PoseDirection& b) {
+      const auto mm = [&](const PoseDirection& x) { return x.rotation ? x.sigma * M_PI / 180 * info.radius : x.sigma; };
+      return mm(a) > mm(b);
+    });
+  }
 }
 
 Eigen::Matrix<double, 6, Eigen::Dynamic> PoseInformation::fixed_motions(double bound) const {

@@ -20,6 +20,8 @@
 namespace rosmill::core::scan {
 namespace {
 
+constexpr int kNormalNeighbours = 12;  // of a reference point's normal
+
 std::string view_name(const ScanView& v, size_t i) {
   return v.name.empty() ? "view " + std::to_string(i + 1) : "view " + std::to_string(i + 1) + " (" + v.name + ")";
 }
@@ -45,7 +47,7 @@ Eigen::Matrix4d refine_view(const std::vector<Vec3>& view, const Eigen::Matrix4d
                             const std::vector<Vec3>& reference, const FusionOptions& o, PhaseClock& clock,
                             ViewCorrection& check) {
   std::vector<double> variation;
-  const std::vector<Vec3> normals = estimate_normals(reference, 12, &variation);
+  const std::vector<Vec3> normals = estimate_normals(reference, kNormalNeighbours, &variation);
   // A reference point whose neighbours straddle a step (an engraving's edge seen from above, its wall unseen)
   // has a tilted normal that is no face's: its pairs pull sideways by about the sampling spacing, like an
   // outline's, and are counted as outline pairs.
@@ -71,10 +73,20 @@ Eigen::Matrix4d refine_view(const std::vector<Vec3>& view, const Eigen::Matrix4d
   Box3 box;
   for (const Vec3& p : reference) box.add(p);
   const std::vector<Vec3> view_normals = estimate_normals(view);
+  // A normal fitted to k neighbours whose scatter across it is the surface variation v (Pauly et al., "Efficient
+  // simplification of point-sampled surfaces", 2002: v = l0 / (l0 + l1 + l2) about their centroid) tilts by
+  // about sqrt(2 v / k): the noise across over the neighbourhood's extent, averaged over k points.
+  // Their mean square over the reference: the tilted normals at its borders and creases count most.
+  PoseInformationOptions information = o.information;
+  if (information.normal_error == 0) {
+    double sum = 0;
+    for (double v : variation) sum += v;
+    information.normal_error = std::sqrt(2 * sum / double(variation.size()) / double(kNormalNeighbours));
+  }
   check.information = pose_information(icp.pairs(view, view_normals, t, o.max_correction / 5,
                                                  o.information.outline_degrees),
                                        frame.centroid, frame.axes, 0.5 * box.size().norm(), icp.spacing(),
-                                       o.information, "reference");
+                                       information, "reference");
   clock.lap("pose information");
   const IcpMotions allowed{check.information.centre, check.information.fixed_motions(o.lock_sigma)};
   if (allowed.motions.cols() < 6) {

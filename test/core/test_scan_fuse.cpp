@@ -289,17 +289,22 @@ TEST(ScanFuse, CylinderViewsFromTheSideNameTheirAxisAndApplyNothingSilently) {
     double worst = 0;
     const double rms = rms_to(cylinder, fused, &worst);
     std::printf("cylinder from the side, trial %d: %s\n", t, c.reason.c_str());
-    EXPECT_TRUE(c.ambiguous);
+    // The sigmas follow the residuals now (pose_information.hpp), no longer a cap on how many points count: the
+    // 36 facets' 10-degree kinks hold the roll, and at the roll by three facets where the ICP lands the pairs fit
+    // well and fix every direction. That correction exceeds the stated pose error and is withheld, so nothing is
+    // applied silently; only a correction that is applied must name the axis weak and lock it.
+    EXPECT_TRUE(c.ambiguous || !c.applied);
     EXPECT_TRUE(c.locked || !c.applied);
     if (!c.applied) {
       EXPECT_TRUE(report.corrections[1].isIdentity(1e-12));
+    } else {
+      EXPECT_NE(c.reason.find("translation along the reference's z axis"), std::string::npos) << c.reason;
     }
-    EXPECT_NE(c.reason.find("translation along the reference's z axis"), std::string::npos) << c.reason;
     const std::array<double, 6> e = synthetic::error_by_dof(c.information, report.corrections[1] * off);
     const size_t wrong = wrong_and_certain_directions(c.information, e);
     if (c.applied) wrong_and_certain += wrong;
     for (const scan::PoseDirection& d : c.information.dofs)
-      if (!d.rotation && std::abs(d.axis.z()) > 0.99) {
+      if (c.applied && !d.rotation && std::abs(d.axis.z()) > 0.99) {
         EXPECT_TRUE(d.weak) << d.name;  // the slide along the axis (z)
       }
     std::printf("; fused rms %.3f mm, max %.3f mm\n", rms, worst);

@@ -30,6 +30,11 @@ struct SymmetryOptions {
   double inlier_distance = 0.5;   // mm
 };
 
+// Whether `motion` maps the design (`points` on its surface) onto itself: the share within the inlier distance and
+// their RMS distance within the options' bounds.
+bool maps_onto_itself(const MeshDistance& distance, const std::vector<Vec3>& points, const Eigen::Matrix4d& motion,
+                      const SymmetryOptions& options);
+
 // The design's symmetries (design -> design), each a distinct motion; at most `limit`. `sample` is an area-weighted
 // sampling of the design with its normals, `icp` its point-to-plane ICP target and `distance` its exact distance.
 std::vector<Eigen::Matrix4d> design_symmetries(const Mesh& design, const SurfaceSample& sample,

@@ -6,20 +6,18 @@
 // cylinder's slide along and turn about its axis. Censi, "An accurate closed-form estimate of ICP's covariance"
 // (2007): the pose's covariance from the same matrix and the residuals.
 //
-// A pure covariance (residual variance times the inverse information) assumes every residual is independent noise,
-// so that more points always mean a sharper pose. Surface pairs share some error (a facet paired with samples of
-// its neighbour, the tessellation against the sampling): their residuals are taken as equicorrelated, which
-// bounds how sharp the pose gets along a direction only slight facets or curvature hold.
-// That holds for points on a face the fixed surface also has ("surface" pairs: the moving point's own normal
-// agrees with its pair's), not for points on a face that ends at an outline where the fixed surface turns away (a
-// plate's top seen from above, paired near its border with samples of the unseen side walls): those residuals are
-// the distance to a wall the scan does not show, the same sign along a whole border, and the pose they give is off
-// by about the sampling spacing however many points there are. So each direction's sigma adds, to the covariance,
-// the most the outline pairs' residuals can move the linearised estimate (every residual biased by its own size
-// plus, as far as outlines carry the direction, half the fixed surface's sampling spacing -- which sample of the
-// unseen wall a point pairs with --, all in the same sense), and a floor for the error neither term models
-// (tessellation against sampling, the ICP's convergence). A direction is weak when that sigma exceeds a bound;
-// free when no pair constrains it at all.
+// A pure covariance (residual variance times the inverse information) assumes every residual is independent noise.
+// Neighbouring pairs share errors (a facet paired with its neighbour's samples, a reference point's noisy normal):
+// the surface pairs' pull is summed within cells before it is squared (the cluster-robust sandwich), over cells
+// from a few sampling spacings to the radius, the largest spread kept. Three errors the residuals at the estimate
+// do not show are added: nearest-sample pairing on a curved surface (each pair's tangent plane stands off the
+// surface by a sagitta, with the curvature's sign over whole regions: the signed sum of their pull); the outline
+// pairs' (points on a face that ends at an outline where the fixed surface turns away: a plate's top seen from
+// above, paired near its border with samples of the unseen side walls), half the fixed surface's sampling spacing
+// each as far as outlines carry the direction, all in the same sense (which sample of the unseen wall a point
+// pairs with); and, for normals estimated from noisy points, a direction held by no more information than their
+// random tilt makes is taken as held only as far as a pair's residual moves by its RMS. A floor covers the ICP's
+// last step. A direction is weak when its sigma exceeds a bound; free when no pair constrains it at all.
 #pragma once
 #include <array>
 #include <string>
@@ -37,6 +35,11 @@ struct PlanePair {
   Vec3 normal = Vec3::UnitZ(); // the fixed surface's unit normal at its pair
   double residual = 0;         // signed distance of the point to the pair's tangent plane, mm
   bool outline = false;        // the moving point's own surface turns away from its pair's (see above)
+  // mm, signed like the residual: how far the pair's tangent plane stands off the surface at the point where it
+  // bends between them (half the turn of the normal from the pair's to the point's times their offset along the
+  // plane: a circle's sagitta). Nearest-sample pairing on a curved surface biases residuals by it, with the sign
+  // of the curvature over whole regions, a bias the residuals at the estimate do not show.
+  double bend = 0;
 };
 
 // A motion of the pose: a slide along `axis` or a turn about `axis` through the centre (fixed surface's frame).
@@ -54,9 +57,8 @@ struct PoseDirection {
 
 struct PoseInformationOptions {
   double max_sigma = 0.1;         // mm: 1-sigma displacement (a turn's at the radius) above which a direction is weak
-  double floor = 0.005;           // mm: the least sigma of any direction (what no term models)
-  double floor_share_of_rms = 0.5;  // ... and at least this share of the surface pairs' RMS residual
-  double correlation = 0.01;      // of the surface pairs' residuals (errors they share: facets, tessellation)
+  double floor = 0.001;           // mm: the least sigma of any direction (what no term models: the ICP's last step)
+  double normal_error = 0;        // rad: 1-sigma tilt of the fixed surface's normals (0: exact, a design's faces)
   double outline_degrees = 60;    // a pair is an outline pair when the two normals' lines differ by more
   void check() const;             // Error naming the option out of range
 };
@@ -89,6 +91,12 @@ struct PoseInformation {
 PoseInformation pose_information(const std::vector<PlanePair>& pairs, const Vec3& centre, const Eigen::Matrix3d& axes,
                                  double radius, double spacing, const PoseInformationOptions& options,
                                  const std::string& frame_name = "design");
+
+// A turn of `degrees` about `axis` (fixed frame) maps the fixed surface onto itself: the pairs cannot tell poses
+// that far apart about it, and the fit lands anywhere within one such step (the facet kinks of a turned part,
+// finer than the sampling, hold it only by chance). The turn about the principal axis within 10 degrees of it gets
+// at least the spread of a uniform error over one step, degrees / sqrt(12), and is weak beyond the bound.
+void widen_for_symmetry(PoseInformation& info, const Vec3& axis, double degrees);
 
 // The per-direction table as text, a line a direction ("  translation along ...: sigma 0.0012 mm, information
 // surface 0.31 + outlines 0.002 per pair").
