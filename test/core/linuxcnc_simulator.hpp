@@ -99,7 +99,8 @@ class Simulator {
   // and opening, and the reading of the status after the last take wall time that a loaded computer stretches;
   // the machine time between is the program's own), `motion` the periods in which the planner had motion to run.
   // linuxcncrsh may report a program idle while the planner still runs it, so the end is when the motion clock
-  // has stood still for `settle_s` (wall).
+  // has stood still for `settle_s` of machine time (not wall time: on a loaded computer one reading of the clocks
+  // can take longer than that, and a wall-clock wait would end while the program still moves).
   struct Run {
     double all = NAN, motion = NAN;
   };
@@ -111,14 +112,13 @@ class Simulator {
     if (s.state != rosmill::core::control::RunState::Finished)
       throw std::runtime_error("the program did not run to its end: " + s.error);
     Clock after = clock();
-    for (auto still = std::chrono::steady_clock::now();
-         std::chrono::steady_clock::now() - still < std::chrono::duration<double>(settle_s);) {
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    for (Clock moved = after; after.all - moved.all < settle_s;) {
+      if (std::chrono::steady_clock::now() > give_up)
+        throw std::runtime_error("the simulator's clocks stood still for two minutes after the program");
       std::this_thread::sleep_for(std::chrono::milliseconds(250));
-      const Clock now = clock();
-      if (now.motion > after.motion) {
-        after = now;
-        still = std::chrono::steady_clock::now();
-      }
+      after = clock();
+      if (after.motion > moved.motion) moved = after;
     }
     if (!(after.first_motion > before.all)) throw std::runtime_error("the program ran without any motion");
     return {after.last_motion - after.first_motion, after.motion - before.motion};

@@ -3,7 +3,7 @@
 // and contours posted as G2/G3 arcs, some so tight that the normal acceleration limits their speed) run to their
 // end on the headless simulator (scripts/linuxcnc-sim, sim/axis_mm), timed by its machine clock from the program's
 // first motion to its last (servo periods at their nominal length: a loaded computer stretches neither the run nor
-// the figure). Each estimate must lie within 5 % of the simulator's time plus 0.3 s: the estimate cannot know where
+// the figure), and compared with the periods in which the planner had motion to run. Each estimate must lie within 5 % of the simulator's time plus 0.3 s: the estimate cannot know where
 // the machine stands before a program (the first one starts from the home position, a rapid of a few tenths of a
 // second up to the clearance).
 #include <gtest/gtest.h>
@@ -138,7 +138,10 @@ TEST(CycleTime, EstimatesWithinFivePercentOfLinuxcncsPlannerOnTheSimulator) {
     std::printf("%-14s %5zu lines: estimate %6.2f s, simulator %6.2f s (moving %6.2f s)\n", k.name, k.program.size(),
                 estimate, run.all, run.motion);
     EXPECT_GT(run.motion, 8.0) << k.name << ": too short to measure";
-    EXPECT_NEAR(estimate, run.all, kShare * run.all + kAllowance) << k.name;
+    // Against the planner's own motion time: on a loaded computer the simulator's task (non-realtime here, unlike a
+    // real controller's) may feed the planner late, and the machine stands between moves for as long, which
+    // stretches `all` by the computer's load, not the program's (1.2 s over the raster's 20.5 s at a load of 4.5).
+    EXPECT_NEAR(estimate, run.motion, kShare * run.motion + kAllowance) << k.name;
   }
   c->disconnect();
 }
