@@ -21,7 +21,8 @@
 //             3 sigma (a free direction makes no claim) and those called weak.
 // Usage: bench_register [threads] [pcl_poses] [fuse]   (pcl_poses: how many of the 5 poses pcl_icp also runs,
 //        default 5; it takes 1-2 minutes per pose on 2 cores. `fuse`: the fusion figures only)
-//        bench_register calibration [trials] [threads]   (trials per part, default 20)
+//        bench_register calibration [trials] [threads] [only]   (trials per part, default 20; only: the parts
+//             whose name holds it, "fuse " before a fusion's: "fuse counter", "register plate"... "counter")
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -256,7 +257,7 @@ std::vector<Vec3> around(const Mesh& design, int count, double distance, double 
   return out;
 }
 
-int calibration(int trials) {
+int calibration(int trials, const std::string& only) {
   const std::string stl = std::string(ROSMILL_SHARED_DATA) + "/stl/";
   StlReadOptions inch;
   inch.units = Units::Inch;
@@ -284,14 +285,18 @@ int calibration(int trials) {
         cylinder_centre + 400 * Vec3(std::cos(-0.26), std::sin(-0.26), 0)}, 80, {}}};
   uint64_t seed = 500;
   for (const CalibrationPart& p : registrations) {
+    seed += 1000;  // the same seeds whichever parts run
+    if (("register " + p.name).find(only) == std::string::npos) continue;
     const auto t0 = std::chrono::steady_clock::now();
-    calibrate_registration(p, trials, 30000, seed += 1000).print();
+    calibrate_registration(p, trials, 30000, seed).print();
     std::printf("  (%.1f s)\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
   for (const CalibrationPart& p : fusions) {
+    seed += 1000;
+    if (("fuse " + p.name).find(only) == std::string::npos) continue;
     const auto t0 = std::chrono::steady_clock::now();
     double worst_rms = 0;
-    const Calibration c = calibrate_fusion(p, trials, 100000, seed += 1000, &worst_rms);
+    const Calibration c = calibrate_fusion(p, trials, 100000, seed, &worst_rms);
     c.print();
     std::printf("  (withheld counted as refused; worst fused RMS to the design %.4f mm; %.1f s)\n", worst_rms,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
@@ -306,7 +311,7 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "calibration") {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               size_t(std::max(1, argc > 3 ? std::atoi(argv[3]) : 2)));
-    return calibration(argc > 2 ? std::atoi(argv[2]) : 20);
+    return calibration(argc > 2 ? std::atoi(argv[2]) : 20, argc > 4 ? argv[4] : "");
   }
   const int threads = argc > 1 ? std::atoi(argv[1]) : 2;
   const int pcl_poses = argc > 2 ? std::atoi(argv[2]) : 5;

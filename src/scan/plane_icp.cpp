@@ -183,7 +183,7 @@ std::vector<PlanePair> PlaneIcp::pairs(const std::vector<Vec3>& moving, const st
       // convex surface (outward normals) the normal turns towards the offset and the point lies below the plane.
       const Vec3 offset = q - impl_->index->points()[j] - p.residual * p.normal;
       p.bend = -0.5 * (own.dot(p.normal) < 0 ? -own : own).dot(offset);
-      if (!impl_->creases.empty() && impl_->creases[j]) p.outline = true;  // and stays one: see below
+      if (!impl_->creases.empty() && impl_->creases[j]) p.outline = p.crease = true;  // and stays one: see below
       pair_of[i] = j;
       found[i] = 1;
     }

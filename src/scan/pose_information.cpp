@@ -79,6 +79,7 @@ struct Spread {
   const std::vector<std::vector<uint32_t>>& cells;  // per scale, a cell a pair
   const std::vector<size_t>& cell_counts;
   double floor, spacing, rms, normal_error;
+  bool cloud_reference;
 
   double operator()(const Vector6& u) const {
     const double largest = values[5];
@@ -94,12 +95,26 @@ struct Spread {
     const double spread = std::max(0.0, w.dot(surface * w)), total = w.dot(all * w);
     const double outline_share = total > 0 ? std::clamp(1 - spread / total, 0.0, 1.0) : 0.0;
     std::vector<double> pull(rows.size());
-    double bias = 0, bend = 0;
+    double whole = 0, signed_sum = 0, scatter = 0, bend = 0;
     for (size_t i = 0; i < rows.size(); ++i) {
       pull[i] = w.dot(rows[i]);
-      if (pairs[i].outline) bias += std::abs(pull[i]) * outline_share * spacing / 2;
-      else bend += pull[i] * pairs[i].bend;
+      if (pairs[i].outline && (pairs[i].crease || !cloud_reference)) {
+        whole += std::abs(pull[i]);
+      } else if (pairs[i].outline) {
+        signed_sum += pull[i] * std::clamp(pairs[i].residual, -spacing / 2, spacing / 2);
+        scatter += pull[i] * pull[i];
+      } else {
+        bend += pull[i] * pairs[i].bend;
+      }
     }
+    // A design's unseen wall is sampled to its edge: every outline pair stands half a spacing off it in the
+    // same sense, and the fit slides until the borders' pulls balance, so the residuals at the estimate no
+    // longer show it: taken whole. A cloud's border is where the other view stopped seeing, its spacing is not
+    // the design's, and its outline pairs lie on faces the other view saw at a slant: their residuals at the
+    // estimate are the bias, signed, and a bias of one sense along a whole border cancels against the opposite
+    // border for a slide; each pair's share of a spacing scatters besides (half a spacing each, independent).
+    // A crease's tilted normal pulls sideways in its own sense, whichever reference: taken whole.
+    const double bias = outline_share * (whole * spacing / 2 + std::hypot(signed_sum, spacing / 2 * std::sqrt(scatter)));
     double variance = 0;
     std::vector<double> sums;
     for (size_t s = 0; s < cells.size(); ++s) {
@@ -130,6 +145,8 @@ void PoseInformationOptions::check() const {
   };
   positive(max_sigma, "max_sigma");
   positive(floor, "floor");
+  if (!(lock_sigma >= 0 && given_mm >= 0 && given_deg >= 0) || !std::isfinite(lock_sigma + given_mm + given_deg))
+    throw Error("pose information options lock_sigma, given_mm, given_deg", "must be numbers >= 0");
   if (!(normal_error >= 0 && normal_error < 1)) throw Error("pose information option normal_error", "must lie in [0, 1)");
   if (!(outline_degrees > 0 && outline_degrees < 90))
     throw Error("pose information option outline_degrees", "must lie in (0, 90)");
@@ -178,7 +195,30 @@ PoseInformation pose_information(const std::vector<PlanePair>& pairs, const Vec3
     cells.push_back(cells_of(pairs, cell, &cell_counts.back()));
   }
   const Spread spread{vectors, values, surface, rows, pairs, all, cells, cell_counts, o.floor, spacing,
-                      info.surface_rms, o.normal_error};
+                      info.surface_rms, o.normal_error, o.cloud_reference};
+  for (int k = 0; k < 6; ++k) {
+    const Vector6 v = vectors.col(k);
+    info.motions.col(k) << axes * v.head<3>() / radius, axes * v.tail<3>();
+    info.motion_sigma[k] = pairs.empty() ? kInfinity : spread(v);
+  }
+  // An eigen-motion locked at the given pose (Spread's k-th coordinate of the error is then the given pose's
+  // along it, independent of the fit) adds its variance to every direction u as far as u reaches along it:
+  // u . e = sum_k (u . v_k)(v_k . e), the locked k from the given pose (its turn part at the radius), the others
+  // from the fit, as though the locked ones were absent.
+  const auto stated = [&](const Vector6& u) {
+    if (!(o.lock_sigma > 0)) return spread(u);
+    Vector6 fitted = u;
+    double locked = 0;
+    for (int k = 0; k < 6; ++k) {
+      if (info.motion_sigma[k] <= o.lock_sigma) continue;
+      const Vector6 v = vectors.col(k);
+      const double along = v.dot(u), turn = radius * o.given_deg * M_PI / 180;
+      fitted -= along * v;
+      locked += along * along * (v.head<3>().squaredNorm() * turn * turn + v.tail<3>().squaredNorm() * o.given_mm * o.given_mm);
+    }
+    const double fit = fitted.norm() > 1e-9 ? spread(fitted) : o.floor;
+    return std::sqrt(fit * fit + locked);
+  };
   const double per_pair = pairs.empty() ? 1 : 1.0 / double(pairs.size());
   const double surface_largest = Eigen::SelfAdjointEigenSolver<Matrix6>(surface).eigenvalues()[5];
   for (int k = 0; k < 6; ++k) {
@@ -190,19 +230,14 @@ PoseInformation pose_information(const std::vector<PlanePair>& pairs, const Vec3
     u[d.rotation ? k - 3 : k + 3] = 1;  // the rows hold the turn first
     d.surface_information = u.dot(surface * u) * per_pair;
     d.outline_information = u.dot((all - surface) * u) * per_pair;
-    const double s = pairs.empty() ? kInfinity : spread(u);
-    d.free = !std::isfinite(s);
+    const double s = pairs.empty() ? kInfinity : stated(u);
+    d.free = pairs.empty() || !std::isfinite(o.lock_sigma > 0 ? spread(u) : s);
     d.sigma = d.rotation ? s / radius * 180 / M_PI : s;
     d.weak = !(s <= o.max_sigma);
     d.outline_only = !(d.surface_information > kFree * surface_largest * per_pair);
     (d.rotation ? info.rotation_sigma_deg : info.translation_sigma) =
         std::max(d.rotation ? info.rotation_sigma_deg : info.translation_sigma, d.sigma);
     if (d.weak) info.weak.push_back(d);
-  }
-  for (int k = 0; k < 6; ++k) {
-    const Vector6 v = vectors.col(k);
-    info.motions.col(k) << axes * v.head<3>() / radius, axes * v.tail<3>();
-    info.motion_sigma[k] = pairs.empty() ? kInfinity : spread(v);
   }
   // A weak motion that mixes the axes (a screw, a turn about an axis off the centre) shows in no single one:
   // the eigen-directions of the information catch it.

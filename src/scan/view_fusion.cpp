@@ -83,6 +83,11 @@ Eigen::Matrix4d refine_view(const std::vector<Vec3>& view, const Eigen::Matrix4d
     for (double v : variation) sum += v;
     information.normal_error = std::sqrt(2 * sum / double(variation.size()) / double(kNormalNeighbours));
   }
+  // The given pose within its stated error taken as 3 sigma.
+  information.lock_sigma = o.lock_sigma;
+  information.cloud_reference = true;
+  information.given_mm = o.pose_error_mm / 3;
+  information.given_deg = o.pose_error_deg / 3;
   check.information = pose_information(icp.pairs(view, view_normals, t, o.max_correction / 5,
                                                  o.information.outline_degrees),
                                        frame.centroid, frame.axes, 0.5 * box.size().norm(), icp.spacing(),

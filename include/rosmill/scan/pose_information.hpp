@@ -15,9 +15,13 @@
 // pairs' (points on a face that ends at an outline where the fixed surface turns away: a plate's top seen from
 // above, paired near its border with samples of the unseen side walls), half the fixed surface's sampling spacing
 // each as far as outlines carry the direction, all in the same sense (which sample of the unseen wall a point
-// pairs with); and, for normals estimated from noisy points, a direction held by no more information than their
+// pairs with) when the fixed surface is a design; against another view's cloud, their residuals signed (a bias of
+// one sense along a whole border cancels against the opposite border) and half a spacing of independent scatter
+// each, a crease's pairs still taken whole; and, for normals estimated from noisy points, a direction held by no more information than their
 // random tilt makes is taken as held only as far as a pair's residual moves by its RMS. A floor covers the ICP's
-// last step. A direction is weak when its sigma exceeds a bound; free when no pair constrains it at all.
+// last step. A direction is weak when its sigma exceeds a bound; free when no pair constrains it at all. When an
+// alignment kept a given pose along the weakest motions, every direction carries that pose's error as far as it
+// reaches along them.
 #pragma once
 #include <array>
 #include <string>
@@ -35,6 +39,7 @@ struct PlanePair {
   Vec3 normal = Vec3::UnitZ(); // the fixed surface's unit normal at its pair
   double residual = 0;         // signed distance of the point to the pair's tangent plane, mm
   bool outline = false;        // the moving point's own surface turns away from its pair's (see above)
+  bool crease = false;         // an outline pair because its fixed sample's normal is no face's (a step's edge)
   // mm, signed like the residual: how far the pair's tangent plane stands off the surface at the point where it
   // bends between them (half the turn of the normal from the pair's to the point's times their offset along the
   // plane: a circle's sagitta). Nearest-sample pairing on a curved surface biases residuals by it, with the sign
@@ -60,6 +65,14 @@ struct PoseInformationOptions {
   double floor = 0.001;           // mm: the least sigma of any direction (what no term models: the ICP's last step)
   double normal_error = 0;        // rad: 1-sigma tilt of the fixed surface's normals (0: exact, a design's faces)
   double outline_degrees = 60;    // a pair is an outline pair when the two normals' lines differ by more
+  // An alignment that keeps a given pose along the motions fixed no better than `lock_sigma` mm (0: none kept;
+  // view_fusion.hpp): those motions' error is the given pose's, 1 sigma `given_mm` per slide and `given_deg` per
+  // turn, and every direction that mixes them carries it.
+  double lock_sigma = 0;
+  // The fixed surface is another view's cloud, not a design's sampling: its outline pairs' bias is read from
+  // their residuals, signed (see pose_information.cpp, Spread), rather than half the spacing each in one sense.
+  bool cloud_reference = false;
+  double given_mm = 0, given_deg = 0;
   void check() const;             // Error naming the option out of range
 };
 
@@ -76,7 +89,7 @@ struct PoseInformation {
   // `centre`) in the fixed frame, each with its sigma (mm: a turn's displacement at the radius; infinity: free).
   Eigen::Matrix<double, 6, 6> motions = Eigen::Matrix<double, 6, 6>::Identity();
   Eigen::Matrix<double, 6, 1> motion_sigma = Eigen::Matrix<double, 6, 1>::Zero();
-  // The motions whose sigma is within `bound` mm, as columns: an alignment restricted to them (plane_icp.hpp,
+  // The motions whose sigma (the overlap's own, before any given pose's) is within `bound` mm, as columns: an alignment restricted to them (plane_icp.hpp,
   // IcpMotions) keeps the pose where it started along the others.
   Eigen::Matrix<double, 6, Eigen::Dynamic> fixed_motions(double bound) const;
   double translation_sigma = 0, rotation_sigma_deg = 0;  // the largest of the dofs'
