@@ -132,18 +132,6 @@ struct Calibration {
   }
 };
 
-// A sensor at `position` looking at `target`: its frame's pose in the common frame.
-Eigen::Matrix4d sensor_pose(const Vec3& position, const Vec3& target) {
-  const Vec3 z = (target - position).normalized();
-  const Vec3 x = z.cross(Vec3::UnitZ()).norm() > 1e-6 ? Vec3(z.cross(Vec3::UnitZ()).normalized()) : Vec3::UnitX();
-  Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
-  t.block<3, 1>(0, 0) = x;
-  t.block<3, 1>(0, 1) = z.cross(x);
-  t.block<3, 1>(0, 2) = z;
-  t.block<3, 1>(0, 3) = position;
-  return t;
-}
-
 struct CalibrationPart {
   std::string name;
   Mesh design;
@@ -198,7 +186,7 @@ Calibration calibrate_fusion(const CalibrationPart& part, int trials, size_t sam
     std::vector<scan::ScanView> views;
     std::vector<Eigen::Matrix4d> truths;
     for (size_t i = 0; i < part.sensors.size(); ++i) {
-      const Eigen::Matrix4d pose = sensor_pose(part.sensors[i], centre);
+      const Eigen::Matrix4d pose = synthetic::sensor_pose(part.sensors[i], centre);
       scan::ScanView v;
       v.cloud.points = transformed_points(rigid_inverse(pose),
                                           synthetic::synthetic_scan(part.design, {part.sensors[i]}, samples, 0.02,

@@ -89,18 +89,6 @@ Coverage fine_fits(const Mesh& design, const std::vector<Vec3>& sensors, double 
   return c;
 }
 
-// A sensor at `position` looking at `target`: its frame's pose.
-Eigen::Matrix4d sensor_pose(const Vec3& position, const Vec3& target) {
-  const Vec3 z = (target - position).normalized();
-  const Vec3 x = z.cross(Vec3::UnitZ()).norm() > 1e-6 ? Vec3(z.cross(Vec3::UnitZ()).normalized()) : Vec3::UnitX();
-  Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
-  t.block<3, 1>(0, 0) = x;
-  t.block<3, 1>(0, 1) = z.cross(x);
-  t.block<3, 1>(0, 2) = z;
-  t.block<3, 1>(0, 3) = position;
-  return t;
-}
-
 // Views of `design` from `positions`, each in its sensor's frame, the further ones nudged by 1 mm and 0.5 degree
 // about a random axis; fused. Each further view's final pose against its truth goes into `coverage`.
 scan::FusionReport fuse_trial(const Mesh& design, const std::vector<Vec3>& positions, double incidence,
@@ -110,7 +98,7 @@ scan::FusionReport fuse_trial(const Mesh& design, const std::vector<Vec3>& posit
   std::vector<scan::ScanView> views;
   std::vector<Eigen::Matrix4d> truths;
   for (size_t i = 0; i < positions.size(); ++i) {
-    const Eigen::Matrix4d pose = sensor_pose(positions[i], centre);
+    const Eigen::Matrix4d pose = synthetic::sensor_pose(positions[i], centre);
     scan::ScanView v;
     v.cloud.points = transformed_points(rigid_inverse(pose), synthetic::synthetic_scan(design, {positions[i]}, 20000,
                                                                                       0.02, seed + i, incidence).points);

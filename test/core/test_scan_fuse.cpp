@@ -39,18 +39,6 @@ size_t wrong_and_certain_directions(const scan::PoseInformation& information, co
   return wrong;
 }
 
-// A sensor at `position` looking at `target`: its frame's pose in the table frame.
-Eigen::Matrix4d sensor_pose(const Vec3& position, const Vec3& target) {
-  const Vec3 z = (target - position).normalized();
-  const Vec3 x = z.cross(Vec3::UnitZ()).norm() > 1e-6 ? Vec3(z.cross(Vec3::UnitZ()).normalized()) : Vec3::UnitX();
-  Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
-  t.block<3, 1>(0, 0) = x;
-  t.block<3, 1>(0, 1) = z.cross(x);
-  t.block<3, 1>(0, 2) = z;
-  t.block<3, 1>(0, 3) = position;
-  return t;
-}
-
 // Three views of the relief from around it, 120 degrees apart and 56 degrees up, each in its sensor's frame;
 // the second and third with poses nudged by 1 mm and 0.5 degree. (Views that overlap only in planes, such as a
 // cube's faces, leave a slide free that no registration can fix.)
@@ -60,7 +48,7 @@ std::vector<scan::ScanView> relief_views(const Mesh& relief) {
   for (int i = 0; i < 3; ++i) {
     const double a = 2 * M_PI * i / 3;
     const Vec3 position = centre + 400 * Vec3(std::cos(a), std::sin(a), 1.5).normalized();
-    const Eigen::Matrix4d pose = sensor_pose(position, centre);
+    const Eigen::Matrix4d pose = synthetic::sensor_pose(position, centre);
     scan::ScanView v;
     v.cloud.points = transformed_points(rigid_inverse(pose), synthetic::synthetic_scan(relief, {position}, 20000, 0.02,
                                                                                       uint64_t(11 + i)).points);
@@ -135,7 +123,7 @@ TEST(ScanFuse, TwoViewsOfARealPartScanFuseOntoItsSurface) {
   std::vector<scan::ScanView> views;
   for (int i = 0; i < 2; ++i) {
     const Vec3 position = centre + reach * Vec3(i == 0 ? -1 : 1, 0.3, 1.5).normalized();
-    const Eigen::Matrix4d pose = sensor_pose(position, centre);
+    const Eigen::Matrix4d pose = synthetic::sensor_pose(position, centre);
     scan::ScanView v;
     v.cloud.points = transformed_points(rigid_inverse(pose), synthetic::synthetic_scan(part, {position}, 30000, 0.02,
                                                                                       uint64_t(70 + i)).points);
@@ -200,7 +188,7 @@ std::vector<scan::ScanView> two_views(const Mesh& design, const Vec3 (&positions
   const Vec3 centre = (design.bbox.min + design.bbox.max) / 2;
   std::vector<scan::ScanView> views;
   for (int i = 0; i < 2; ++i) {
-    const Eigen::Matrix4d pose = sensor_pose(positions[i], centre);
+    const Eigen::Matrix4d pose = synthetic::sensor_pose(positions[i], centre);
     scan::ScanView v;
     v.cloud.points = transformed_points(rigid_inverse(pose), synthetic::synthetic_scan(design, {positions[i]}, 30000,
                                                                                       0.02, seed + uint64_t(i),

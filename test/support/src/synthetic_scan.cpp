@@ -68,4 +68,15 @@ std::vector<Vec3> sensors_above(const Mesh& design, int oblique, double distance
   return out;
 }
 
+Eigen::Matrix4d sensor_pose(const Vec3& position, const Vec3& target) {
+  const Vec3 z = (target - position).normalized();
+  const Vec3 x = z.cross(Vec3::UnitZ()).norm() > 1e-6 ? Vec3(z.cross(Vec3::UnitZ()).normalized()) : Vec3::UnitX();
+  Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
+  t.block<3, 1>(0, 0) = x;
+  t.block<3, 1>(0, 1) = z.cross(x);
+  t.block<3, 1>(0, 2) = z;
+  t.block<3, 1>(0, 3) = position;
+  return t;
+}
+
 }  // namespace rosmill::core::synthetic

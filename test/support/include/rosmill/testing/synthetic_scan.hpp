@@ -34,4 +34,8 @@ double box_corner_error(const Mesh& design, const Eigen::Matrix4d& error);
 // from the centre of the design's box.
 std::vector<Vec3> sensors_above(const Mesh& design, int oblique, double distance);
 
+// The pose of a sensor at `position` looking at `target`: its frame's z axis along the line of sight, its x axis
+// level (across the line of sight and the world's z; x itself when the sensor looks straight down or up).
+Eigen::Matrix4d sensor_pose(const Vec3& position, const Vec3& target);
+
 }  // namespace rosmill::core::synthetic
