@@ -331,6 +331,13 @@ Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProce
   o.held_face = job.auto_options.held_face;
   o.stock = stock.bounds_in(SetupFrame{});
   if (job.auto_setups) o.machine = machine_room(job.operations, options);
+  // On a trunnion a direction is a setup only where A and C can bring it under the spindle.
+  const std::optional<gcode::MachineLimits>& m = options.checks.machine;
+  if (job.auto_setups && m && m->trunnion)
+    o.direction_refused = [t = *m->trunnion](const Vec3& d) {
+      std::string why;
+      return machine::index_for(t, d, machine::Index{}, &why) ? std::string() : "this machine cannot index the part for it: " + why;
+    };
   if (job.auto_setups && job.setup_defaults.fixture.kind != fixture::FixtureSpec::Kind::None)
     o.fixture = job.setup_defaults.fixture;
   if (!job.auto_setups) {

@@ -205,6 +205,18 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
       continue;
     }
     const SetupFrame setup = direction_setup(cand.direction);
+    // A direction the machine cannot take or room it lacks: not a setup; what it alone would reach is reported as
+    // left for want of a machine that does.
+    const auto unfit = [&](const std::string& why, const std::vector<Vec3>& fixture) {
+      r.candidate_refused[c] = why;
+      r.candidate_unfit[c] = 1;
+      const std::vector<Reach> reach = reach_along(part, s, setup, tool, fixture, o.max_angle_deg);
+      for (size_t k = 0; k < s.size(); ++k) reached_unfit[k] |= !held[k] && reach[k] == Reach::Reached;
+    };
+    if (const std::string why = o.direction_refused ? o.direction_refused(cand.direction) : ""; !why.empty()) {
+      unfit(why, {});
+      continue;
+    }
     const Box3 turned = placed(stock, setup.placement);
     fixture::Fixture holding;
     try {
@@ -217,10 +229,7 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
     const std::vector<Vec3> fixture = o.fixture ? fixture::fixture_corners(holding) : std::vector<Vec3>{};
     const std::string misfit = o.machine ? machine_misfit(*o.machine, turned, holding) : "";
     if (!misfit.empty()) {
-      r.candidate_refused[c] = misfit;
-      r.candidate_unfit[c] = 1;
-      const std::vector<Reach> reach = reach_along(part, s, setup, tool, fixture, o.max_angle_deg);
-      for (size_t k = 0; k < s.size(); ++k) reached_unfit[k] |= !held[k] && reach[k] == Reach::Reached;
+      unfit(misfit, fixture);
       continue;
     }
     usable |= uint64_t(1) << c;

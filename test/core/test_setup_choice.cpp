@@ -297,3 +297,25 @@ TEST(SetupChoice, AStockTooTallOrTooLongForTheMachineDoesNotFit) {
   EXPECT_NE(along.find("along x"), std::string::npos) << along;
   EXPECT_NE(along.find("-261.0 to 261.0"), std::string::npos) << along;
 }
+
+// A direction the machine cannot take (a trunnion whose A axis stops short of turning the part over) is no setup:
+// what of the cube's bottom only -Z reaches is left for want of a machine that does, with the machine's reason.
+TEST(SetupChoice, ADirectionTheMachineCannotTakeIsNoSetup) {
+  ChoiceOptions o = with_tool(finishing_ball());
+  o.direction_refused = [](const Vec3& d) {
+    return d.z() < -0.5 ? std::string("this machine cannot index the part for it: A would be 180") : std::string();
+  };
+  const SetupChoice c = choose(make_primitive("cube"), o);
+  EXPECT_EQ(names(c), (std::vector<std::string>{"+Z", "+X", "-X", "+Y", "-Y"}));
+  // The side setups reach the bottom as a wall, 27 mm in from each edge (as in CubeHeldOnItsBottomNeedsFiveSetups):
+  // its middle 6 x 6 mm only -Z reaches (to the samples' spacing).
+  EXPECT_NEAR(unreached(c, "machine"), 36.0, 6.0);
+  bool refused = false;
+  for (size_t k = 0; k < c.candidates.size(); ++k)
+    if (c.candidates[k].direction.z() < -0.5) {
+      refused = true;
+      EXPECT_TRUE(c.candidate_unfit[k]);
+      EXPECT_EQ(c.candidate_refused[k], "this machine cannot index the part for it: A would be 180");
+    }
+  EXPECT_TRUE(refused);
+}

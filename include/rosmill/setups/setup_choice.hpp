@@ -11,6 +11,7 @@
 // Then every sample is machined by the chosen setup that reaches it (its face whole) most nearly head-on.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,6 +52,9 @@ struct ChoiceOptions {
   CandidateOptions candidates;
   std::vector<Vec3> directions;     // when given, the candidates instead of the axes, flats and EGI peaks
   std::optional<MachineRoom> machine;  // when given, a candidate must fit it
+  // When given: why the machine cannot point the tool along a direction (workpiece frame), empty when it can (a
+  // trunnion whose A axis does not reach it). Such a direction is not a setup, as one that does not fit the room.
+  std::function<std::string(const Vec3&)> direction_refused;
   // false: every usable candidate is a setup (a job that names its setups): only who machines what is found.
   bool search = true;
   size_t exhaustive_limit = 16;
