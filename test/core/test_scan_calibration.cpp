@@ -22,6 +22,7 @@
 #include "rosmill/scan/surface_sample.hpp"
 #include "rosmill/scan/view_fusion.hpp"
 #include "rosmill/testing/pose_error.hpp"
+#include "rosmill/testing/sanitized.hpp"
 #include "rosmill/testing/synthetic_scan.hpp"
 
 using namespace rosmill::core;
@@ -143,13 +144,17 @@ TEST(ScanCalibration, FusionSigmasMatchTheTrueErrorAndFlagNothing) {
   std::mt19937_64 rng(17);
   Coverage c;
   size_t flagged = 0, withheld = 0;
-  for (int t = 0; t < 50; ++t) {
+  // Under the sanitizers (another compiler, 3 minutes for 50) a few fusions look for memory errors; the coverage
+  // count is the normal build's to check (sanitized.hpp).
+  const int trials = rosmill::testing::cases(50, 5);
+  for (int t = 0; t < trials; ++t) {
     const scan::FusionReport r = fuse_trial(relief, around, 90, rng, 600 + 10 * uint64_t(t), &c);
     flagged += r.ambiguous;
     withheld += r.withheld;
   }
   EXPECT_EQ(flagged, 0u);
   EXPECT_EQ(withheld, 0u);
+  if (rosmill::testing::kSanitized) return;
   EXPECT_LE(c.worst_ratio("fused mount_rush"), 5.0);
   EXPECT_LE(c.beyond, 1);
 }
