@@ -936,8 +936,10 @@ class AdaptivePlanner {
     const Vec2 corner = o + Vec2(i0 * cell_, j0 * cell_);
     const auto centre = [&](long w) -> Vec2 { return corner + Vec2((w % wx + 0.5) * c, (w / wx + 0.5) * c); };
     const float room = static_cast<float>(R_ + 1.5 * c);
-    std::vector<long> came(size_t(wx) * wy, -2);  // -2 unseen, -1 a start, else the cell it was reached from
-    std::vector<long> open;
+    std::vector<long>& came = route_came_;  // -2 unseen, -1 a start, else the cell it was reached from
+    came.assign(size_t(wx) * wy, -2);
+    std::vector<long>& open = route_open_;
+    open.clear();
     const auto free = [&](long w) { return to_material[size_t(w)] > room && in_part_clearance(centre(w)); };
     const auto cell_of = [&](const Vec2& p) {
       const long i = std::clamp(static_cast<long>(std::floor((p.x() - corner.x()) / c)), 0L, wx - 1);
@@ -954,7 +956,8 @@ class AdaptivePlanner {
     near(a, [&](long w) {
       if (came[size_t(w)] == -2 && free(w) && straight_in_air(a, centre(w))) came[size_t(w)] = -1, open.push_back(w);
     });
-    std::vector<uint8_t> goal(size_t(wx) * wy, 0);
+    std::vector<uint8_t>& goal = route_goal_;
+    goal.assign(size_t(wx) * wy, 0);
     near(b, [&](long w) { goal[size_t(w)] = 1; });
     long end = -1;
     for (size_t k = 0; k < open.size() && end < 0; ++k) {
@@ -1412,6 +1415,9 @@ class AdaptivePlanner {
   RegionLookup allowed_lookup_;  // allowed_, for the many tests of where the cutter may go
   LevelMaterial window_;
   std::vector<float> scratch_[2];
+  // The air route's search, kept between links so that a link allocates nothing once they are as large as needed.
+  std::vector<long> route_came_, route_open_;
+  std::vector<uint8_t> route_goal_;
   std::vector<uint8_t> closed_;    // closed_material()
   std::vector<uint8_t> given_up_;  // material cells no pass starts from any more
   std::vector<size_t> cells_;      // the edge cells a search gathered
