@@ -8,6 +8,8 @@ install(DIRECTORY include/rosmill/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINAT
 install(TARGETS rosmill_cli rosmill_info rosmill_full RUNTIME DESTINATION ${CATKIN_GLOBAL_BIN_DESTINATION})
 install(TARGETS ${ROSMILL_NODES} RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY launch config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+# The test a cell copies into its own package to replay its recordings (README: Test your cell ...).
+install(DIRECTORY test/templates/ DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION}/templates)
 
 # The install checked as a user meets it: installed into a temporary prefix, then launched from there.
 if(CATKIN_ENABLE_TESTING)

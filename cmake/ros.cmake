@@ -12,7 +12,7 @@ endif()
 set(ENV{ROS_LANG_DISABLE} "genlisp")
 set(ROSMILL_ROS_COMPONENTS
   roscpp std_msgs std_srvs geometry_msgs sensor_msgs shape_msgs visualization_msgs diagnostic_msgs
-  actionlib_msgs actionlib tf2 tf2_ros tf2_eigen pcl_conversions diagnostic_updater rosbag rostest)
+  actionlib_msgs actionlib tf2 tf2_ros tf2_eigen pcl_conversions diagnostic_updater rosbag topic_tools rostest)
 find_package(catkin REQUIRED COMPONENTS message_generation ${ROSMILL_ROS_COMPONENTS})
 
 file(GLOB ROSMILL_MSG_FILES RELATIVE ${CMAKE_CURRENT_SOURCE_DIR}/msg CONFIGURE_DEPENDS msg/*.msg)

@@ -36,6 +36,8 @@ foreach(node_source ${ROSMILL_NODE_SOURCES})
   set_target_properties(${node_name} PROPERTIES
     RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
 endforeach()
+# cell_checker is a test node a cell's own rostest runs (test/templates/): gtest inside, installed with the nodes.
+target_link_libraries(cell_checker PRIVATE GTest::gtest)
 
 # --- rostest: test/ros/*.cpp are test nodes (gtest inside a ROS graph), test/ros/*.test the launch files that
 # start the nodes under test with them. catkin registers each .test as a ctest test (_ctest_rosmill_rostest_...),
@@ -61,12 +63,55 @@ if(CATKIN_ENABLE_TESTING)
     set_tests_properties(rosrun_finds_nodes PROPERTIES
       PASS_REGULAR_EXPRESSION "/devel/lib/rosmill/toolpath_planner" FAIL_REGULAR_EXPRESSION "Couldn't find")
   endif()
+  # Recordings of a cell made for the replay's tests (test/ros/make_cell_recording.py: the stepped block on the
+  # table, three views), each replayed by test/ros/replay/recording.test with what it must give.
+  set(ROSMILL_REPLAY_BAGS ${CMAKE_BINARY_DIR}/replay_bags)
+  set(replay_part ${CMAKE_CURRENT_SOURCE_DIR}/test/data/parts/stepped_block.stl)
+  set(replay_maker ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/make_cell_recording.py)
+  set(replay_bag_files "")
+  foreach(recording
+      "plain" "bz2|--compression;bz2" "lz4|--compression;lz4" "no_tf|--tf;none" "late_tf|--tf-late;0.5"
+      "too_late_tf|--tf-late;3" "other_frame|--cloud-frame;camera_link" "several|--repeat;2" "no_scan|--views;0")
+    string(REPLACE "|" ";" fields "${recording}")
+    list(POP_FRONT fields name)
+    add_custom_command(OUTPUT ${ROSMILL_REPLAY_BAGS}/${name}.bag
+      COMMAND ${CMAKE_COMMAND} -E make_directory ${ROSMILL_REPLAY_BAGS}
+      COMMAND /usr/bin/python3 ${replay_maker} ${replay_part} ${ROSMILL_REPLAY_BAGS}/${name}.bag ${fields}
+      DEPENDS ${replay_maker} ${replay_part} VERBATIM)
+    list(APPEND replay_bag_files ${ROSMILL_REPLAY_BAGS}/${name}.bag)
+  endforeach()
+  add_custom_target(replay_bags DEPENDS ${replay_bag_files})
+  add_dependencies(tests replay_bags)
+  set(replay_test test/ros/replay/recording.test)  # expect_message: words (joined by +) the reason must hold
+  add_rostest(${replay_test} ARGS case:=bz2 expect_views:=3)
+  add_rostest(${replay_test} ARGS case:=lz4 expect_views:=3)
+  add_rostest(${replay_test} ARGS case:=several expect_views:=6)
+  add_rostest(${replay_test} ARGS case:=plain loop:=true views:=3 expect_views:=3)
+  add_rostest(${replay_test} ARGS case:=late_tf expect_views:=3)
+  add_rostest(${replay_test} ARGS case:=too_late_tf expect_done:=false expect_step:=fusion
+    expect_message:=no+transform+scanner+table)
+  add_rostest(${replay_test} ARGS case:=no_tf expect_done:=false expect_step:=fusion
+    expect_message:=no+transform+scanner+table)
+  add_rostest(${replay_test} ARGS case:=other_frame expect_done:=false expect_step:=fusion
+    expect_message:=no+transform+camera_link+table)
+  add_rostest(${replay_test} ARGS case:=other_frame sensor_frame:=scanner expect_views:=3)
+  add_rostest(${replay_test} ARGS case:=no_scan first_view_timeout:=5 expect_done:=false expect_step:=views
+    expect_message:=nothing+publishes+/scan/points)
+  # The template a cell copies (test/templates/), on the plain recording with the bundled job: the whole pipeline.
+  # The recording's tf is exact: its scans fused where tf puts them (README: the fusion's ICP moves them).
+  add_rostest(test/templates/cell_recording.test ARGS bag:=${ROSMILL_REPLAY_BAGS}/plain.bag
+    design:=${replay_part} job:=${CMAKE_CURRENT_SOURCE_DIR}/test/data/jobs/replay_block.yaml refine_views:=false)
+  # The template as a cell uses it: from a new package in a workspace of its own, by catkin_make run_tests.
+  add_test(NAME cell_package_template COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/install/cell_package.sh
+    ${CMAKE_BINARY_DIR} ${ROSMILL_REPLAY_BAGS}/plain.bag ${replay_part}
+    ${CMAKE_CURRENT_SOURCE_DIR}/test/data/jobs/replay_block.yaml)
+  set_tests_properties(cell_package_template PROPERTIES TIMEOUT 600)
   get_property(rosmill_all_tests DIRECTORY PROPERTY TESTS)
   foreach(t ${rosmill_all_tests})
     if(t MATCHES "^_ctest_rosmill_rostest_")
       # Node output reaches the log at once; results and logs stay in the build folder; localhost resolves.
       set_tests_properties(${t} PROPERTIES TIMEOUT 180 ENVIRONMENT
-        "ROS_HOME=${CMAKE_BINARY_DIR}/ros_home;ROS_HOSTNAME=localhost;ROSCONSOLE_STDOUT_LINE_BUFFERED=1;ROS_LOG_DIR=${CMAKE_BINARY_DIR}/ros_home/log")
+        "ROS_HOME=${CMAKE_BINARY_DIR}/ros_home;ROS_HOSTNAME=localhost;ROSCONSOLE_STDOUT_LINE_BUFFERED=1;ROS_LOG_DIR=${CMAKE_BINARY_DIR}/ros_home/log;ROSMILL_REPLAY_BAGS=${ROSMILL_REPLAY_BAGS}")
     endif()
     # Only one LinuxCNC runs per machine: tests that start the simulator take the lock "linuxcnc" (tests of other
     # areas that use it should take the same lock) and may wait for another simulator to end.

@@ -7,6 +7,9 @@
 // the program's work offset. `~inspect` (rosmill/InspectScan) compares a scan of the machined part with the
 // design. Both publish the scan coloured by its distance to the design on `scan_deviation_markers`. `~save`
 // (rosmill/SaveScan) writes a scan in a frame, e.g. the raw stock's in the workpiece frame for a job's stock.
+// With ~every_cloud_a_view each cloud that comes is the session's next view (up to ~max_views) without add_view:
+// a scanner that publishes one cloud a capture, or a recording replayed (launch/replay.launch). ~sensor_frame, when
+// set, is the frame of every cloud whatever its header says.
 #include <ros/ros.h>
 #include <shape_msgs/Mesh.h>
 #include <std_srvs/Trigger.h>
@@ -43,6 +46,9 @@ class ScanRegistrar {
         session_(tf_, string_param(pnh, "fixed_frame", "table"), double_param(pnh, "transform_timeout", 0.5, 0, 30)),
         diagnostics_(nh, "scan") {
     read_scan_options(pnh, fusion_, registration_);
+    const bool every_cloud = bool_param(pnh, "every_cloud_a_view", false);
+    if (every_cloud) session_.take_every_cloud(static_cast<size_t>(int_param(pnh, "max_views", 0, 0, 10000)));
+    session_.take_clouds_in(string_param(pnh, "sensor_frame", ""));
     const std::string design = string_param(pnh, "design", "");
     if (!design.empty()) {
       StlReadOptions o;
@@ -51,7 +57,8 @@ class ScanRegistrar {
     }
     fused_pub_ = nh.advertise<sensor_msgs::PointCloud2>("fused_cloud", 1, true);
     markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("scan_deviation_markers", 1, true);
-    cloud_sub_ = nh.subscribe("scan_views", 2, &ScanSession::on_cloud, &session_);
+    // Every cloud a view: the queue holds the clouds that come while one waits for its pose (a bag played fast).
+    cloud_sub_ = nh.subscribe("scan_views", every_cloud ? 16 : 2, &ScanSession::on_cloud, &session_);
     if (!design_) mesh_sub_ = nh.subscribe("mesh", 1, &ScanRegistrar::on_mesh, this);
     services_ = {pnh.advertiseService("start", &ScanRegistrar::on_start, this),
                  pnh.advertiseService("add_view", &ScanRegistrar::on_add_view, this),

@@ -5,6 +5,7 @@
 namespace rosmill::edge {
 
 void read_scan_options(const ::ros::NodeHandle& pnh, scan::FusionOptions& fusion, scan::RegistrationOptions& r) {
+  fusion.refine = bool_param(pnh, "refine_views", true);
   fusion.voxel = double_param(pnh, "voxel", 0.0, 0.0, 100.0);
   fusion.outlier_neighbours = int_param(pnh, "outlier_neighbours", 0, 0, 200);
   fusion.rounds = int_param(pnh, "fusion_rounds", fusion.rounds, 1, 10);

@@ -7,6 +7,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/ros/convert.hpp"
+#include "rosmill/ros/transform_wait.hpp"
 
 namespace rosmill::edge {
 
@@ -17,6 +18,34 @@ void ScanSession::on_cloud(const sensor_msgs::PointCloud2::ConstPtr& msg) {
     ++received_;
   }
   arrived_.notify_all();
+  if (every_cloud_) take_as_view(*msg);
+}
+
+void ScanSession::take_every_cloud(size_t max_views) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  every_cloud_ = true;
+  max_views_ = max_views;
+}
+
+// Runs in the subscriber's callback: ROS calls one subscription's callbacks one at a time, so the views keep the
+// order of the clouds, and finish (a service, on another thread) waits for the one being taken through mutex_.
+void ScanSession::take_as_view(const sensor_msgs::PointCloud2& msg) {
+  std::string name;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (finished_ || !refused_.empty() || (max_views_ && views_.size() >= max_views_)) return;
+    name = "view " + std::to_string(views_.size() + 1);
+  }
+  std::unique_lock<std::mutex> taking(taking_);
+  try {
+    scan::ScanView view = view_of(msg, name);
+    std::lock_guard<std::mutex> lock(mutex_);
+    views_.push_back(std::move(view));
+    fused_.reset();
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    refused_ = e.what();
+  }
 }
 
 std::string ScanSession::start() {
@@ -24,6 +53,8 @@ std::string ScanSession::start() {
   const size_t dropped = views_.size();
   views_.clear();
   fused_.reset();
+  refused_.clear();
+  finished_ = false;
   return "session started" + (dropped ? " (" + std::to_string(dropped) + " views dropped)" : std::string());
 }
 
@@ -35,19 +66,19 @@ size_t ScanSession::views() const {
 // The view's points in its sensor frame (mm) and the sensor's pose in the fixed frame at the view's stamp. No
 // fallback to the latest pose: the sensor may have moved since (a robot), and a wrong pose fuses a wrong cloud.
 scan::ScanView ScanSession::view_of(const sensor_msgs::PointCloud2& msg, const std::string& name) const {
-  if (msg.header.frame_id.empty()) throw Error(name, "has no frame_id: the sensor's pose cannot be known");
+  const std::string frame = sensor_frame_.empty() ? msg.header.frame_id : sensor_frame_;
+  if (frame.empty()) throw Error(name, "has no frame_id: the sensor's pose cannot be known");
   scan::ScanView view;
   view.name = name;
   view.cloud = from_cloud_msg(msg, Eigen::Isometry3d::Identity(), name);
   if (view.cloud.points.empty()) throw Error(name, "has no finite points");
   std::string why;
-  if (!tf_.canTransform(fixed_frame_, msg.header.frame_id, msg.header.stamp, ::ros::Duration(transform_timeout_),
-                        &why))
-    throw Error(name, "no transform from '" + msg.header.frame_id + "' to '" + fixed_frame_ + "' at its stamp " +
+  if (!can_transform_within(tf_, fixed_frame_, frame, msg.header.stamp, transform_timeout_, &why))
+    throw Error(name, "no transform from '" + frame + "' to '" + fixed_frame_ + "' at its stamp " +
                           std::to_string(msg.header.stamp.toSec()) + " within " +
                           std::to_string(transform_timeout_) + " s (" + why + ")");
   view.pose = to_mm_pose(
-      tf2::transformToEigen(tf_.lookupTransform(fixed_frame_, msg.header.frame_id, msg.header.stamp)));
+      tf2::transformToEigen(tf_.lookupTransform(fixed_frame_, frame, msg.header.stamp)));
   return view;
 }
 
@@ -75,9 +106,14 @@ std::string ScanSession::add_view(double timeout_s) {
 PointCloud ScanSession::finish(const scan::FusionOptions& options, scan::FusionReport& report) {
   std::vector<scan::ScanView> views;
   {
+    std::lock_guard<std::mutex> taken(taking_);  // a view being taken (take_every_cloud) is the session's
     std::lock_guard<std::mutex> lock(mutex_);
-    if (views_.empty()) throw Error("finish", "no views: call add_view after start, once per sensor pose");
+    if (!refused_.empty()) throw Error("finish", "a cloud was refused as a view: " + refused_);
+    if (views_.empty())
+      throw Error("finish", every_cloud_ ? "no views: no cloud has come on the scan topic since the session started"
+                                         : "no views: call add_view after start, once per sensor pose");
     views = views_;
+    finished_ = every_cloud_;
   }
   PointCloud fused = scan::fuse_views(views, options, &report);
   std::lock_guard<std::mutex> lock(mutex_);
