@@ -16,6 +16,7 @@
 
 #include "cpu_time.hpp"
 #include "rosmill/heap_reuse.hpp"
+#include "rosmill/seconds_since.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
 
 using namespace rosmill::core;
@@ -24,7 +25,6 @@ using namespace rosmill::core::stock;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 constexpr double kSize = 300, kHeight = 100, kCell = 0.25;
 
@@ -120,7 +120,7 @@ double seconds_per_dexel_clip() {
     }
     sink += s.hi;
   }
-  const double t = since(t0);
+  const double t = seconds_since(t0);
   if (sink == 42) std::puts("");
   return t / n;
 }
@@ -147,11 +147,11 @@ int main(int argc, char** argv) {
     const MachineProgram program = number == 1 ? ball_raster() : flat_roughing();
     auto t0 = Clock::now();
     InProcessStock stock = InProcessStock::box(box, kCell);
-    const double make = since(t0);
+    const double make = seconds_since(t0);
     const double cpu0 = cpu_seconds_used();
     t0 = Clock::now();
     const RemovalReport r = stock.remove(program);
-    const double remove = since(t0), cpu = cpu_seconds_used() - cpu0;
+    const double remove = seconds_since(t0), cpu = cpu_seconds_used() - cpu0;
     const double side = side_dexels_crossed(program);
     std::printf("%-26s %8zu %7.3f %9.3f %7.3f %12.0f %10.1f %9.2f %8.0f %11.3g %13.1f\n", name, program.moves.size(),
                 make, remove, cpu, r.removed_mm3, stock.bytes() / 1e6, stock.bytes() / (kSize * kSize * kHeight),

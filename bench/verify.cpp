@@ -16,6 +16,7 @@
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/verify.hpp"
 #include "rosmill/heap_reuse.hpp"
+#include "rosmill/seconds_since.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::verify;
@@ -24,8 +25,6 @@ using namespace rosmill::core::stock;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Case {
   const char* name;
@@ -78,7 +77,7 @@ int main(int argc, char** argv) {
     const std::string text = raster_program(c.dome_radius, c.ball, c.lines, c.moves_per_line);
     auto t0 = Clock::now();
     const MachineProgram program = parse_gcode(text, "bench.ngc", tool_setup({"1=ball:" + std::to_string(c.ball)}));
-    const double read = since(t0);
+    const double read = seconds_since(t0);
     const Mesh dome = build_mesh(dome_corners(c.dome_radius));
     StockSpec stock;
     stock.kind = StockSpec::Kind::Box;

@@ -16,6 +16,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/heap_reuse.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/seconds_since.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/plan/waterline.hpp"
 
@@ -30,10 +31,6 @@ struct Row {
 
 const Row kRows[] = {{"failedinpycam.stl", 1.00}, {"pycam-textbox.stl", 0.66}, {"wheel_in_box.stl", 0.93},
                      {"mount_rush.stl", 2.55},     {"counter.unitsmm.STL", 4.60}};
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 

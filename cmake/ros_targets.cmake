@@ -50,6 +50,7 @@ if(CATKIN_ENABLE_TESTING)
     rosmill_test_program(${test_name})
     target_link_libraries(${test_name} PRIVATE rosmill_ros rosmill_test_support GTest::gtest)
     target_compile_definitions(${test_name} PRIVATE ${ROSMILL_TEST_DEFS})
+    add_dependencies(${test_name} rosmill_cli)  # some run `rosmill` (ROSMILL_CLI) to compare with the nodes
     set_target_properties(${test_name} PROPERTIES
       RUNTIME_OUTPUT_DIRECTORY ${CATKIN_DEVEL_PREFIX}/${CATKIN_PACKAGE_BIN_DESTINATION})
   endforeach()

@@ -10,6 +10,5 @@ enum class Units { Millimetre, Inch, Metre };
 double mm_per_unit(Units u);
 // Parses "mm", "inch"/"in", "m"; throws Error naming `where` otherwise.
 Units parse_units(const std::string& text, const std::string& where = "units");
-const char* units_name(Units u);
 
 }  // namespace rosmill::core

@@ -15,6 +15,7 @@
 #include "config_file.hpp"
 #include "work_offset_option.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/job/job_options.hpp"
 #include "rosmill/job/job_progress.hpp"
 #include "rosmill/job/run_job.hpp"
 #include "rosmill/sheet/setup_sheet.hpp"
@@ -79,28 +80,29 @@ void refuse_unfinished(const job::JobReport& r) {
   throw CLI::RuntimeError(4);
 }
 
+// The machine file's contents: --machine, else config/machine.yaml when there is one (see config_file.hpp).
+std::optional<gcode::MachineLimits> machine_of(const JobArgs& a) {
+  if (a.machine.empty() && !std::filesystem::exists(default_config("machine.yaml"))) return std::nullopt;
+  return gcode::load_machine_limits(machine_file(a.machine));
+}
+
 void run(const JobArgs& a) {
   const job::JobSpec spec = job::read_job(a.file);
   const ToolTable tools = read_tool_table(a.tools.empty() ? default_config("tools.yaml") : a.tools);
   const PresetTable presets = read_presets(a.presets.empty() ? default_config("presets.yaml") : a.presets);
-  job::JobOptions o;
-  o.tools = &tools;
-  o.presets = &presets;
-  o.out_dir = a.out;
-  o.per_operation = a.per_operation;
-  o.dialect = a.dialect;
-  o.feeds_from_engagement = !a.table_feeds;
-  o.work_offset = work_offset_of(a.work_offset);
-  // The machine checks the programs and places each setup's fixture and datum on its table (its work offset).
-  if (!a.out.empty() || (!a.no_limits && (!a.machine.empty() || std::filesystem::exists(default_config("machine.yaml")))))
-    o.checks.machine = machine_to_check(a.machine, a.no_limits);
-  // The machine's accelerations time the moves and its clearance over the stock is what links keep over it,
-  // whether or not programs are written (with --no-limits, when there is a machine file).
-  if (!a.no_limits || !a.machine.empty() || std::filesystem::exists(default_config("machine.yaml"))) {
-    const gcode::MachineLimits m = gcode::load_machine_limits(machine_file(a.machine));
-    o.trajectory = m.trajectory;
-    if (m.clearance_over_stock > 0) o.link_clearance = m.clearance_over_stock;
-  }
+  job::JobRequest request;
+  request.tools = &tools;
+  request.presets = &presets;
+  request.machine = machine_of(a);
+  request.no_limits = a.no_limits;
+  request.out_dir = a.out;
+  request.per_operation = a.per_operation;
+  request.dialect = a.dialect;
+  request.table_feeds = a.table_feeds;
+  if (!a.work_offset.given.empty() && a.out.empty())
+    throw Error("--work-offset", "sets G54 in the written programs (G10 L2 P1): give -o DIR too");
+  request.work_offset = [&a] { return work_offset_of(a.work_offset); };
+  job::JobOptions o = job::job_options(request);
   // With -o, the setup sheet beside the programs: each operation's toolpaths for its setup's picture.
   sheet::SheetJob sheet;
   sheet.title = a.file;

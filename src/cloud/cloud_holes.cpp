@@ -18,8 +18,6 @@ double auto_hole_cell(const CloudGrid& grid) {
   return std::max(3.5 * spacing_quantile(grid, 0.95), 1e-3);
 }
 
-const char* hole_policy_name(HolePolicy p) { return p == HolePolicy::Skip ? "skip" : "bridge"; }
-
 HolePolicy parse_hole_policy(const std::string& text, const std::string& where) {
   if (text == "bridge") return HolePolicy::Bridge;
   if (text == "skip") return HolePolicy::Skip;

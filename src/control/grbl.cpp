@@ -9,13 +9,12 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/lexer.hpp"
+#include "rosmill/seconds_since.hpp"
 
 namespace rosmill::core::control {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // GRBL's receive buffer holds the line's code: the reader's first step (comments and spaces out) saves room.
 std::string compact(const std::string& line, const std::string& where) {

@@ -10,6 +10,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "rosmill/text_words.hpp"
 
 namespace rosmill::core::control {
 namespace {
@@ -20,8 +21,6 @@ std::string upper(std::string s) {
   for (char& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return s;
 }
-
-std::string first_word(const std::string& s) { return s.substr(0, s.find(' ')); }
 
 // "part.ngc" -> "part"; empty -> "rosmill".
 std::string file_stem(const std::string& name) {

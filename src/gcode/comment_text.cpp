@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <cctype>
 
+#include "rosmill/text_words.hpp"
+
 namespace rosmill::core::gcode {
 namespace {
 
-// The first word of the text (letters, after spaces), in upper case.
-std::string first_word(const std::string& text) {
+// The letters the text's first word starts with, in upper case: "MSG" of "msg,hello", what an active comment
+// begins with.
+std::string keyword(const std::string& text) {
   std::string word;
-  size_t i = text.find_first_not_of(' ');
-  for (; i < text.size() && std::isalpha(static_cast<unsigned char>(text[i])); ++i)
-    word.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(text[i]))));
+  for (const char c : first_word(text)) {
+    if (!std::isalpha(static_cast<unsigned char>(c))) break;
+    word.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+  }
   return word;
 }
 
@@ -26,7 +30,7 @@ std::string comment_line(const Dialect& dialect, const std::string& text, size_t
     else if (c < 0x20 || c == 0x7f || dialect.comment_unsafe.find(ch) != std::string::npos) clean.push_back(' ');
     else clean.push_back(ch);
   }
-  const std::string word = first_word(clean);
+  const std::string word = keyword(clean);
   const auto& active = dialect.active_comments;
   if (!word.empty() && std::find(active.begin(), active.end(), word) != active.end()) clean = "- " + clean;
   if (room > 2 && clean.size() > room - 2) clean.resize(room - 2);

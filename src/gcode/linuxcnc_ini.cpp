@@ -5,17 +5,9 @@
 #include <sstream>
 
 #include "rosmill/error.hpp"
+#include "rosmill/text_words.hpp"
 
 namespace rosmill::core::gcode {
-namespace {
-
-std::string trimmed(const std::string& s) {
-  const size_t b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return {};
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-}  // namespace
 
 LinuxcncIni LinuxcncIni::read(const std::string& path) {
   std::ifstream in(path);

@@ -19,6 +19,7 @@
 #include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/lexer.hpp"
 #include "rosmill/gcode/number_format.hpp"
+#include "rosmill/text_words.hpp"
 
 extern char** environ;
 
@@ -69,11 +70,6 @@ std::vector<double> arguments(const std::string& line, size_t open) {
 bool moves_axes(const std::string& line) {
   const auto b = words_of(line);
   return b && b->has_axis();
-}
-
-std::string trimmed(const std::string& s) {
-  const size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
-  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
 }
 
 // rs274 ends its complaint with the block it refused. The program line holding that block: the first such line

@@ -236,16 +236,6 @@ Mesh mesh_from_indexed(IndexedTriangles triangles) {
   return finish_mesh(std::move(mesh));
 }
 
-void scale_mesh(Mesh& mesh, double factor) {
-  if (factor == 1.0) return;
-  mesh.bbox = Box3{};
-  for (Vec3& v : mesh.vertices) {
-    v *= factor;
-    mesh.bbox.add(v);
-  }
-  for (double& a : mesh.areas) a *= factor * factor;
-}
-
 void check_has_area(const Mesh& mesh, const std::string& where) {
   if (mesh.faces.empty()) throw Error(where, "the mesh has no triangles");
   for (const double a : mesh.areas)

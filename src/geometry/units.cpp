@@ -20,13 +20,4 @@ Units parse_units(const std::string& text, const std::string& where) {
   throw Error(where, "unknown units '" + text + "' (expected mm, inch or m)");
 }
 
-const char* units_name(Units u) {
-  switch (u) {
-    case Units::Millimetre: return "mm";
-    case Units::Inch: return "inch";
-    case Units::Metre: return "m";
-  }
-  return "mm";
-}
-
 }  // namespace rosmill::core

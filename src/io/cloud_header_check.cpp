@@ -7,16 +7,10 @@
 #include <vector>
 
 #include "rosmill/error.hpp"
+#include "rosmill/text_words.hpp"
 
 namespace rosmill::core::io {
 namespace {
-
-// The first whitespace-delimited word of a line ("" for a blank one).
-std::string first_word(const std::string& line) {
-  const size_t start = line.find_first_not_of(" \t\r");
-  if (start == std::string::npos) return "";
-  return line.substr(start, line.find_first_of(" \t\r", start) - start);
-}
 
 // The line that starts at `pos`, without its '\n'; `pos` moves past it.
 std::string next_line(const char* data, size_t size, size_t& pos) {

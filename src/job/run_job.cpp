@@ -12,6 +12,7 @@
 #include "operation_engagement.hpp"
 #include "rosmill/number_text.hpp"
 #include "rosmill/parallel.hpp"
+#include "rosmill/seconds_since.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/io/cloud_io.hpp"
@@ -34,10 +35,6 @@ namespace {
 // Material above the design and the allowance thinner than this (mm) is nothing left to cut: the stock model's
 // own rounding is well below it, a cut of it well above the finest tolerance anyone mills to.
 constexpr double kNothingLeft = 0.01;
-
-double since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // The part, or a cast stock: an STL in the job's units or a primitive of the STL slicing paper (millimetres).
 Mesh read_mesh(const std::string& path, Units units) {
@@ -260,14 +257,14 @@ stock::RemovalReport cut(stock::MachineProgram& program, Job& toolpaths, const J
       [&] {
         const auto t0 = std::chrono::steady_clock::now();
         if (measure) measure_operation(program, toolpaths, engagement, options, r);
-        r.engagement_seconds = since(t0);
+        r.engagement_seconds = seconds_since(t0);
       },
       [&] {
         run_both([&] { removal = stock.remove(geometry, frame); },
                  [&] {
                    const auto t0 = std::chrono::steady_clock::now();
                    std::tie(r.gouge_mm, r.gouge_move) = verified_gouge(setup, geometry, resolution);
-                   r.verify_seconds = since(t0);
+                   r.verify_seconds = seconds_since(t0);
                  });
       });
   return removal;
@@ -636,7 +633,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
       report.cancelled = true;
       break;
     }
-    r.plan_seconds = since(t0);
+    r.plan_seconds = seconds_since(t0);
     const SetupReport& sr = report.setups.back();
     // On a trunnion, each toolpath is in the machine's frame at its setup's A and C: the post indexes there.
     if (sr.index)

@@ -29,10 +29,6 @@ std::string degrees(double v) {
 
 }  // namespace
 
-const char* mode_name(KinematicsMode mode) {
-  return mode == KinematicsMode::Identity ? "identity" : "tool-centre-point";
-}
-
 Vec3 Trunnion::machine_point(const Vec3& p, double a, double c) const {
   const Eigen::AngleAxisd ra(a * kDegree, Vec3::UnitX()), rc(c * kDegree, Vec3::UnitZ());
   const Vec3 pv = pivot_of(*this);

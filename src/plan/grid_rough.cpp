@@ -152,8 +152,4 @@ Job grid_rough_on(const Surface& s, const PlanParams& params, const PlanProgress
   return {tp};
 }
 
-Job grid_rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress) {
-  return grid_rough_on(surface, params, progress);
-}
-
 }  // namespace rosmill::core

@@ -142,8 +142,4 @@ Job raster_on(const Surface& surface, const PlanParams& params, const RasterOpti
   return {tp};
 }
 
-Job raster_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress) {
-  return raster_on(surface, params, RasterOptions{}, progress);
-}
-
 }  // namespace rosmill::core

@@ -105,18 +105,15 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
       received = context.received_mesh();
     else if (!goal.part_source.empty())
       throw Error("part_source", "must be \"\" (the job's part) or \"mesh\", got \"" + goal.part_source + "\"");
-    job::JobOptions options;
-    options.tools = context.tools;
-    options.presets = context.presets;
-    options.out_dir = goal.output_dir;
-    options.per_operation = goal.per_operation;
-    options.dialect = context.dialect;
-    options.checks = context.checks;
-    if (context.checks.machine) options.trajectory = context.checks.machine->trajectory;
-    if (!goal.output_dir.empty() && context.work_offset) options.work_offset = context.work_offset();
-    options.part = received.get();
     if (!goal.output_dir.empty() && goal.output_dir.front() != '/')
       throw Error("output_dir", "must be an absolute folder, got '" + goal.output_dir + "'");
+    job::JobRequest request = context.request;
+    request.out_dir = goal.output_dir;
+    request.per_operation = goal.per_operation;
+    request.table_feeds = goal.table_feeds;
+    request.part = received.get();
+    request.work_offset = context.work_offset;
+    job::JobOptions options = job::job_options(request);
     std::vector<Job> planned;  // each operation's toolpaths, for the programs and the setup sheet
     std::vector<std::string> frames;  // each setup's frame on tf
     options.operation_done = [&](const job::OperationView& view) {
@@ -208,14 +205,15 @@ JobActionServer::JobActionServer(::ros::NodeHandle& nh, const ::ros::NodeHandle&
                                  std::function<std::shared_ptr<const Mesh>()> received_mesh,
                                  const tf2_ros::Buffer* tf)
     : frame_id_(frame_id), server_(nh, "plan_job", [this](const PlanJobGoalConstPtr& g) { on_goal(g); }, false) {
-  context_.tools = &tools;
-  context_.presets = &presets;
-  context_.dialect = string_param(pnh, "dialect", "linuxcnc");
-  gcode::find_dialect(context_.dialect);  // validates the name now
+  job::JobRequest& request = context_.request;
+  request.tools = &tools;
+  request.presets = &presets;
+  request.dialect = string_param(pnh, "dialect", "linuxcnc");
   const std::string machine = string_param(pnh, "machine", "");
-  if (!machine.empty()) context_.checks.machine = gcode::load_machine_limits(machine);
-  require_machine_ = machine.empty() && !bool_param(pnh, "no_limits", false);
-  context_.checks.rs274 = bool_param(pnh, "verify_rs274", false);
+  if (!machine.empty()) request.machine = gcode::load_machine_limits(machine);
+  request.no_limits = bool_param(pnh, "no_limits", false);
+  request.verify_rs274 = bool_param(pnh, "verify_rs274", false);
+  job::job_options(request);  // the parameters' errors (an unknown dialect) now, not at the first goal
   context_.received_mesh = std::move(received_mesh);
   const WorkOffsetSource offset = work_offset_source(pnh);
   if (!offset.workpiece_frame.empty()) context_.work_offset = [offset, tf] { return offset.now(tf); };
@@ -247,13 +245,7 @@ void JobActionServer::on_goal(const PlanJobGoalConstPtr& goal) {
     job_markers_.publish(view.add_surface(part, surface));
   };
   bool cancelled = false;
-  PlanJobResult result;
-  if (!goal->output_dir.empty() && require_machine_) {
-    result.message = "output_dir: programs are checked against the machine's limits: set the node's parameter "
-                     "machine (config/machine.yaml), or no_limits to true";
-  } else {
-    result = run_job_goal(*goal, context, cancelled);
-  }
+  const PlanJobResult result = run_job_goal(*goal, context, cancelled);
   if (!result.success) ROS_WARN("plan_job: %s", result.message.c_str());
   finish_goal(server_, result, cancelled, result.success);
 }

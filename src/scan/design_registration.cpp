@@ -13,6 +13,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/number_text.hpp"
+#include "rosmill/seconds_since.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/scan/covered_share.hpp"
 #include "rosmill/scan/design_symmetry.hpp"
@@ -28,10 +29,6 @@ namespace rosmill::core::scan {
 namespace {
 
 const char* const kWhere = "registration";
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 struct Fit {
   Eigen::Matrix4d scan_to_design = Eigen::Matrix4d::Identity();

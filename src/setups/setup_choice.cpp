@@ -9,13 +9,12 @@
 #include "rosmill/geometry/placement.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/segment/egi.hpp"
+#include "rosmill/seconds_since.hpp"
 
 namespace rosmill::core::setups {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // The samples on the face the part is held by: facing the held direction (within a degree) and on the part's
 // extreme plane that way.
@@ -244,7 +243,7 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
       }
     }
   }
-  r.reach_seconds = since(t0);
+  r.reach_seconds = seconds_since(t0);
 
   const auto t1 = Clock::now();
   const std::vector<PatchReach> by_patch =
@@ -259,7 +258,7 @@ SetupChoice choose_setups(const Mesh& part, const segment::SurfacePatches& patch
   r.exhaustive = found.exhaustive;
   r.subsets = found.compared;
   r.best_cover = cover(units, usable);
-  r.search_seconds = since(t1);
+  r.search_seconds = seconds_since(t1);
   r.reached = reached;
 
   // The chosen setups, in candidate order, and who machines each sample.

@@ -8,7 +8,7 @@
 
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
-#include "rosmill/job/run_job.hpp"
+#include "rosmill/job/job_options.hpp"
 
 namespace job_test {
 
@@ -19,13 +19,13 @@ inline const rosmill::core::ToolTable& package_tools() {
 }
 
 // `machine`: a file name in the package's config/ (machine.yaml: LinuxCNC's 3-axis simulator).
+// Built as `rosmill job` and the plan_job action build theirs.
 inline rosmill::core::job::JobOptions options(const std::string& out = "", const std::string& machine = "machine.yaml") {
-  rosmill::core::job::JobOptions o;
-  o.tools = &package_tools();
-  o.out_dir = out;
-  o.checks.machine = rosmill::core::gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/" + machine);
-  o.trajectory = o.checks.machine->trajectory;
-  return o;
+  rosmill::core::job::JobRequest request;
+  request.tools = &package_tools();
+  request.out_dir = out;
+  request.machine = rosmill::core::gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/" + machine);
+  return rosmill::core::job::job_options(request);
 }
 
 // An empty folder named for the test.

@@ -25,7 +25,6 @@ constexpr double kHoleCellRadii = 8.0;
 double auto_hole_cell(const CloudGrid& grid);
 
 enum class HolePolicy { Bridge, Skip };
-const char* hole_policy_name(HolePolicy p);
 // "bridge" or "skip"; throws Error naming `where` otherwise.
 HolePolicy parse_hole_policy(const std::string& text, const std::string& where = "hole policy");
 

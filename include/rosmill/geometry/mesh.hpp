@@ -90,7 +90,4 @@ Mesh build_mesh(const std::vector<Vec3>& corners, const WeldOptions& options = {
 // that does not exist.
 Mesh mesh_from_indexed(IndexedTriangles triangles);
 
-// Scales vertices in place (a unit change); areas and bbox are updated, normals are unchanged.
-void scale_mesh(Mesh& mesh, double factor);
-
 }  // namespace rosmill::core

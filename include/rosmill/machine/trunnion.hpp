@@ -29,7 +29,6 @@ struct RotaryAxis {
 // machine's axes, the part's points turned about the pivots by the post) or tool-centre-point kinematics (M428: the
 // program's X Y Z are the table's, the controller turns them).
 enum class KinematicsMode { Identity, ToolCentrePoint };
-const char* mode_name(KinematicsMode mode);
 
 struct Trunnion {
   RotaryAxis a, c;

@@ -15,6 +15,5 @@ namespace rosmill::core {
 
 Job grid_rough_on(const Surface& surface, const PlanParams& params, const PlanProgress& progress = {},
                   PlanReport* report = nullptr);
-Job grid_rough_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
 
 }  // namespace rosmill::core

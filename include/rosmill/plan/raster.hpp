@@ -19,7 +19,5 @@ struct RasterOptions {
 
 Job raster_on(const Surface& surface, const PlanParams& params, const RasterOptions& options,
               const PlanProgress& progress = {});
-// The strategy table's form (zigzag, no boundary, no report).
-Job raster_strategy(const Surface& surface, const PlanParams& params, const PlanProgress& progress);
 
 }  // namespace rosmill::core

@@ -13,7 +13,7 @@
 
 #include "rosmill/PlanJobAction.h"
 #include "rosmill/cutter/tool_table.hpp"
-#include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/job/job_options.hpp"
 #include "rosmill/job/run_job.hpp"
 #include "rosmill/planner/presets.hpp"
 #include "rosmill/ros/namespaces.hpp"
@@ -23,10 +23,9 @@
 namespace rosmill::edge {
 
 struct JobGoalContext {
-  const ToolTable* tools = nullptr;
-  const PresetTable* presets = nullptr;
-  std::string dialect = "linuxcnc";
-  gcode::ProgramChecks checks;  // what every written program is checked against
+  // The node's part of every goal's request: tools, presets, machine, no_limits, verify_rs274, dialect (the goal
+  // adds its output folder, per_operation, table_feeds and part; the work offset is the one below).
+  job::JobRequest request;
   std::function<std::shared_ptr<const Mesh>()> received_mesh;  // the part for part_source "mesh" (or an Error)
   std::function<bool()> cancel_requested;
   std::function<void(const PlanJobFeedback&)> feedback;
@@ -46,8 +45,9 @@ PlanJobResult run_job_goal(const PlanJobGoal& goal, const JobGoalContext& contex
 PlanJobResult to_job_result(const job::JobReport& report);
 
 // The plan_job action of a node: its server, the `job_markers` and `stock_markers` topics (latched, workpiece
-// frame), and the settings from the node's private parameters: `dialect`, `machine` (the limits programs are
-// checked against; required to write programs unless `no_limits`), `verify_rs274`, and those of the work offset
+// frame), and the settings from the node's private parameters: `dialect`, `machine` (the machine file: the limits
+// programs are checked against, required to write programs unless `no_limits`; its trajectory times the moves and
+// its clearance over the stock is what links keep), `verify_rs274`, and those of the work offset
 // (work_offset_tf.hpp).
 class JobActionServer {
  public:
@@ -61,7 +61,6 @@ class JobActionServer {
 
   std::string frame_id_;
   JobGoalContext context_;
-  bool require_machine_ = true;  // programs need machine limits
   SetupFramePublisher setup_frames_;
   ::ros::Publisher job_markers_, stock_markers_;
   actionlib::SimpleActionServer<PlanJobAction> server_;

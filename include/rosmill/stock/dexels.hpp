@@ -30,11 +30,6 @@ struct Dexels {
   size_t bytes() const { return first.capacity() * sizeof(uint32_t) + spans.capacity() * sizeof(Span); }
 };
 
-// Bytes a dexel model of `cells` cells holding `spans` spans takes (what the bound on the grid is checked with).
-inline double dexel_bytes(double cells, double spans) {
-  return cells * sizeof(uint32_t) + spans * sizeof(Span);
-}
-
 // The grid of a stock covering [min, max] at `cell` mm; throws Error naming `where` with the cells and the memory
 // the model would take when it is more than `max_cells` cells, before anything is allocated.
 GridSpec stock_grid(const Box3& bounds, double cell, size_t max_cells, const std::string& where);
