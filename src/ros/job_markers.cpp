@@ -40,13 +40,42 @@ std_msgs::ColorRGBA material_left_colour(float left, double tolerance, double fu
 
 namespace {
 
-// A setup's fixture, its boxes turned back from the setup's frame into the workpiece's.
-visualization_msgs::Marker fixture_marker(const job::SetupReport& s, const std_msgs::Header& header, size_t index) {
-  visualization_msgs::Marker m =
-      base_marker(header, "fixture/" + std::to_string(index + 1) + "_" + s.name, 0, visualization_msgs::Marker::TRIANGLE_LIST);
-  m.color = rgba(0.62f, 0.44f, 0.27f, 0.55f);
+// The fixture's colour: its fill faint enough that the part and the toolpaths inside the vise stay in view through
+// the jaws of every setup at once (a job's five vises, turned into the workpiece frame, surround the part: through
+// six layers this fill still lets half the light through); its edges, stronger, show where it stands.
+constexpr float kFixtureFillAlpha = 0.1f;
+constexpr float kFixtureEdgeAlpha = 0.5f;
+constexpr double kFixtureEdgeWidth = 0.0003;  // m
+
+std_msgs::ColorRGBA fixture_colour(float alpha) { return rgba(0.62f, 0.44f, 0.27f, alpha); }
+
+// A setup's fixture, its boxes turned back from the setup's frame into the workpiece's: a faint fill (id 0).
+visualization_msgs::Marker fixture_fill(const job::SetupReport& s, const std_msgs::Header& header, const std::string& ns) {
+  visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::TRIANGLE_LIST);
+  m.color = fixture_colour(kFixtureFillAlpha);
   for (const Vec3& corner : fixture::fixture_corners(s.fixture))
     m.points.push_back(to_point_msg(s.frame.to_workpiece_frame(corner)));
+  return m;
+}
+
+// The same boxes' twelve edges each (id 1), a LINE_LIST.
+visualization_msgs::Marker fixture_edges(const job::SetupReport& s, const std_msgs::Header& header, const std::string& ns) {
+  visualization_msgs::Marker m = base_marker(header, ns, 1, visualization_msgs::Marker::LINE_LIST);
+  m.color = fixture_colour(kFixtureEdgeAlpha);
+  m.scale.x = kFixtureEdgeWidth;
+  for (const fixture::FixtureBox& b : s.fixture.boxes) {
+    // Corner k has x from bit 0, y from bit 1, z from bit 2 (min or max); an edge joins two that differ by one bit.
+    auto corner = [&](int k) {
+      return Vec3(k & 1 ? b.box.max.x() : b.box.min.x(), k & 2 ? b.box.max.y() : b.box.min.y(),
+                  k & 4 ? b.box.max.z() : b.box.min.z());
+    };
+    for (int k = 0; k < 8; ++k)
+      for (int bit = 1; bit < 8; bit <<= 1) {
+        if (k & bit) continue;
+        m.points.push_back(to_point_msg(s.frame.to_workpiece_frame(corner(k))));
+        m.points.push_back(to_point_msg(s.frame.to_workpiece_frame(corner(k | bit))));
+      }
+  }
   return m;
 }
 
@@ -61,7 +90,11 @@ const visualization_msgs::MarkerArray& JobMarkers::add_operation(const job::Oper
   const size_t setup = view.report.setup_index;
   if (setup + 1 > size_t(setups_seen_)) {
     setups_seen_ = int(setup) + 1;
-    if (!view.setup.fixture.empty()) toolpaths_.markers.push_back(fixture_marker(view.setup, header_, setup));
+    if (!view.setup.fixture.empty()) {
+      const std::string ns = "fixture/" + std::to_string(setup + 1) + "_" + view.setup.name;
+      toolpaths_.markers.push_back(fixture_fill(view.setup, header_, ns));
+      toolpaths_.markers.push_back(fixture_edges(view.setup, header_, ns));
+    }
     if (setup == 0 && view.facet_setup.size() == view.part.faces.size())
       toolpaths_.markers.push_back(facets_by_setup_marker(view.part, view.facet_setup, header_));
   }

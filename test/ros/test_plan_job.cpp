@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <set>
 #include <vector>
@@ -217,15 +219,36 @@ TEST_F(PlanJob, ChosenSetupsInAViseAreOnTfAndInTheResult) {
   EXPECT_TRUE(std::filesystem::is_regular_file(std::string(folder) + "/setup_sheet.html"));
   const auto p = paths.wait(10.0);
   ASSERT_TRUE(p);
-  size_t fixtures = 0;
+  // Each setup's fixture twice: a faint fill, through which the part and its toolpaths show, and its boxes' edges,
+  // twelve a box (two points each) at the fill's corners (twelve triangles a box, three points each).
+  size_t fills = 0, edges = 0;
+  std::map<std::string, const visualization_msgs::Marker*> fill_of;
   bool by_setup = false, by_verdict = false;
   for (const auto& marker : p->markers) {
-    fixtures += marker.ns.rfind("fixture/", 0) == 0;
+    if (marker.ns.rfind("fixture/", 0) == 0 && marker.type == visualization_msgs::Marker::TRIANGLE_LIST) {
+      ++fills;
+      EXPECT_LE(marker.color.a, 0.35f) << marker.ns;
+      EXPECT_GT(marker.color.a, 0.0f) << marker.ns;
+      fill_of[marker.ns] = &marker;
+    }
     by_setup = by_setup || marker.ns == "setups";
     // After the job: the part's faces by what it left on them (a roughing finishes none: every face grey).
     by_verdict = by_verdict || (marker.ns == "surface" && !marker.points.empty());
   }
-  EXPECT_EQ(fixtures, 5u);
+  for (const auto& marker : p->markers) {
+    if (marker.ns.rfind("fixture/", 0) != 0 || marker.type != visualization_msgs::Marker::LINE_LIST) continue;
+    ++edges;
+    ASSERT_TRUE(fill_of.count(marker.ns)) << marker.ns;
+    const auto& fill = fill_of[marker.ns]->points;
+    EXPECT_EQ(marker.points.size() * 36, fill.size() * 24) << marker.ns;
+    EXPECT_GT(marker.color.a, fill_of[marker.ns]->color.a) << marker.ns;
+    for (const auto& q : marker.points)
+      EXPECT_TRUE(std::any_of(fill.begin(), fill.end(), [&](const geometry_msgs::Point& c) {
+        return std::hypot(c.x - q.x, c.y - q.y, c.z - q.z) < 1e-9;
+      })) << marker.ns << ": an edge's end at no corner of the fill";
+  }
+  EXPECT_EQ(fills, 5u);
+  EXPECT_EQ(edges, 5u);
   EXPECT_TRUE(by_setup);
   EXPECT_TRUE(by_verdict);
   std::filesystem::remove_all(folder);

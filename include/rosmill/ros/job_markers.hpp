@@ -1,9 +1,10 @@
 // A job in rviz as it runs: the toolpaths of every operation so far (namespaces "<n>_<operation>/toolpath<t>/...",
-// each hideable; a job's setups each in their own colour), each setup's fixture ("fixture/<setup>"), the part's
-// faces coloured by the setup that finishes them ("setups"; grey where none does), and the stock after the latest
-// operation as a triangle mesh coloured by the material it leaves on the part (the stock's top above the design's,
-// seen from the operation's setup), with a legend of the colours; after the job, the faces by the material left on
-// them. All in the workpiece frame.
+// each hideable; a job's setups each in their own colour), each setup's fixture ("fixture/<setup>": a faint fill,
+// id 0, and its boxes' edges, id 1, so that the part and its toolpaths show through it), the part's faces coloured
+// by the setup that finishes them ("setups"; grey where none does), and the stock after the latest operation as a
+// triangle mesh coloured by the material it leaves on the part (the stock's top above the design's, seen from the
+// operation's setup), with a legend of the colours; after the job, the faces by the material left on them. All in
+// the workpiece frame.
 #pragma once
 #include <std_msgs/Header.h>
 #include <visualization_msgs/MarkerArray.h>
