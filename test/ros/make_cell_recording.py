@@ -166,7 +166,7 @@ def main():
     ap.add_argument("design")
     ap.add_argument("out")
     ap.add_argument("--units", default="mm", choices=sorted(UNITS))
-    ap.add_argument("--xyz", default="0.25,0.1,0", help="where the design's origin lies on the table (m)")
+    ap.add_argument("--xyz", default="0.1,0.05,0", help="where the design's origin lies on the table (m)")
     ap.add_argument("--yaw", type=float, default=30.0, help="the design's turn about the table's z (degrees)")
     ap.add_argument("--views", type=int, default=3)
     ap.add_argument("--points", type=int, default=15000)

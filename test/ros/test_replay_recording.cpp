@@ -46,16 +46,16 @@ TEST(Replay, GivesWhatTheRecordingHolds) {
   if (views >= 0) EXPECT_EQ(run->views, static_cast<uint32_t>(views)) << run->fusion;
   if (!run->done) return;
 
-  // Where make_cell_recording.py placed the part: its origin at (0.25, 0.1, 0) m, turned 30 degrees about z.
+  // Where make_cell_recording.py placed the part: its origin at (0.1, 0.05, 0) m, turned 30 degrees about z.
   const auto& t = run->pose.transform;
   const Eigen::Vector3d found(t.translation.x, t.translation.y, t.translation.z);
-  EXPECT_LT((found - Eigen::Vector3d(0.25, 0.1, 0)).norm(), 0.1e-3) << "found at " << found.transpose() << " m";
+  EXPECT_LT((found - Eigen::Vector3d(0.1, 0.05, 0)).norm(), 0.1e-3) << "found at " << found.transpose() << " m";
   const Eigen::Quaterniond q(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z);
   const Eigen::Quaterniond truth(Eigen::AngleAxisd(30 * M_PI / 180, Eigen::Vector3d::UnitZ()));
   EXPECT_LT(q.angularDistance(truth) * 180 / M_PI, 0.1);
   EXPECT_FALSE(run->ambiguous) << run->ambiguity;
   // The stated 1-sigma uncertainty covers the true error (3 sigma, and 1 um for the float32 points' rounding).
-  const double error_mm = (found - Eigen::Vector3d(0.25, 0.1, 0)).norm() * 1e3;
+  const double error_mm = (found - Eigen::Vector3d(0.1, 0.05, 0)).norm() * 1e3;
   EXPECT_LE(error_mm, 3 * run->translation_sigma * 1e3 + 1e-3) << "1-sigma " << run->translation_sigma * 1e3 << " mm";
   EXPECT_LE(q.angularDistance(truth), 3 * run->rotation_sigma + 1e-5) << "1-sigma " << run->rotation_sigma << " rad";
 }
