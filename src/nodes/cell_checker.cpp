@@ -22,13 +22,13 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "rosmill/CellRun.h"
+#include "rosmill/gcode/post.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
 #include "rosmill/ros/namespaces.hpp"
 
@@ -237,13 +237,6 @@ TEST(Job, CycleTimeWithinBound) {
   expect_at_most(cell_run().job.time, "max_cycle_time_s", "the job's estimated machining time (s)");
 }
 
-std::vector<std::string> lines_of(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
 TEST(Programs, RanAndAcceptedByRs274) {
   if (!flag("programs_run", true)) GTEST_SKIP() << "~programs_run is false";
   const msg::CellRun& r = cell_run();
@@ -255,7 +248,13 @@ TEST(Programs, RanAndAcceptedByRs274) {
     EXPECT_TRUE(run.success) << "program " << k + 1 << ": " << run.message;
     EXPECT_EQ(run.acknowledged_line, run.lines) << "program " << k + 1 << " ran to line " << run.acknowledged_line
                                                 << " of " << run.lines;
-    const std::vector<std::string> lines = lines_of(run.program);
+    std::vector<std::string> lines;
+    try {
+      lines = rosmill::core::gcode::read_program_lines(run.program);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "program " << k + 1 << ": " << e.what();
+      continue;
+    }
     ASSERT_FALSE(lines.empty()) << "program " << k + 1 << ": nothing to read at " << run.program;
     const rosmill::core::gcode::Rs274Result rs = rosmill::core::gcode::run_rs274(lines);
     EXPECT_TRUE(rs.ok) << "rs274 refuses program " << k + 1 << " (" << run.program << ") at line " << rs.error_line

@@ -18,9 +18,8 @@
 #include <std_srvs/Trigger.h>
 #include <topic_tools/shape_shifter.h>
 
+#include <algorithm>
 #include <atomic>
-#include <cmath>
-#include <memory>
 #include <string>
 #include <thread>
 
