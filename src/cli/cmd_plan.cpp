@@ -44,6 +44,7 @@ struct Options {
   std::string place;  // a registration JSON: the part is planned where the scan found it
   bool no_limits = false;
   double stepover = NAN, stepdown = NAN, engagement = NAN, stock_margin = PlanParams{}.stock_margin;
+  ToolAxisParams tool_axis;
   double allowance = 0.0, tolerance = PlanParams{}.tolerance, angle = 0.0;
   bool json = false, list = false;
   CloudInputOptions cloud;  // --orient, --origin, --voxel, --outliers, --holes
@@ -118,6 +119,7 @@ void run(const Options& o) {
   params.allowance = o.allowance;
   params.tolerance = o.tolerance;
   params.angle_deg = o.angle;
+  params.tool_axis = o.tool_axis;
 
   Mesh mesh;
   PointCloud cloud;
@@ -184,11 +186,16 @@ void run(const Options& o) {
   bar.clear();
   const std::string tool_name = preset ? job_tools(job) : params.tool.name;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  gcode::PostOptions post = gcode::post_options_for(o.dialect);
+  post_for_machine(job, o.machine, post);
   if (!o.out.empty() && gcode::is_program_path(o.out)) {
     // The same checked pipeline as `rosmill post`: limits of the machine found as `send` finds it.
     gcode::ProgramChecks checks;
     checks.machine = machine_to_check(o.machine, o.no_limits);
-    gcode::write_program(o.out, gcode::prepare_program(job, gcode::post_options_for(o.dialect), checks).program);
+    // A five-axis finish approaches and leaves along its tool axes, through the space its sweep found free: the
+    // stock is the part's (finishing follows roughing), whose top the rapids clear.
+    if (post.trunnion && mesh.face_count() > 0) checks.limits.stock_top = mesh.bbox.max.z();
+    gcode::write_program(o.out, gcode::prepare_program(job, post, checks).program);
   } else if (!o.out.empty()) {
     write_toolpath_file(o.out, job);
   }
@@ -202,7 +209,7 @@ void run(const Options& o) {
   }
   // The program this job posts, timed as the machine's trajectory planner runs it.
   const double estimated_seconds =
-      gcode::estimate_cycle_time(job, gcode::post_options_for(o.dialect), machine_trajectory(o.machine)).seconds;
+      gcode::estimate_cycle_time(job, post, machine_trajectory(o.machine)).seconds;
   if (o.json) {
     nlohmann::json j = {{"strategy", o.strategy},
                         {"toolpaths", job.size()},
@@ -232,6 +239,13 @@ void run(const Options& o) {
                          {"slot_feed", r.slot_feed},
                          {"uncleared", uncleared_json<nlohmann::json>(r.uncleared)}};
       }
+    for (const PlanReport& r : reports)
+      if (r.strategy == "five-axis" || r.strategy == "four-axis")
+        j["tool_axis"] = {{"max_tilt_deg", r.max_tilt_deg},
+                          {"max_axis_rate_deg_per_mm", r.max_axis_rate_deg_per_mm},
+                          {"axes_turned_to_clear", r.axes_turned_to_clear},
+                          {"unreachable_points", r.unreachable_points},
+                          {"max_left_mm", r.max_left_mm}};
     const Vec3& axis = setup.tool_axis;
     j["setup"] = {{"name", setup.name}, {"tool_axis", {axis.x(), axis.y(), axis.z()}}};
     std::printf("%s\n", j.dump().c_str());
@@ -244,6 +258,13 @@ void run(const Options& o) {
     // What adaptive clearing could not clear, and why (the part's own allowance not counted).
     for (const PlanReport& r : reports)
       if (r.slot_length_mm > 0) std::printf("  %s\n", slot_text(r).c_str());
+    for (const PlanReport& r : reports)
+      if (r.strategy == "five-axis" || r.strategy == "four-axis")
+        std::printf("  tool axis: up to %.1f degrees from +Z, turning up to %.2f degrees per mm; %zu cutter locations "
+                    "turned off lead and tilt to clear the part, %zu no axis in the cone reaches (left out); most "
+                    "left at a kept location %.4f mm\n",
+                    r.max_tilt_deg, r.max_axis_rate_deg_per_mm, r.axes_turned_to_clear, r.unreachable_points,
+                    r.max_left_mm);
     for (const PlanReport& r : reports)
       for (const UnclearedPatch& l : r.uncleared) std::printf("  %s\n", uncleared_text(l).c_str());
   }
@@ -267,6 +288,15 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_option("--allowance", o->allowance, "stock to leave, mm");
   auto* tolerance = cmd->add_option("--tolerance", o->tolerance, "chord and gouge tolerance, mm");
   cmd->add_option("--angle", o->angle, "raster direction, degrees");
+  cmd->add_option("--lead", o->tool_axis.lead_deg,
+                  "five-axis: the tool axis tilted from the normal towards travel, degrees (default 10 for a ball)");
+  cmd->add_option("--tilt", o->tool_axis.tilt_deg, "five-axis: the tool axis tilted to the side of travel, degrees")
+      ->capture_default_str();
+  cmd->add_option("--cone", o->tool_axis.cone_deg, "five-axis: largest angle of the tool axis from +Z, degrees")
+      ->capture_default_str();
+  cmd->add_option("--axis-rate", o->tool_axis.rate_deg_per_mm,
+                  "five-axis: largest change of the tool axis per mm along a pass, degrees")
+      ->capture_default_str();
   cmd->add_option(
          "--setup", o->setup,
          "setup: the tool direction in the part's frame, +Z, -Z, +X, -X, +Y, -Y or x,y,z; the part is turned so "
@@ -297,7 +327,7 @@ CommandRegistration reg([](CLI::App& app) {
     if (o->strategy.empty()) throw Error("--strategy", "is required (rosmill plan --list names the strategies)");
     // NaN means "the default" inside PlanParams: a NaN typed on the command line must not pass as that.
     for (const char* name : {"--stepover", "--stepdown", "--engagement", "--stock-margin", "--allowance", "--tolerance",
-                             "--angle"})
+                             "--angle", "--lead", "--tilt", "--cone", "--axis-rate"})
       if (cmd->count(name) && !std::isfinite(cmd->get_option(name)->as<double>()))
         throw Error(name, "must be a finite number");
     o->tool_given = tool->count() > 0;

@@ -51,6 +51,7 @@ void run(const PostArgs& a) {
   if (o.title.empty()) o.title = a.input;
   o.work_offset = work_offset_of(a.work_offset);
   const Job job = read_toolpath_file(a.input);
+  post_for_machine(job, a.machine, o);
   gcode::ProgramChecks checks;
   checks.machine = machine_to_check(a.machine, a.no_limits);
   checks.limits.stock_top = a.stock_top;

@@ -9,6 +9,7 @@
 
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
 
 namespace rosmill::core::cli {
 
@@ -41,6 +42,16 @@ inline std::optional<gcode::MachineLimits> machine_to_check(const std::string& g
 inline gcode::TrajectoryLimits machine_trajectory(const std::string& given) {
   if (given.empty() && !std::filesystem::exists(default_config("machine.yaml"))) return {};
   return gcode::load_machine_limits(machine_file(given)).trajectory;
+}
+
+// A multi-axis job (a tool axis per move) is written for the machine file's trunnion with tool-centre-point control:
+// its chain and safe Z go to the post, whether or not the limits are checked.
+inline void post_for_machine(const Job& job, const std::string& machine, gcode::PostOptions& o) {
+  bool multi_axis = false;
+  for (const Toolpath& tp : job) multi_axis |= tp.multi_axis();
+  if (!multi_axis) return;
+  const std::string path = machine_file(machine);
+  o = gcode::with_tool_centre_point(o, gcode::load_machine_limits(path), "--machine " + path);
 }
 
 }  // namespace rosmill::core::cli

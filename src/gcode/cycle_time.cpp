@@ -26,6 +26,7 @@ struct Element {
   double length = 0;
   Vec3 start_dir = Vec3::Zero(), end_dir = Vec3::Zero();
   bool rapid = false, arc = false;
+  bool turns = false;  // the rotary axes turn along it (tool-centre-point control): blended parabolically
   double v_req = 0, v_max = 0, a_max = 0;  // mm/s, mm/s, mm/s^2 along the path
   // Arcs: the plane's normal, the radius, the feed and the axes' own limits (before the normal acceleration's share).
   Vec3 normal = Vec3::Zero();
@@ -168,7 +169,7 @@ Junction junction(const Element& p, double p_remaining, const Element& n, double
     if (!arc.arc) return false;
     return other.arc ? arc.normal.cross(other.normal).norm() > 1e-3 : std::abs(arc.normal.dot(other.end_dir)) > 1e-3;
   };
-  if (p.rapid != n.rapid || out_of_plane(p, n) || out_of_plane(n, p)) {
+  if (p.rapid != n.rapid || p.turns || n.turns || out_of_plane(p, n) || out_of_plane(n, p)) {
     j.kind = Junction::Parabolic;
     j.overlap = parabolic_overlap(p, n, p_remaining, tolerance);
     return j;
@@ -303,10 +304,28 @@ double rotary_seconds(const CanonMove& m, const TrajectoryLimits& lim) {
   const Vec3 d(m.a_to - m.a_from, m.c_to - m.c_from, 0);
   const double length = d.norm();
   if (length <= 0) return 0;
-  const double v = along(d / length, Vec3(lim.rotary_velocity.x(), lim.rotary_velocity.y(), 0), 0);
+  double v = along(d / length, Vec3(lim.rotary_velocity.x(), lim.rotary_velocity.y(), 0), 0);
   if (!std::isfinite(v)) return 0;  // a machine file without rotary limits: not timed
+  if (!m.rapid && m.feed > 0) v = std::min(v, m.feed / 60.0);  // a feed of the rotary axes alone: degrees/min
   return move_seconds(length, d / length, 60 * v,
                       Vec3(lim.rotary_acceleration.x(), lim.rotary_acceleration.y(), 0));
+}
+
+// A move of the linear and the rotary axes together (tool-centre-point control): a line of the tip on the table,
+// whose speed and acceleration each rotary axis bounds too (its degrees per millimetre of the tip). LinuxCNC makes
+// no blend arc for it (tcCanUseArcBlend wants the linear axes alone): it blends parabolically (junction()).
+Element simultaneous_element(const CanonMove& m, const TrajectoryLimits& lim) {
+  Element e = line_element(m, lim);
+  e.turns = true;
+  if (e.length <= 1e-9) return e;
+  const double rate[2] = {std::abs(m.a_to - m.a_from) / e.length, std::abs(m.c_to - m.c_from) / e.length};
+  for (int r = 0; r < 2; ++r) {
+    if (!(rate[r] > 0)) continue;
+    if (lim.rotary_velocity[r] > 0) e.v_max = std::min(e.v_max, lim.rotary_velocity[r] / rate[r]);
+    if (lim.rotary_acceleration[r] > 0) e.a_max = std::min(e.a_max, lim.rotary_acceleration[r] / rate[r]);
+  }
+  e.v_req = std::min(e.v_req, e.v_max);
+  return e;
 }
 
 // The program as the planner receives it: runs of moves between stops.
@@ -376,12 +395,13 @@ class Timer {
       m.known_from = 7;
       start_.reset();
     }
-    if (m.indexes()) {
+    const bool tip_moves = m.from_known() && (m.to - m.from).squaredNorm() > 1e-18;
+    if (m.indexes() && !tip_moves) {  // the rotary axes alone (an indexing, a turn in place): from rest to rest
       stop();
       result_.motion_seconds += rotary_seconds(m, lim_);
       return;
     }
-    const Element e = m.is_arc() ? arc_element(m, lim_) : line_element(m, lim_);
+    const Element e = m.indexes() ? simultaneous_element(m, lim_) : m.is_arc() ? arc_element(m, lim_) : line_element(m, lim_);
     if (e.length <= 1e-9) return;  // the planner drops a move that goes nowhere
     if (!m.rapid && at_speed_ > 0) {  // the planner holds the first feed move until the spindle is at speed
       stop();

@@ -17,12 +17,12 @@ const std::vector<Dialect>& dialects() {
        // or stop the program.
        {"MSG", "DEBUG", "PRINT", "LOG", "LOGOPEN", "LOGAPPEND", "LOGCLOSE", "PROBEOPEN", "PROBECLOSE", "ABORT", "PY",
         "PYRUN", "PYRELOAD"},
-       true},
+       true, true},
       {"grbl", "GRBL 1.1: no tool changer (M0 pause to change the tool), 80-character lines",
        "G17 G21 G40 G49 G54 G80 G90 G94", false, false, false, "M30", 80,
        // GRBL 1.1 takes its real-time commands ('?' status, '!' hold, '~' resume, and bytes above ASCII) from
        // anywhere in the stream, comments included ("Grbl v1.1 Commands", its manual); (MSG, ...) is shown.
-       "();?!~", {"MSG"}, false},
+       "();?!~", {"MSG"}, false, false},
   };
   return table;
 }

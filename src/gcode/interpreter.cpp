@@ -118,7 +118,8 @@ void Interpreter::modal_codes() {
 
 void Interpreter::machine_words() {
   const double unit = state_.metric ? 1.0 : 25.4;
-  if (block_.has('F')) state_.feed = block_.get('F') * unit;
+  // Inverse time (G93): F is 1 / minutes for the move, whatever the length units.
+  if (block_.has('F')) state_.feed = block_.get('F') * (state_.feed_mode == 93 ? 1.0 : unit);
   if (block_.has('S')) state_.spindle_rpm = block_.get('S');
   if (block_.has('T')) state_.selected_tool = static_cast<int>(std::lround(block_.get('T')));
   if (block_.has_m(6) && state_.selected_tool >= 0) state_.tool = state_.selected_tool;
@@ -202,6 +203,7 @@ void Interpreter::motion() {
   rotary(m);
   m.rapid = state_.motion == 0;
   m.feed = m.rapid ? 0.0f : static_cast<float>(state_.feed);
+  if (!m.rapid && state_.feed_mode == 93) inverse_time_feed(m);
   m.source = static_cast<uint32_t>(place_.line);
   if (state_.motion == 2 || state_.motion == 3) {
     if (!m.from_known()) throw Error(where(), "an arc cannot be the first move (its start is unknown)");
@@ -210,6 +212,18 @@ void Interpreter::motion() {
     arc(m);
   }
   moved_ = true;
+}
+
+// Inverse time (G93, NIST version 3, 3.5.19): the move takes 1/F minutes, and every feed move gives its own F. Its
+// feed in mm/min is then F times its length, as LinuxCNC's canonical SET_FEED_RATE says: the linear axes' length, or
+// the rotary axes' (degrees) for a move of those alone.
+void Interpreter::inverse_time_feed(CanonMove& m) const {
+  if (!block_.has('F')) throw Error(where(), "a feed move under inverse time (G93) without its F word");
+  if (state_.motion == 2 || state_.motion == 3) throw Error(where(), "an arc under inverse time (G93) is not followed");
+  double length = (m.to - m.from).norm();
+  if (!(m.known_from == 7 && m.known_to == 7)) throw Error(where(), "an inverse-time move (G93) from an unknown place");
+  if (length <= 0) length = std::hypot(m.a_to - m.a_from, m.c_to - m.c_from);
+  m.feed = static_cast<float>(state_.feed * length);
 }
 
 // The rotary axes A and C: degrees whatever the length units, absolute or incremental as the linear axes. A

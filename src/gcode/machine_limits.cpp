@@ -222,6 +222,7 @@ struct Step {
   int spindle;
   WorkOffset offset;  // the active coordinate system's origin on the machine when the move ran
   size_t run = 0;     // the runs of a 3+2 program between its indexings: each sees the part from another side
+  bool tcp = false;   // after M428: tool-centre-point kinematics (X Y Z the tip on the table)
 };
 
 // The coordinate systems G54..G59 as far as the checker knows them: G54 from the machine file, each of them once the
@@ -278,14 +279,13 @@ void refuse_unfollowed(const Interpreter& reader, int offset_before, const Known
     add("work offset", work_offset_code(s.work_offset) +
                            " selected before the program set its origin (G10 L2); the machine file gives G54's "
                            "origin only");
-  if (s.feed_mode == 93) throw Error(reader.where(), "inverse-time feed (G93) is not followed");
   if (reader.moved() && reader.move().is_arc() && reader.move().plane != Plane::XY)
     throw Error(reader.where(), "arcs outside the XY plane (G17) are not followed");
 }
 
 // The rotary axes against the trunnion's ranges; any rotary word refused on a machine without one.
 template <class Add>
-void check_rotary(const MachineLimits& lim, const CanonMove& m, Add&& add) {
+void check_rotary(const MachineLimits& lim, const CanonMove& m, bool tcp, Add&& add) {
   if (!m.known_rotary && !m.indexes()) return;
   if (!lim.trunnion) {
     add("rotary axes", "the machine '" + lim.name + "' has no A or C axis");
@@ -293,7 +293,7 @@ void check_rotary(const MachineLimits& lim, const CanonMove& m, Add&& add) {
   }
   const machine::Trunnion& t = *lim.trunnion;
   // The table's check and the turning sweep assume the part stands still while the tool moves (3+2).
-  if (m.indexes() && (m.to - m.from).cwiseAbs().maxCoeff() > 0)
+  if (!tcp && m.indexes() && (m.to - m.from).cwiseAbs().maxCoeff() > 0)
     add("simultaneous move", "A or C turns while X, Y or Z move: a 3+2 program indexes with A and C alone");
   if ((m.known_rotary & 1) && !t.a_in_range(m.a_to))
     add(m.a_to < t.a.min ? "rotary a min" : "rotary a max",
@@ -355,6 +355,60 @@ void machine_extent(const CanonMove& m, const WorkOffset& w, double lo[3], doubl
   }
 }
 
+// Tool-centre-point kinematics: the controller moves the tip straight on the table and A and C in proportion, so
+// the machine's linear joints follow a curve. Samples along the move, at most a millimetre of the tip or a degree
+// of either rotary axis apart, give the joints' extent (the trunnion's chain, machine_point) and the tip's lowest
+// height on the table. Only a fully known move is followed.
+// Returns the length of each joint's path.
+Vec3 tool_centre_point_extent(const machine::Trunnion& t, const CanonMove& m, const WorkOffset& w, double lo[3],
+                              double hi[3], double& lowest_on_table) {
+  const double span = std::max({(m.to - m.from).norm(), std::abs(m.a_to - m.a_from), std::abs(m.c_to - m.c_from)});
+  const int n = std::max(1, static_cast<int>(std::ceil(span)));
+  for (int a = 0; a < 3; ++a) lo[a] = INFINITY, hi[a] = -INFINITY;
+  lowest_on_table = INFINITY;
+  Vec3 travel = Vec3::Zero(), before = Vec3::Zero();
+  for (int k = 0; k <= n; ++k) {
+    const double f = static_cast<double>(k) / n;
+    const Vec3 tip = w.to_machine(m.from + f * (m.to - m.from));
+    const Vec3 joint = t.machine_point(tip, m.a_from + f * (m.a_to - m.a_from), m.c_from + f * (m.c_to - m.c_from));
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], joint[a]), hi[a] = std::max(hi[a], joint[a]);
+    lowest_on_table = std::min(lowest_on_table, tip.z());
+    if (k > 0) travel += (joint - before).cwiseAbs();
+    before = joint;
+  }
+  return travel;
+}
+
+// With tool-centre-point control LinuxCNC limits the speeds of the program's axes (the tip on the table, A, C) but
+// not of the machine's joints, which the turning table can drive several times faster (checked on its xyzac-trt
+// simulator: 47 mm/s on a 20 mm/s joint, without a word). The move's time is what the program asks (its length at
+// its feed; for a rapid, the slowest program axis at its limit), each joint's speed its path over that time.
+template <class Add>
+void check_joint_speeds(const MachineLimits& lim, const CanonMove& m, const Vec3& travel, Add&& add) {
+  const TrajectoryLimits& tl = lim.trajectory;
+  const double length = (m.to - m.from).norm();
+  const double turn = std::hypot(m.a_to - m.a_from, m.c_to - m.c_from);
+  double seconds = 0;
+  if (m.rapid) {
+    for (int a = 0; a < 3; ++a)
+      if (tl.max_velocity[a] > 0) seconds = std::max(seconds, std::abs(m.to[a] - m.from[a]) / tl.max_velocity[a]);
+    const double turns[2] = {std::abs(m.a_to - m.a_from), std::abs(m.c_to - m.c_from)};
+    for (int r = 0; r < 2; ++r)
+      if (tl.rotary_velocity[r] > 0) seconds = std::max(seconds, turns[r] / tl.rotary_velocity[r]);
+  } else if (m.feed > 0) {
+    seconds = 60.0 * (length > 0 ? length : turn) / m.feed;
+  }
+  if (!(seconds > 0)) return;
+  for (int a = 0; a < 3; ++a) {
+    if (!(tl.max_velocity[a] > 0)) continue;
+    const double speed = travel[a] / seconds;
+    if (speed > tl.max_velocity[a] * (1 + 1e-3) + 1e-9)
+      add(std::string("joint ") + "xyz"[a] + " speed",
+          "the table's turn drives machine " + std::string(1, "xyz"[a]) + " at " + fmt(speed) + " mm/s, over its " +
+              fmt(tl.max_velocity[a]) + " mm/s (slow the move: an inverse-time feed, G93)");
+  }
+}
+
 }  // namespace
 
 std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, const MachineLimits& lim,
@@ -369,9 +423,17 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
   std::vector<double> tops = {-INFINITY};  // per run: the highest cutting move across the part
   KnownOffsets known;
   known[0] = lim.work_offset;
+  bool tcp = false;
   for (size_t i = 0; i < lines.size(); ++i) {
     const int offset_before = reader.state().work_offset;
     reader.read(lines[i], i + 1);
+    if (reader.block().has_m(428)) {
+      if (!lim.trunnion || lim.trunnion->mode != machine::KinematicsMode::ToolCentrePoint)
+        add(i, "kinematics", "M428 switches to tool-centre-point kinematics, which the machine '" + lim.name +
+                                 "' is not set up for (rotary.mode: tool-centre-point)");
+      tcp = true;
+    }
+    if (reader.block().has_m(429)) tcp = false;
     if (const std::optional<WorkOffset> set = followed_work_offset(reader)) known[set->index - 1] = *set;
     refuse_unfollowed(reader, offset_before, known, [&](std::string limit, std::string detail) {
       add(i, std::move(limit), std::move(detail));
@@ -392,16 +454,20 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
           m.to[a] = reader.block().get("XYZ"[a]) * unit;
           m.known_to |= uint8_t(1 << a);
         }
-      steps.push_back({i, true, m, true, s.feed, s.spindle_rpm, s.spindle, offset, tops.size() - 1});
+      steps.push_back({i, true, m, true, s.feed, s.spindle_rpm, s.spindle, offset, tops.size() - 1, tcp});
       continue;
     }
-    // An indexing turns the part: the stock's top is another side's from here on.
-    if (reader.moved() && reader.move().indexes()) tops.push_back(-INFINITY);
+    // An indexing turns the part: the stock's top is another side's from here on (with tool-centre-point control
+    // the program's coordinates stay the table's).
+    if (reader.moved() && reader.move().indexes() && !tcp) tops.push_back(-INFINITY);
     steps.push_back({i, reader.moved(), reader.move(), false, s.feed, s.spindle_rpm, s.spindle, offset,
-                     tops.size() - 1});
-    // Cutting moves across the part (not plunges or feed retracts) run inside the stock.
+                     tops.size() - 1, tcp});
+    // Cutting moves across the part (not plunges or feed retracts) run inside the stock. Under tool-centre-point
+    // control every move is an inverse-time feed, the ones that position the tool over the part too: they tell
+    // nothing of the stock (give it: LimitCheckOptions::stock_top).
     const CanonMove& m = reader.move();
-    if (reader.moved() && !m.rapid && (m.known_to & 4) && (m.to.x() != m.from.x() || m.to.y() != m.from.y()))
+    if (reader.moved() && !m.rapid && !(tcp && s.feed_mode == 93) && (m.known_to & 4) &&
+        (m.to.x() != m.from.x() || m.to.y() != m.from.y()))
       tops.back() = std::max(tops.back(), m.to.z());
   }
   static const char* axis = "xyz";
@@ -410,12 +476,33 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
     if (st.rpm > lim.max_spindle_rpm && st.spindle != 5)
       add(st.line, "max spindle speed", "S" + fmt(st.rpm) + " rpm over " + fmt(lim.max_spindle_rpm));
     if (!st.moved) continue;
-    if (!m.rapid && st.feed > lim.max_feed)
-      add(st.line, "max feed", "F" + fmt(st.feed) + " mm/min over " + fmt(lim.max_feed));
+    // The feed along the tool tip's path (an inverse-time move's is its F times its length; a move of the rotary
+    // axes alone has none in mm/min).
+    if (!m.rapid && m.feed > lim.max_feed * (1 + 1e-6) && (m.to - m.from).squaredNorm() > 0)
+      add(st.line, "max feed", "F" + fmt(m.feed) + " mm/min over " + fmt(lim.max_feed));
     double lo[3], hi[3];
     bool any[3];
     machine_extent(m, st.machine_coordinates ? WorkOffset{} : st.offset, lo, hi, any);
-    check_rotary(lim, m, [&](std::string limit, std::string detail) { add(st.line, limit, detail); });
+    check_rotary(lim, m, st.tcp, [&](std::string limit, std::string detail) { add(st.line, limit, detail); });
+    double lowest_on_table = INFINITY;
+    if (st.tcp && !st.machine_coordinates) {
+      if (m.is_arc()) add(st.line, "unchecked move", "an arc in tool-centre-point kinematics is not followed");
+      const bool turns = m.indexes();
+      if ((m.known_to & 7) == 7 && (m.known_rotary & 3) == 3 && ((m.known_from & 7) == 7 || !turns)) {
+        // With A and C held the joints move along a straight line (a fixed turn of the table is affine): a move
+        // from an unknown place is followed from its end, as in identity kinematics.
+        CanonMove known = m;
+        if ((m.known_from & 7) != 7) known.from = m.to;
+        const Vec3 travel = tool_centre_point_extent(*lim.trunnion, known, st.offset, lo, hi, lowest_on_table);
+        any[0] = any[1] = any[2] = true;
+        check_joint_speeds(lim, known, travel, [&](std::string limit, std::string detail) {
+          add(st.line, std::move(limit), std::move(detail));
+        });
+      } else {
+        add(st.line, "unchecked move", "in tool-centre-point kinematics a move that turns A or C must start and end "
+                                       "at known X, Y, Z, A and C (the joints cannot be followed otherwise)");
+      }
+    }
     for (int a = 0; a < 3; ++a) {
       if (!any[a]) continue;
       const double mlo = lo[a], mhi = hi[a];
@@ -426,7 +513,10 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
         add(st.line, std::string("envelope ") + axis[a] + " max",
             "machine " + std::string(1, axis[a]) + " " + fmt(mhi) + " above the soft limit " + fmt(lim.envelope.max[a]));
     }
-    if (lim.trunnion && (m.known_to & 7) == 7 && !st.machine_coordinates) {
+    if (st.tcp && !st.machine_coordinates) {
+      if (lowest_on_table < lim.table_z - 1e-9)
+        add(st.line, "table", "tool tip " + fmt(lim.table_z - lowest_on_table) + " mm below the table's top");
+    } else if (lim.trunnion && (m.known_to & 7) == 7 && !st.machine_coordinates) {
       // On a trunnion the table turns: the tool tip is checked against its top in the table's own frame, below
       // which it is inside the table (or behind it) at whatever turn.
       const Vec3 tip = lim.trunnion->table_point(st.offset.to_machine(m.to), m.a_to, m.c_to);

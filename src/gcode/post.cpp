@@ -18,6 +18,7 @@ namespace {
 constexpr int kFeedDecimals = 1;
 constexpr int kSpeedDecimals = 0;
 constexpr int kAngleDecimals = 4;  // degrees: 1e-4 degrees moves a point 0.2 m away by 0.35 um
+constexpr int kInverseTimeDecimals = 3;  // G93 F (1/min), rounded down: the move never runs faster than planned
 
 // Writes blocks and remembers the modal state the controller is in, so that only changed words are written.
 class Writer {
@@ -48,7 +49,9 @@ class Writer {
   }
 
   // motion: 0 rapid, 1 line, 2 clockwise arc, 3 counter-clockwise arc (centre given for arcs).
-  void move(int motion, const Vec3& to, double feed, const LineOrigin& origin, const Vec2* centre = nullptr) {
+  // `ac`: the trunnion's A and C at the move's end, for a multi-axis move (written where they change).
+  void move(int motion, const Vec3& to, double feed, const LineOrigin& origin, const Vec2* centre = nullptr,
+            const machine::Index* ac = nullptr) {
     const int d = opt_.decimals;
     int64_t target[3];
     for (int a = 0; a < 3; ++a) target[a] = to_fixed(to[a], d);
@@ -67,6 +70,18 @@ class Writer {
       append_fixed(b, target[a], d);
       moved = true;
     }
+    int64_t turn[2] = {0, 0};
+    if (ac) {
+      turn[0] = to_fixed(ac->a, kAngleDecimals);
+      turn[1] = to_fixed(ac->c, kAngleDecimals);
+      for (int r = 0; r < 2; ++r) {
+        if (rotary_known_ && turn[r] == rotary_[r]) continue;
+        b += r == 0 ? " A" : " C";
+        append_fixed(b, turn[r], kAngleDecimals);
+        moved = true;
+      }
+      if (!b.empty() && b[0] == ' ') b.erase(0, 1);
+    }
     if (!moved) return;  // a move shorter than the output precision: nothing for the controller to do
     if (centre) {
       // I and J are relative to the start point, as written (rounded) so the controller sees a consistent arc.
@@ -75,7 +90,11 @@ class Writer {
       b += " J";
       append_fixed(b, to_fixed((*centre).y(), d) - pos_[1], d);
     }
-    if (motion != 0) {
+    if (motion != 0 && inverse_time_) {
+      // Under G93 every feed move gives its F: 1 / minutes.
+      b += " F";
+      append_fixed(b, to_fixed(std::floor(feed * 1000) / 1000, kInverseTimeDecimals), kInverseTimeDecimals);
+    } else if (motion != 0) {
       if (!(feed > 0)) throw Error("post", "a feed move without a feed rate (toolpath " + std::to_string(origin.toolpath) +
                                                ", pass " + std::to_string(origin.pass) + ", move " +
                                                std::to_string(origin.first_move) + ")");
@@ -88,8 +107,24 @@ class Writer {
     }
     motion_ = motion;
     for (int a = 0; a < 3; ++a) pos_[a] = target[a];
+    if (ac) rotary_[0] = turn[0], rotary_[1] = turn[1], rotary_known_ = true;
     known_ = true;
     line(b, origin);
+  }
+
+  // Inverse time (G93) on or off (G94): the feeds the moves are then given are 1 / minutes.
+  void inverse_time(bool on, const LineOrigin& origin) {
+    if (on == inverse_time_) return;
+    line(on ? "G93" : "G94", origin);
+    inverse_time_ = on;
+    feed_ = -1;  // G94 again: the next feed is written whatever it is
+  }
+
+  // The table turned to `at` by a block written apart (an indexing).
+  void set_rotary(const machine::Index& at) {
+    rotary_[0] = to_fixed(at.a, kAngleDecimals);
+    rotary_[1] = to_fixed(at.c, kAngleDecimals);
+    rotary_known_ = true;
   }
 
   // Moves straight up (or down) to z at the current XY; used for retracts whose XY is the current one.
@@ -165,6 +200,9 @@ class Writer {
   int64_t pos_[3] = {0, 0, 0};
   int64_t z_only_ = 0;
   bool known_ = false;
+  int64_t rotary_[2] = {0, 0};
+  bool rotary_known_ = false;
+  bool inverse_time_ = false;
 };
 
 std::string fixed_text(double v, int decimals) {
@@ -265,7 +303,146 @@ void write_pass(Writer& w, const ToolpathPass& pass, int ti, int pi, const PostO
   }
 }
 
+// A multi-axis program needs a trunnion with tool-centre-point control and no 3+2 toolpath (their positions are
+// machine coordinates at an indexing, the identity kinematics' meaning).
+void check_tool_centre_point(const Job& job, const Dialect& d, const PostOptions& o) {
+  if (!d.tool_centre_point)
+    throw Error("post " + d.name, "a toolpath carries a tool axis at every move (simultaneous multi-axis), which the "
+                                  "dialect cannot write (no rotary axes, inverse time or kinematics switch)");
+  if (!o.trunnion || o.trunnion->mode != machine::KinematicsMode::ToolCentrePoint)
+    throw Error("post", "a toolpath carries a tool axis at every move (simultaneous multi-axis): it needs a "
+                        "trunnion with tool-centre-point control (the machine file's rotary.mode: tool-centre-point)");
+  if (!std::isfinite(o.index_safe_z))
+    throw Error("post", "a multi-axis program needs the machine's safe Z to retract to before the table turns");
+  if (o.work_offset && o.work_offset->rotation_deg != 0)
+    throw Error("post", "a multi-axis program's work offset cannot turn about Z (G10 L2 R): the tip is written on the "
+                        "table, which the trunnion turns itself");
+  for (size_t t = 0; t < job.size(); ++t)
+    if (job[t].indexed)
+      throw Error("post", "toolpath " + std::to_string(t + 1) + " (" + job[t].strategy +
+                              ") is indexed 3+2 in machine coordinates, which a tool-centre-point program does not "
+                              "mix with its multi-axis toolpaths");
+}
+
+// The tool axis at the toolpath's start and at the end of each of its moves, in order.
+std::vector<Vec3> move_axes(const Toolpath& tp) {
+  std::vector<Vec3> axes;
+  axes.reserve(tp.move_count() + 1);
+  for (const ToolpathPass& p : tp.passes) {
+    if (axes.empty()) axes.push_back(p.axes.empty() ? Vec3(Vec3::UnitZ()) : p.axes.front());
+    for (size_t k = 0; k < p.moves.size(); ++k) axes.push_back(p.axes.empty() ? Vec3(Vec3::UnitZ()) : p.axes[k]);
+  }
+  if (axes.empty()) axes.push_back(Vec3::UnitZ());
+  return axes;
+}
+
+// A point as the program writes it: each coordinate rounded to the decimals.
+Vec3 as_written(const Vec3& p, int decimals) {
+  const double scale = static_cast<double>(decimal_scale(decimals));
+  Vec3 q;
+  for (int a = 0; a < 3; ++a) q[a] = static_cast<double>(to_fixed(p[a], decimals)) / scale;
+  return q;
+}
+
+// The minutes a move of a tool-centre-point program takes: the longest of the tip's length at the feed (none for a
+// rapid), the program axes' travel at their speeds (X Y Z on the table, A, C) and the joints' (the trunnion's chain
+// along the move, sampled every millimetre of the tip or degree of A or C).
+double tool_centre_point_minutes(const machine::Trunnion& t, const Vec3& origin, const Vec3& from, const Vec3& to,
+                                 const machine::Index& i0, const machine::Index& i1, double feed, const PostOptions& o) {
+  const double length = (to - from).norm(), da = std::abs(i1.a - i0.a), dc = std::abs(i1.c - i0.c);
+  double seconds = feed > 0 ? 60 * length / feed : 0;
+  if (o.max_feed > 0) seconds = std::max(seconds, 60 * length / o.max_feed);
+  if (t.a.velocity > 0) seconds = std::max(seconds, da / t.a.velocity);
+  if (t.c.velocity > 0) seconds = std::max(seconds, dc / t.c.velocity);
+  const int n = std::max(1, static_cast<int>(std::ceil(std::max({length, da, dc}))));
+  Vec3 travel = Vec3::Zero(), before = Vec3::Zero();
+  for (int k = 0; k <= n; ++k) {
+    const double f = static_cast<double>(k) / n;
+    const Vec3 joint = t.machine_point(origin + from + f * (to - from), i0.a + f * (i1.a - i0.a), i0.c + f * (i1.c - i0.c));
+    if (k > 0) travel += (joint - before).cwiseAbs();
+    before = joint;
+  }
+  for (int a = 0; a < 3; ++a)
+    if (o.axis_velocity[a] > 0)
+      seconds = std::max({seconds, std::abs(to[a] - from[a]) / o.axis_velocity[a], travel[a] / o.axis_velocity[a]});
+  // A millisecond at least (a move the rounding leaves nothing of), and a hair more than the limits allow, so that
+  // the written F, its length and the reader's single-precision feed do not come out a rounding over them.
+  return std::max(seconds, 1e-3) * (1 + 1e-5) / 60;
+}
+
+// The toolpaths of a tool-centre-point program. The table turns to the first toolpath's first axis in identity
+// kinematics with the tool retracted in machine coordinates, as for an indexing; from M428 on, X Y Z are the tip on
+// the table and every move carries its A and C. M429 and the retract at the end leave the machine as it began.
+void write_tool_centre_point(Writer& w, const Dialect& d, const Job& job, const PostOptions& o) {
+  const machine::Trunnion& trunnion = *o.trunnion;
+  machine::Index at;
+  for (size_t t = 0; t < job.size(); ++t) {
+    const Toolpath& tp = job[t];
+    const int ti = static_cast<int>(t);
+    const LineOrigin origin{ti};
+    std::string why;
+    const auto turns = machine::indexes_along(trunnion, move_axes(tp), at, &why);
+    if (!turns) throw Error("post", "toolpath " + std::to_string(t + 1) + " (" + tp.strategy + "): " + why);
+    if (t == 0) {
+      w.comment("identity kinematics: retract, turn the table to the first tool axis");
+      w.line("M429", origin);
+      w.line("G53 G0 Z" + fixed_text(o.index_safe_z, o.decimals), origin);
+      w.line(index_block(turns->front().a, turns->front().c), origin);
+      w.set_rotary(turns->front());
+      // The spindle over the start, in machine coordinates: the tip then lies on the tool axis through the start, and
+      // the first move of tool-centre-point kinematics runs down that axis (machine Z alone).
+      const Vec3 over = trunnion.machine_point(
+          (o.work_offset ? o.work_offset->origin : o.program_origin) +
+              Vec3(tp.start.x(), tp.start.y(), std::max(tp.clearance_z, tp.start.z())),
+          turns->front().a, turns->front().c);
+      w.line("G53 G0 X" + fixed_text(over.x(), o.decimals) + " Y" + fixed_text(over.y(), o.decimals), origin);
+      w.comment("tool-centre-point kinematics: X Y Z are the tool tip on the table");
+      w.line("M428", origin);
+      w.forget_position();
+      load_tool(w, d, tp, origin);
+      // One full move to the start: down the tool axis from where the machine-coordinate moves left the tip.
+      w.move(0, Vec3(tp.start.x(), tp.start.y(), std::max(tp.clearance_z, tp.start.z())), 0, origin);
+      spindle_start(w, tp, origin, o);
+    } else if (tp.tool.id != job[t - 1].tool.id) {
+      tool_change(w, d, tp, ti, false, o);
+    }
+    w.rapid_z(std::max(tp.clearance_z, tp.start.z()), origin);
+    w.rapid_xy(tp.start.x(), tp.start.y(), origin);
+    w.rapid_z(tp.start.z(), origin);
+    // Every move, the rapids too, in inverse time at what the program axes and the joints allow: a rapid of LinuxCNC
+    // would run the program axes at their limits and the joints beyond theirs.
+    const Vec3 table_origin = o.work_offset ? o.work_offset->origin : o.program_origin;
+    w.inverse_time(true, origin);
+    size_t flat = 1;
+    Vec3 from = w.position();
+    for (size_t p = 0; p < tp.passes.size(); ++p) {
+      const auto& moves = tp.passes[p].moves;
+      for (size_t k = 0; k < moves.size(); ++k, ++flat) {
+        const int kk = static_cast<int>(k);
+        const double feed = moves[k].type == MoveType::Rapid ? 0.0 : moves[k].feed;
+        // From the numbers as written (rounded), which the controller moves between.
+        const double minutes = tool_centre_point_minutes(trunnion, table_origin, from, as_written(moves[k].to, o.decimals),
+                                                         (*turns)[flat - 1], (*turns)[flat], feed, o);
+        w.move(1, moves[k].to, 1.0 / minutes, LineOrigin{ti, static_cast<int>(p), kk, kk}, nullptr, &(*turns)[flat]);
+        from = as_written(moves[k].to, o.decimals);
+      }
+    }
+    w.inverse_time(false, origin);
+    at = turns->back();
+    w.rapid_z(tp.clearance_z, origin);
+  }
+}
+
 }  // namespace
+
+bool switches_kinematics(const std::string& line) {
+  std::string word;
+  for (char ch : line) {
+    if (ch == '(' || ch == ';') break;
+    if (!std::isspace(static_cast<unsigned char>(ch))) word.push_back(static_cast<char>(std::toupper(ch)));
+  }
+  return word == "M428" || word == "M429";
+}
 
 std::string Program::text() const {
   size_t total = 0;
@@ -328,7 +505,27 @@ Program post(const Job& job, const PostOptions& given) {
     setup.replace(g54, 3, o.work_offset->code());
   }
   w.line(setup);
-  if (d.path_blending) w.line("G64 P" + fixed_text(o.blend_tolerance, o.decimals));
+  const bool multi_axis = std::any_of(job.begin(), job.end(), [](const Toolpath& tp) { return tp.multi_axis(); });
+  if (d.path_blending) {
+    // A multi-axis program blends within half the plan's tolerance: its chords take the other half, and the tip
+    // must stay on the cutter locations to within the tolerance whatever the table does.
+    double blend = o.blend_tolerance;
+    if (multi_axis)
+      for (const Toolpath& tp : job)
+        if (tp.tolerance > 0) blend = std::min(blend, 0.5 * tp.tolerance);
+    w.line("G64 P" + fixed_text(blend, o.decimals));
+  }
+  if (multi_axis) {
+    check_tool_centre_point(job, d, o);
+    write_tool_centre_point(w, d, job, o);
+    w.line("M5");
+    if (o.coolant != Coolant::Off) w.line("M9");
+    w.comment("identity kinematics again, the tool retracted");
+    w.line("M429");
+    w.line("G53 G0 Z" + fixed_text(o.index_safe_z, o.decimals));
+    w.line(d.program_end);
+    return prog;
+  }
   for (size_t t = 0; t < job.size(); ++t) {
     const Toolpath& tp = job[t];
     const int ti = static_cast<int>(t);

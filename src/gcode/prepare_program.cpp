@@ -27,6 +27,19 @@ void require_tool_numbers(const Job& job) {
 
 }  // namespace
 
+PostOptions with_tool_centre_point(PostOptions o, const MachineLimits& m, const std::string& where) {
+  if (!m.trunnion || m.trunnion->mode != machine::KinematicsMode::ToolCentrePoint)
+    throw Error(where, "the toolpaths carry a tool axis at every move (five-axis): the machine '" + m.name +
+                           "' has no trunnion with tool-centre-point control (rotary.mode: tool-centre-point; "
+                           "config/machine_xyzac_tcp.yaml has)");
+  o.trunnion = m.trunnion;
+  o.index_safe_z = m.trunnion->safe_z;
+  o.axis_velocity = m.trajectory.max_velocity;
+  o.max_feed = m.max_feed;
+  o.program_origin = m.work_offset.origin;
+  return o;
+}
+
 PreparedProgram prepare_program(const Job& job, const PostOptions& post_options, const ProgramChecks& checks) {
   if (job.empty()) throw Error("job", "has no toolpath");
   require_tool_numbers(job);
@@ -37,7 +50,8 @@ PreparedProgram prepare_program(const Job& job, const PostOptions& post_options,
     p.limits_checked = true;
   }
   if (checks.rs274) {
-    VerifyReport report = compare_with_job(p.program, job, run_rs274(p.program.lines), post_options.arc_tolerance);
+    VerifyReport report =
+        compare_with_job(p.program, job, run_rs274(p.program.lines), post_options.arc_tolerance);
     if (!report.ok) throw Error("rs274 verification", report.problem);
     p.rs274 = std::move(report);
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "rosmill/geometry/sphere_sweep.hpp"
+
 namespace rosmill::core {
 namespace {
 
@@ -77,7 +79,10 @@ uint32_t MeshRays::build(uint32_t begin, uint32_t end, const std::vector<Vec3>& 
   return index;
 }
 
-double MeshRays::first_hit(const Vec3& o, const Vec3& d, double t_min, double t_max) const {
+// The hierarchy walked along a ray, each node's box grown by `grow`: `leaf(facet, best)` gives the parameter at
+// which the ray meets a facet (+infinity for none); the least over the facets met, boxes beyond it skipped.
+template <class Leaf>
+double MeshRays::walk(const Vec3& o, const Vec3& d, double grow, double t_min, double t_max, Leaf&& leaf) const {
   if (nodes_.empty()) return kInf;
   const Vec3 inv(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
   double best = kInf;
@@ -86,14 +91,13 @@ double MeshRays::first_hit(const Vec3& o, const Vec3& d, double t_min, double t_
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = node.lo[a] - grow, hi[a] = node.hi[a] + grow;
     double t0 = t_min, t1 = std::min(t_max, best);
-    if (!through_box(node.lo, node.hi, o, inv, t0, t1)) continue;
+    if (!through_box(lo, hi, o, inv, t0, t1)) continue;
     if (node.count > 0) {
-      for (uint32_t k = node.first; k < node.first + node.count; ++k) {
-        const uint32_t f = order_[k];
-        const double t = triangle_hit(mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), o, d);
-        if (t > t_min && t <= t_max && t < best) best = t;
-      }
+      for (uint32_t k = node.first; k < node.first + node.count; ++k) best = std::min(best, leaf(order_[k], best));
+      if (best == t_min) return best;  // nothing comes before the start
       continue;
     }
     const uint32_t self = static_cast<uint32_t>(&node - nodes_.data());
@@ -101,6 +105,23 @@ double MeshRays::first_hit(const Vec3& o, const Vec3& d, double t_min, double t_
     stack[top++] = self + 1;
   }
   return best;
+}
+
+double MeshRays::first_hit(const Vec3& o, const Vec3& d, double t_min, double t_max, uint32_t* face) const {
+  return walk(o, d, 0.0, t_min, t_max, [&](uint32_t f, double best) {
+    const double t = triangle_hit(mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), o, d);
+    if (!(t > t_min && t <= t_max && t < best)) return kInf;
+    if (face) *face = f;
+    return t;
+  });
+}
+
+double MeshRays::first_sphere_contact(const Vec3& o, const Vec3& d, double radius, double t_min, double t_max) const {
+  // A box grown by the radius holds every centre that touches one of its facets.
+  return walk(o, d, radius, t_min, t_max, [&](uint32_t f, double best) {
+    return sphere_sweep_triangle(o, d, radius, mesh_.corner(f, 0), mesh_.corner(f, 1), mesh_.corner(f, 2), t_min,
+                                 std::min(t_max, best));
+  });
 }
 
 }  // namespace rosmill::core

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -40,6 +43,8 @@ Vec3 Trunnion::table_point(const Vec3& m, double a, double c) const {
   const Vec3 pv = pivot_of(*this);
   return rc * (ra * (m - pv - centre) + pv) + centre;
 }
+
+Vec3 Trunnion::tool_axis(double a, double c) const { return turn(a, c).transpose() * Vec3::UnitZ(); }
 
 Placement Trunnion::table_in_machine(double a, double c) const {
   Placement p{"machine", "table", Eigen::Isometry3d::Identity()};
@@ -84,6 +89,59 @@ std::optional<Index> index_for(const Trunnion& t, const Vec3& direction, const I
            degrees(t.a.max) + "]";
   }
   return best;
+}
+
+std::optional<std::vector<Index>> indexes_along(const Trunnion& t, const std::vector<Vec3>& axes, const Index& from,
+                                                std::string* why) {
+  const size_t n = axes.size();
+  if (n == 0) return std::vector<Index>{};
+  // Two states per axis, the solutions with A >= 0 and A <= 0; on the pole both are A = 0 with C left where it was.
+  struct State {
+    bool ok = false;
+    double cost = INFINITY;
+    Index at;
+    int back = -1;
+  };
+  std::vector<std::array<State, 2>> dp(n);
+  const auto step_cost = [&](const Index& p, const Index& q) {
+    const double da = std::abs(q.a - p.a), dc = std::abs(q.c - p.c);
+    return std::max(t.a.velocity > 0 ? da / t.a.velocity : da, t.c.velocity > 0 ? dc / t.c.velocity : dc) +
+           1e-6 * (da + dc);
+  };
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 d = axes[i].normalized();
+    const double a0 = std::acos(std::clamp(d.z(), -1.0, 1.0)) / kDegree;
+    const bool pole = d.head<2>().norm() < 1e-9;
+    const double phi = std::atan2(d.y(), d.x()) / kDegree;
+    for (int branch = 0; branch < 2; ++branch) {
+      const double a = branch == 0 ? a0 : -a0;
+      if (!t.a_in_range(a)) continue;
+      State best;
+      for (int prev = 0; prev < (i == 0 ? 1 : 2); ++prev) {
+        const Index p = i == 0 ? from : dp[i - 1][prev].at;
+        if (i > 0 && !dp[i - 1][prev].ok) continue;
+        Index q{a, pole ? p.c : nearest_turn((a > 0 ? 90.0 : -90.0) - phi, p.c)};
+        if (!t.c_in_range(q.c)) continue;
+        const double cost = (i == 0 ? 0.0 : dp[i - 1][prev].cost) + step_cost(p, q);
+        if (cost < best.cost) best = State{true, cost, q, prev};
+      }
+      dp[i][branch] = best;
+    }
+    if (!dp[i][0].ok && !dp[i][1].ok) {
+      if (why)
+        *why = "tool axis " + std::to_string(i) + " needs A = " + degrees(a0) + " or " + degrees(-a0) +
+               " degrees, outside A's range [" + degrees(t.a.min) + ", " + degrees(t.a.max) + "]";
+      return std::nullopt;
+    }
+  }
+  int state = dp[n - 1][0].ok && (!dp[n - 1][1].ok || dp[n - 1][0].cost <= dp[n - 1][1].cost) ? 0 : 1;
+  std::vector<Index> out(n);
+  for (size_t i = n; i-- > 0;) {
+    out[i] = dp[i][state].at;
+    state = dp[i][state].back;
+    if (state < 0) state = 0;
+  }
+  return out;
 }
 
 }  // namespace rosmill::core::machine

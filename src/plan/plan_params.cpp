@@ -24,6 +24,11 @@ void check_plan_params(const PlanParams& p) {
   // Radial engagement of adaptive clearing: above 0 (no cut at all) and at most a full-width slot.
   if (!std::isnan(p.engagement_deg)) check_range(p.engagement_deg, 0, 180, "parameter engagement", "degrees", Bound::Open);
   check_range(p.max_feed, 0, 1e6, "parameter max_feed", "mm/min");
+  const ToolAxisParams& a = p.tool_axis;
+  if (!std::isnan(a.lead_deg)) check_range(a.lead_deg, -45, 45, "parameter lead", "degrees");
+  check_range(a.tilt_deg, -45, 45, "parameter tilt", "degrees");
+  check_range(a.cone_deg, 0, 90, "parameter cone", "degrees");
+  check_range(a.rate_deg_per_mm, 0, 180, "parameter axis_rate", "degrees per mm", Bound::Open);
   if (p.material) p.material->check("parameter material");
 }
 

@@ -1,6 +1,8 @@
 #include "rosmill/planner/strategy_table.hpp"
 
 #include "rosmill/plan/adaptive.hpp"
+#include "rosmill/plan/five_axis_finish.hpp"
+#include "rosmill/plan/four_axis_finish.hpp"
 #include "rosmill/plan/grid_rough.hpp"
 #include "rosmill/plan/raster.hpp"
 #include "rosmill/plan/rough.hpp"
@@ -44,6 +46,12 @@ const std::vector<StrategyEntry>& strategies() {
        false, [](const StrategyCall& c) { return grid_rough_on(*c.surface, c.params, c.progress, c.report); }, true},
       {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true,
        [](const StrategyCall& c) { return plan_contour(*c.mesh, c.params, c.progress); }},
+      {"five-axis", "ball-end raster finishing with a tool axis at every cutter location (lead, tilt, cone, rate)",
+       true, [](const StrategyCall& c) { return five_axis_finish(*c.mesh, c.params, c.progress, c.report); }, false,
+       false, true},
+      {"four-axis", "ball-end rings round the part's Z axis, the tool axis across it: a rotary axis follows the angle",
+       true, [](const StrategyCall& c) { return four_axis_finish(*c.mesh, c.params, c.progress, c.report); }, false,
+       false, true},
   };
   return table;
 }

@@ -8,6 +8,12 @@ size_t Toolpath::move_count() const {
   return n;
 }
 
+bool Toolpath::multi_axis() const {
+  for (const auto& p : passes)
+    if (!p.axes.empty()) return true;
+  return false;
+}
+
 Box3 Toolpath::bounds() const {
   Box3 b;
   for (const auto& p : passes)

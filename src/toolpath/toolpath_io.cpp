@@ -93,7 +93,13 @@ json toolpath_to_json(const Toolpath& tp) {
     json moves = json::array();
     for (const Move& m : p.moves)
       moves.push_back(json::array({m.to.x(), m.to.y(), m.to.z(), static_cast<int>(m.type), m.feed}));
-    passes.push_back(json{{"name", p.name}, {"moves", std::move(moves)}});
+    json pass{{"name", p.name}, {"moves", std::move(moves)}};
+    if (!p.axes.empty()) {
+      json axes = json::array();
+      for (const Vec3& a : p.axes) axes.push_back(json::array({a.x(), a.y(), a.z()}));
+      pass["axes"] = std::move(axes);
+    }
+    passes.push_back(std::move(pass));
   }
   return json{{"strategy", tp.strategy},      {"tool", tool_to_json(tp.tool)},
               {"safe_z", tp.safe_z},          {"clearance_z", tp.clearance_z},
@@ -141,6 +147,18 @@ Toolpath toolpath_from_json(const json& doc, const std::string& where) {
       mv.feed = m[4].get<double>();
       if (mv.type != MoveType::Rapid && !(mv.feed > 0)) throw Error(mw, "a feed or plunge move needs a feed > 0");
       pass.moves.push_back(mv);
+    }
+    // Optional: a multi-axis pass's tool axis at each move's end (unit vectors), one per move.
+    if (passes[i].contains("axes")) {
+      const json& axes = passes[i]["axes"];
+      if (!axes.is_array() || axes.size() != pass.moves.size())
+        throw Error(pw, "field 'axes' must hold one tool axis per move (" + std::to_string(pass.moves.size()) + ")");
+      for (size_t k = 0; k < axes.size(); ++k) {
+        const std::string aw = pw + ", axis " + std::to_string(k);
+        const Vec3 a = vec3(axes[k], aw);
+        if (std::abs(a.norm() - 1) > 1e-6) throw Error(aw, "a tool axis must be a unit vector");
+        pass.axes.push_back(a);
+      }
     }
     tp.passes.push_back(std::move(pass));
   }

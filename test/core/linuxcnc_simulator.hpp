@@ -104,11 +104,13 @@ class Simulator {
   struct Run {
     double all = NAN, motion = NAN;
   };
+  // `progress` sees every status polled during the run (the controller's position on the way).
   Run run_timed(rosmill::core::control::Controller& c, const std::vector<std::string>& program,
-                double settle_s = 2.0) const {
+                double settle_s = 2.0, const rosmill::core::control::Progress& progress = {}) const {
     arm();
     const Clock before = clock();
-    const auto s = rosmill::core::control::run_to_end(c, program, rosmill::core::control::SendOptions{}, {}, 120.0);
+    const auto s =
+        rosmill::core::control::run_to_end(c, program, rosmill::core::control::SendOptions{}, progress, 120.0);
     if (s.state != rosmill::core::control::RunState::Finished)
       throw std::runtime_error("the program did not run to its end: " + s.error);
     Clock after = clock();

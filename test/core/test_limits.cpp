@@ -143,7 +143,13 @@ TEST(MachineLimits, WhatTheCheckCannotFollowIsRefusedWithTheLine) {
   };
   EXPECT_EQ(error_of({"G1 Z-1 F100", "G18 G2 X10 Z-1 I5 K0"}),
             "line 6: arcs outside the XY plane (G17) are not followed");
-  EXPECT_EQ(error_of({"G93 G1 Z-1 F2"}), "line 5: inverse-time feed (G93) is not followed");
+  EXPECT_EQ(error_of({"G1 X0 Y0 Z-1 F100", "G93 G1 X5"}), "line 6: a feed move under inverse time (G93) without its F word");
+  // Followed: an inverse-time move's feed is its F (1/min) times its length, against the machine's.
+  const std::vector<LimitViolation> fast = check_limits(program({"G1 X0 Y0 Z-1 F100", "G93 G1 X100 F100"}), m);
+  ASSERT_EQ(fast.size(), 1u);
+  EXPECT_EQ(fast.front().limit, "max feed");
+  EXPECT_NE(fast.front().detail.find("F10000 "), std::string::npos) << fast.front().detail;
+  EXPECT_TRUE(check_limits(program({"G1 X0 Y0 Z-1 F100", "G93 G1 X100 F5"}), m).empty());
   EXPECT_EQ(error_of({"G1 Z-1 F100", "G2 X10 Y0 I3"}).rfind("line 6: radius to the end of the arc differs", 0), 0u);
   EXPECT_EQ(error_of({"G1 Z-1 F100 (open"}), "line 5: comment not closed with ')'");
   EXPECT_EQ(error_of({"G81 X0 Y0 Z-1 R1"}).rfind("line 5: G81 is not followed", 0), 0u);

@@ -9,7 +9,12 @@
 #include <sstream>
 #include <thread>
 
+#include "multi_axis_parts.hpp"
 #include "linuxcnc_simulator.hpp"
+#include "rosmill/gcode/cycle_time.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/geometry/segment_distance.hpp"
+#include "rosmill/plan/five_axis_finish.hpp"
 #include "rosmill/control/program_run.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
@@ -164,4 +169,119 @@ TEST(LinuxcncXyzac, A32ProgramRunsToItsEndAtItsLastPoint) {
   EXPECT_NEAR(v[3], -90, 1e-4);
   EXPECT_NEAR(v[4], -90, 1e-4);
   c->disconnect();
+}
+
+namespace {
+
+// The program's moves in tool-centre-point kinematics (after its M428, before its M429), as straight segments of
+// the tip on the table with the A and C at their ends: what the controller is asked to follow.
+struct TipSegment {
+  Vec3 from, to;
+  double a_from, a_to, c_from, c_to;
+  size_t line;
+};
+
+std::vector<TipSegment> tool_centre_point_moves(const std::vector<std::string>& program) {
+  std::vector<TipSegment> out;
+  gcode::Interpreter reader;
+  bool tcp = false;
+  for (size_t i = 0; i < program.size(); ++i) {
+    reader.read(program[i], i + 1);
+    if (reader.block().has_m(428)) tcp = true;
+    if (reader.block().has_m(429)) tcp = false;
+    const CanonMove& m = reader.move();
+    if (tcp && reader.moved() && m.from_known() && m.to_known())
+      out.push_back({m.from, m.to, m.a_from, m.a_to, m.c_from, m.c_to, i + 1});
+  }
+  return out;
+}
+
+double distance_to_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double len2 = d.squaredNorm();
+  const double f = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + f * d)).norm();
+}
+
+}  // namespace
+
+TEST(LinuxcncXyzac, AFiveAxisFinishKeepsTheTipOnItsCutterLocationsAllAlongTheRun) {
+  // A dome of radius 9 standing on the table (its plate's bottom at the table's top), finished in five axes with
+  // the simulator's tool 5 as a ball of 6 mm; the program switches to tool-centre-point kinematics itself.
+  const Mesh dome = test_parts::dome_on_plate(9, 11, 3, 72, 24);
+  std::vector<Vec3> corners;
+  for (size_t f = 0; f < dome.face_count(); ++f)
+    for (int i = 0; i < 3; ++i) corners.push_back(dome.corner(f, i) + Vec3(0, 0, 3));
+  const Mesh part = build_mesh(corners);
+  PlanParams p;
+  p.tool.id = 5;
+  p.tool.cutter = Cutter::ball(6);
+  p.tool.feed = 900;
+  p.tool.plunge_feed = 300;
+  p.stepover = 4.5;
+  p.tolerance = 0.005;
+  p.tool_axis.cone_deg = 40;
+  const Job job = five_axis_finish(part, p, {});
+  const gcode::MachineLimits limits =
+      gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/machine_xyzac_tcp.yaml");
+  gcode::PostOptions o = gcode::with_tool_centre_point({}, limits, "test");
+  o.work_offset = gcode::WorkOffset{};
+  o.work_offset_note = "the table's centre";
+  gcode::ProgramChecks checks;
+  checks.machine = limits;
+  checks.limits.stock_top = part.bbox.max.z();
+  checks.rs274 = true;
+  const std::vector<std::string> program = gcode::prepare_program(job, o, checks).program.lines;
+  const std::vector<TipSegment> moves = tool_centre_point_moves(program);
+  ASSERT_GT(moves.size(), 100u);
+  const double estimate = gcode::estimate_cycle_time(program, limits.trajectory).seconds;
+
+  REQUIRE_MACHINE_SIMULATOR(sim, "xyzac");
+  auto c = sim.controller();
+  c->connect();
+  // The controller's position while the program runs: in tool-centre-point kinematics its world X Y Z are the tip
+  // on the table that its own kinematics (xyzac-trt-kins) computes from the joints.
+  struct Sample {
+    Vec3 tip;
+    double a, c;
+    size_t line;
+  };
+  std::vector<Sample> samples;
+  // Its world Z holds the tool's length besides (LinuxCNC's trtfuncs.c takes the length out of the joints before it
+  // turns them and adds it back to Z): the tip is that far below.
+  const Vec3 length(0, 0, sim.tool_length(5));
+  const size_t first_line = moves.front().line, last_line = moves.back().line;
+  const auto run = sim.run_timed(*c, program, 2.0, [&](const ControllerStatus& s) {
+    // Not at the last move's line: the controller goes on reporting it while M429 switches the kinematics back,
+    // after which its world coordinates are the joints'.
+    if (s.position_known && s.rotary_known && s.current_line > first_line && s.current_line < last_line)
+      samples.push_back({s.position - length, s.a, s.c, s.current_line});
+  });
+  c->disconnect();
+  ASSERT_GT(samples.size(), 50u) << "too few positions read during the run";
+  double worst = 0, worst_axis = 0;
+  for (const Sample& smp : samples) {
+    // The nearest of the program's segments around the line the controller reports (it reads ahead a little).
+    double best = INFINITY, best_axis = INFINITY;
+    for (const TipSegment& m : moves) {
+      if (m.line + 40 < smp.line || m.line > smp.line + 40) continue;
+      const double d = distance_to_segment(smp.tip, m.from, m.to);
+      if (d < best) {
+        best = d;
+        // Where along the move, the axis the controller's A and C point the tool along against the one there.
+        const Vec3 seg = m.to - m.from;
+        const double f = seg.squaredNorm() > 0 ? std::clamp((smp.tip - m.from).dot(seg) / seg.squaredNorm(), 0.0, 1.0) : 0.0;
+        const Vec3 planned = limits.trunnion->tool_axis(m.a_from + f * (m.a_to - m.a_from), m.c_from + f * (m.c_to - m.c_from));
+        best_axis = std::acos(std::clamp(limits.trunnion->tool_axis(smp.a, smp.c).dot(planned), -1.0, 1.0)) * 180 / M_PI;
+      }
+    }
+    worst = std::max(worst, best);
+    if (std::isfinite(best_axis)) worst_axis = std::max(worst_axis, best_axis);
+  }
+  EXPECT_LT(worst, 0.01) << "over " << samples.size() << " positions read during the run";
+  RecordProperty("samples", static_cast<int>(samples.size()));
+  std::printf("five-axis run: %zu positions read, the tip at most %.4f mm off the program's moves, the axis at most "
+              "%.3f degrees off; estimated %.1f s, the simulator %.1f s (%+.1f %%)\n",
+              samples.size(), worst, worst_axis, estimate, run.all, 100 * (estimate - run.all) / run.all);
+  EXPECT_LT(std::abs(estimate - run.all), 0.10 * run.all) << "estimate " << estimate << " s, simulator " << run.all;
 }

@@ -127,6 +127,7 @@ TEST_P(EveryStrategyOnSeedPrimitive, AcceptedByRs274WithTheToolpathsMoves) {
     for (bool arcs : {false, true}) {
       PostOptions o;
       o.arcs = arcs;
+      if (s.multi_axis) o = test::multi_axis_post(o);  // every move a line: arcs or not, the same program
       expect_verified(job, o, s.name + " on " + name + (arcs ? " with arcs" : ""));
       ++verified;
     }

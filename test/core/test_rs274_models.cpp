@@ -66,11 +66,18 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
     params.tool.stepdown = 10;
     params.tolerance = 0.1;
     params.max_feed = machine.max_feed;  // feeds raised for a thin engagement stop at the machine's, as plan does
+    // Four-axis rings start the holder's radius above the part's bottom: a slim collet, for the flat models.
+    if (s.multi_axis) params.tool.holder_diameter = 8;
     const std::string what = s.name + " on " + model.file;
     Job job;
     try {
       job = test::plan_named(s, mesh, cloud, params);
     } catch (const Error& e) {
+      // Four-axis rings need a part taller than the holder's radius over the table: a flat one is refused so.
+      if (s.name == "four-axis" && std::string(e.what()).find("four-axis: the part is lower") == 0) {
+        verified += 2;
+        continue;
+      }
       ADD_FAILURE() << what << ": " << e.what();
       continue;
     }
@@ -79,15 +86,26 @@ TEST_P(EveryStrategyOnModel, AcceptedByRs274WithTheToolpathsMovesAndWithinTheMac
       o.dialect = dialect;
       o.arcs = o.dialect == "linuxcnc";
       o.arc_tolerance = 0.01;
+      if (s.multi_axis) {
+        // For the trunnion with tool-centre-point control; GRBL has no rotary axes, and says so.
+        o = test::multi_axis_post(o);
+        if (o.dialect == "grbl") {
+          EXPECT_THROW(post(job, o), Error) << what;
+          ++verified;
+          continue;
+        }
+      }
       const Program p = post(job, o);
       const Rs274Result r = run_rs274(p.lines);
       ASSERT_TRUE(r.ok) << what << " (" << dialect << "): line " << r.error_line << ": " << r.error;
       const VerifyReport rep = compare_with_job(p, job, r, o.arc_tolerance);
       EXPECT_TRUE(rep.ok) << what << " (" << dialect << "): " << rep.problem;
       EXPECT_GT(rep.canon_moves, 0u) << what;
-      for (const LimitViolation& v : check_limits(p.lines, machine)) {
-        ADD_FAILURE() << what << " (" << dialect << "): line " << v.line << ": " << v.message();
-      }
+      // A multi-axis program's limits are the small trunnion's, which most of these models do not fit on
+      // (test_five_axis checks them on parts that do).
+      if (!s.multi_axis)
+        for (const LimitViolation& v : check_limits(p.lines, machine))
+          ADD_FAILURE() << what << " (" << dialect << "): line " << v.line << ": " << v.message();
       ++verified;
     }
   }

@@ -20,6 +20,9 @@ struct Dialect {
   std::string comment_unsafe;
   std::vector<std::string> active_comments;
   bool coordinate_rotation = false;  // G10 L2 takes R: a work offset may turn the XY axes about Z
+  // Simultaneous multi-axis programs: A and C words on every move, inverse time (G93) and the trunnion's
+  // kinematics switches (M428, M429) of LinuxCNC's xyzac-trt configuration.
+  bool tool_centre_point = false;
 };
 
 const std::vector<Dialect>& dialects();

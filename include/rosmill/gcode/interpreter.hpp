@@ -24,7 +24,7 @@ struct ModalState {
   int work_offset = 54;       // 54..59; 591..593 for G59.1..G59.3
   int feed_mode = 94;         // 93 inverse time, 94 per minute, 95 per revolution
   int motion = -1;            // 0, 1, 2, 3; -1 before any motion word and after G80
-  double feed = 0.0;          // mm/min (the F word in the program's units)
+  double feed = 0.0;          // mm/min (the F word in the program's units); under G93 the F word, 1/minutes
   double spindle_rpm = 0.0;
   int spindle = 5;            // 3, 4 or 5
   bool flood = false, mist = false;
@@ -68,6 +68,7 @@ class Interpreter {
   void motion();
   void arc(CanonMove& m) const;
   void rotary(CanonMove& m);
+  void inverse_time_feed(CanonMove& m) const;
   void program_end();
 
   std::string file_, code_;

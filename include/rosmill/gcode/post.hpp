@@ -10,6 +10,7 @@
 
 #include "rosmill/gcode/dialect.hpp"
 #include "rosmill/gcode/work_offset.hpp"
+#include "rosmill/machine/trunnion.hpp"
 #include "rosmill/toolpath/job.hpp"
 
 namespace rosmill::core::gcode {
@@ -34,6 +35,18 @@ struct PostOptions {
   std::string work_offset_note = "from the workpiece's pose on the table";  // the comment above the G10 block
   // Indexed toolpaths (a trunnion table): the machine Z (G53) the tool retracts to before the part turns.
   double index_safe_z = NAN;
+  // Multi-axis toolpaths (a tool axis per move): the trunnion with tool-centre-point control they are written for. The program retracts and turns the table in identity kinematics, switches to tool-centre-point
+  // kinematics (LinuxCNC's M428 on the xyzac-trt configuration), and writes the tip on the table with A and C at
+  // every move (machine/trunnion.hpp indexes_along: the least rotary motion, C's winding kept); M429 at its end.
+  std::optional<machine::Trunnion> trunnion;
+  // Multi-axis moves are written in inverse time (G93): each takes the longest of its tip's length at its feed, and
+  // its program axes' and the machine's joints' travel at these speeds (mm/s of X, Y, Z; the trunnion's own for A
+  // and C; 0: not limited). LinuxCNC limits the program's axes but not the joints that a turning table drives.
+  Vec3 axis_velocity = Vec3::Zero();
+  double max_feed = 0;  // mm/min the tip moves at most, a rapid's too (0: not limited)
+  // Where G54's origin sits on the machine when the program does not set it (`work_offset` empty): the machine
+  // file's, for the joints' travel.
+  Vec3 program_origin = Vec3::Zero();
 };
 
 // Where a program line came from: toolpath index, pass index and the moves [first_move, last_move] it carries
@@ -64,6 +77,10 @@ int decimals_for_tolerance(double tolerance);
 PostOptions post_options_for(const std::string& dialect);
 
 Program post(const Job& job, const PostOptions& options = {});
+
+// The program's lines that switch the trunnion's kinematics (M428 to tool-centre-point, M429 back to identity):
+// remaps of LinuxCNC's configuration, which its standalone interpreter cannot run (it stops at them).
+bool switches_kinematics(const std::string& line);
 
 // The block that turns a trunnion's table to A and C (degrees) as the post writes it: "G0 A-90 C180".
 std::string index_block(double a, double c);

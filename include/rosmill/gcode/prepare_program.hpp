@@ -28,6 +28,10 @@ struct PreparedProgram {
   std::optional<VerifyReport> rs274;  // set when checks.rs274
 };
 
+// The post's options for multi-axis toolpaths on `machine`: its trunnion with tool-centre-point control, its safe Z,
+// its axes' speeds and its G54 origin (post.hpp). Throws Error naming the machine when it has no such trunnion.
+PostOptions with_tool_centre_point(PostOptions options, const MachineLimits& machine, const std::string& where);
+
 // Posts `job` and runs the checks; throws Error naming the program line and what it breaks.
 PreparedProgram prepare_program(const Job& job, const PostOptions& post, const ProgramChecks& checks);
 

@@ -21,7 +21,8 @@ struct Rs274Result {
 };
 
 // Runs `executable -t <table> -g <program> <out>` in a temporary folder; the tool table is made from the
-// program's T words. Throws Error when rs274 cannot be started.
+// program's T words, and the trunnion's kinematics switches (M428, M429: post.hpp switches_kinematics) are read as
+// comments. Throws Error when rs274 cannot be started.
 Rs274Result run_rs274(const std::vector<std::string>& program_lines, const std::string& executable = "rs274");
 // Parses rs274's canonical output text into canonical moves, each starting where the one before ended.
 std::vector<CanonMove> parse_canon(const std::string& text);

@@ -44,6 +44,8 @@ struct Trunnion {
   Vec3 machine_point(const Vec3& p, double a, double c) const;
   // The table point at machine point m with the axes at a, c.
   Vec3 table_point(const Vec3& m, double a, double c) const;
+  // The tool axis on the table (its frame at A = C = 0) with the axes at a, c: machine +Z turned back by them.
+  Vec3 tool_axis(double a, double c) const;
   // The placement of the table in the machine frame at a, c: "table" in "machine".
   Placement table_in_machine(double a, double c) const;
   bool a_in_range(double a) const { return a >= this->a.min - 1e-9 && a <= this->a.max + 1e-9; }
@@ -58,5 +60,14 @@ struct Index {
 // motion from `from` (the larger of the two axes' times at their velocities, then the sum of the angles); C is taken
 // among its turns by 360 degrees. Empty when no solution lies in the ranges; `why` then says what it would take.
 std::optional<Index> index_for(const Trunnion& t, const Vec3& d, const Index& from, std::string* why = nullptr);
+
+// The A and C at every tool axis of a multi-axis path (table frame, unit), for tool-centre-point control: at each
+// axis one of its two solutions (A and -A, C half a turn apart; any C on the pole, where the axis is the table's),
+// chosen over the whole path for the least rotary motion (the larger of the two axes' times at their velocities,
+// summed over the steps), from `from`. C keeps its winding (each C the turn nearest the one before, never wrapped
+// to a range of 360), and a path through or near the pole changes A's sign there rather than turning C by half a
+// turn. Empty when some axis has no solution in the ranges; `why` then names it.
+std::optional<std::vector<Index>> indexes_along(const Trunnion& t, const std::vector<Vec3>& axes, const Index& from,
+                                                std::string* why = nullptr);
 
 }  // namespace rosmill::core::machine

@@ -22,6 +22,18 @@ Sampling parse_sampling(const std::string& text, const std::string& where);
 // The chord / gouge tolerance (mm) a plan keeps when none is given.
 constexpr double kDefaultTolerance = 0.001;
 
+// The tool axis of multi-axis finishing (plan/tool_axis.hpp), in degrees. The lead tilts the axis from the surface
+// normal towards the direction of travel, the tilt sideways (to the right of travel): a ball end mill then cuts off
+// its tip, where the cutting speed is zero. The cone bounds the axis around the setup's +Z (the machine's rotary
+// range), the rate how fast it may turn along a pass.
+struct ToolAxisParams {
+  double lead_deg = NAN;        // NaN: 10 for a ball end mill (Muslimin et al.: off the zero-speed tip), 0 else
+  double tilt_deg = 0.0;
+  double cone_deg = 60.0;       // largest angle between the tool axis and +Z
+  double rate_deg_per_mm = 5.0; // largest change of the axis per mm of travel along a pass
+  double lead_or_default(bool ball) const { return std::isnan(lead_deg) ? (ball ? 10.0 : 0.0) : lead_deg; }
+};
+
 // Parameters; NaN means "the tool's default" (stepover, stepdown) or the strategy's default.
 struct PlanParams {
   Tool tool;
@@ -50,12 +62,14 @@ struct PlanParams {
   double engagement_deg = NAN;
   // mm/min the machine feeds at most (0: no cap): a feed raised for a thin engagement stops there.
   double max_feed = 0.0;
+  ToolAxisParams tool_axis;    // five-axis finishing
 };
 
 // Throws Error naming the field ("parameter allowance") and its accepted range when a value is NaN where NaN does
 // not mean a default, infinite or out of range: the tool (check_tool), stepover and step-down (NaN or (0, 500] mm),
 // allowance [0, 50] mm, tolerance (NaN or [1e-6, 10] mm), angle [-360, 360] degrees, stock margin [0, 1000] mm, safe
-// clearance (0, 1000] mm. plan() checks every request here, whoever sends it (the command line, a node).
+// clearance (0, 1000] mm, the tool axis's lead and tilt [-45, 45] degrees, its cone [0, 90] degrees and rate
+// (0, 180] degrees per mm. plan() checks every request here, whoever sends it (the command line, a node).
 void check_plan_params(const PlanParams& params);
 
 // Progress in [0, 1]; return false to cancel (the strategy then throws Error("plan", "cancelled")).

@@ -64,6 +64,15 @@ struct PlanReport {
   // What it left, patch by patch (the material the cutter cannot reach too, which left_area_mm2 does not count),
   // and why; patches under R^2 / 20 are not listed (the skin the chords of a curved wall leave).
   std::vector<UnclearedPatch> uncleared;
+  // Five-axis finishing (five_axis_finish.hpp): the tool axis's largest angle from +Z and largest change per mm
+  // along a pass, the cutter locations whose axis was turned off the lead-and-tilt rule so that tool and holder
+  // clear the part, those no axis in the cone reaches (left out: the pass breaks there), and the most material
+  // left on the surface at a cutter location kept (a ball pushed back along its axis by what stands beside it).
+  double max_tilt_deg = 0.0;
+  double max_axis_rate_deg_per_mm = 0.0;
+  size_t axes_turned_to_clear = 0;
+  size_t unreachable_points = 0;
+  double max_left_mm = 0.0;
 };
 
 // "slotted 61.7 mm where no pass fitted at the 53-degree limit: up to 136 degrees, at 980 mm/min and up"; empty

@@ -32,6 +32,9 @@ struct StrategyEntry {
   bool roughing = false;    // clears stock in levels down to the allowance, rather than following the surface
   // Cuts only the material a job's stock has left, by itself (its moves are not kept to rest cells afterwards).
   bool follows_material = false;
+  // A tool axis at every cutter location (simultaneous four- or five-axis): posted for a machine with
+  // tool-centre-point control only.
+  bool multi_axis = false;
 };
 
 const std::vector<StrategyEntry>& strategies();

@@ -26,6 +26,9 @@ struct Move {
 struct ToolpathPass {
   std::string name;
   std::vector<Move> moves;
+  // The tool axis at the end of each move (unit, workpiece frame, from the tip towards the spindle), one per move,
+  // for a multi-axis pass; empty when the axis is the frame's +Z throughout (3-axis, and 3+2 once indexed).
+  std::vector<Vec3> axes;
 };
 
 struct Toolpath {
@@ -45,6 +48,8 @@ struct Toolpath {
   double tolerance = NAN;
 
   size_t move_count() const;
+  // True when a pass carries a tool axis per move (simultaneous four- or five-axis machining).
+  bool multi_axis() const;
   Box3 bounds() const;
 };
 
