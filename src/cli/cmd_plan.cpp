@@ -22,6 +22,7 @@
 #include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/verify/tool_clearance.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
 #include "rosmill/io/cloud_io.hpp"
@@ -188,6 +189,18 @@ void run(const Options& o) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   gcode::PostOptions post = gcode::post_options_for(o.dialect);
   post_for_machine(job, o.machine, post);
+  // A multi-axis toolpath's tool, tilted along its moves, against the design by a check that shares no code with
+  // the planner (verify/tool_clearance.hpp): a gouge or a collision is refused before anything is written.
+  std::optional<verify::ToolClearance> clearance;
+  if (post.trunnion && input.mesh) {
+    const Mesh turned = setup.identity() ? Mesh() : transformed_mesh(mesh, setup.placement.pose.matrix(), "--setup");
+    clearance = verify::check_tool_clearance(setup.identity() ? mesh : turned, job, params.allowance);
+    const double tolerance = std::isnan(params.tolerance) ? kDefaultTolerance : params.tolerance;
+    if (clearance->ball_depth_mm > tolerance || clearance->body_depth_mm > tolerance + clearance->sampling_mm)
+      throw Error("tool clearance", "the tilted tool goes " + std::to_string(std::max(clearance->ball_depth_mm,
+                                                                                       clearance->body_depth_mm)) +
+                                        " mm into the design at " + clearance->deepest + ": no program written");
+  }
   if (!o.out.empty() && gcode::is_program_path(o.out)) {
     // The same checked pipeline as `rosmill post`: limits of the machine found as `send` finds it.
     gcode::ProgramChecks checks;
@@ -246,6 +259,11 @@ void run(const Options& o) {
                           {"axes_turned_to_clear", r.axes_turned_to_clear},
                           {"unreachable_points", r.unreachable_points},
                           {"max_left_mm", r.max_left_mm}};
+    if (clearance)
+      j["tool_clearance"] = {{"ball_depth_mm", clearance->ball_depth_mm},
+                             {"body_depth_mm", clearance->body_depth_mm},
+                             {"sampling_mm", clearance->sampling_mm},
+                             {"positions", clearance->positions}};
     const Vec3& axis = setup.tool_axis;
     j["setup"] = {{"name", setup.name}, {"tool_axis", {axis.x(), axis.y(), axis.z()}}};
     std::printf("%s\n", j.dump().c_str());
@@ -265,6 +283,10 @@ void run(const Options& o) {
                     "left at a kept location %.4f mm\n",
                     r.max_tilt_deg, r.max_axis_rate_deg_per_mm, r.axes_turned_to_clear, r.unreachable_points,
                     r.max_left_mm);
+    if (clearance)
+      std::printf("  tool against the design (checked apart from the planner, %zu positions): ball %.4f mm in, "
+                  "flutes, shank and holder %.4f mm (sampled within %.4f mm)\n",
+                  clearance->positions, clearance->ball_depth_mm, clearance->body_depth_mm, clearance->sampling_mm);
     for (const PlanReport& r : reports)
       for (const UnclearedPatch& l : r.uncleared) std::printf("  %s\n", uncleared_text(l).c_str());
   }

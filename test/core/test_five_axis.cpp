@@ -23,6 +23,7 @@
 #include "rosmill/plan/four_axis_finish.hpp"
 #include "rosmill/plan/tool_axis.hpp"
 #include "rosmill/planner/plan_request.hpp"
+#include "rosmill/verify/tool_clearance.hpp"
 
 using namespace rosmill::core;
 using five_axis_check::IndependentDistance;
@@ -41,16 +42,6 @@ PlanParams ball_params(double diameter) {
   p.tool.stepover = 1.0;
   p.tolerance = 0.002;
   return p;
-}
-
-five_axis_check::ToolShape shape_of(const Tool& t) {
-  five_axis_check::ToolShape s;
-  s.ball = t.cutter.radius();
-  s.shank = 0.5 * t.cutter.shank_diameter;
-  s.flute = t.cutter.flute_length;
-  s.stick_out = t.stick_out_mm();
-  s.holder = 0.5 * t.holder_mm();
-  return s;
 }
 
 // Each cutting move of the toolpath with its tool axis (the tip and axis at the move's end) and the one before.
@@ -198,24 +189,17 @@ TEST(FiveAxisFinish, NoGougeOfBallShankOrHolderAlongTheMovesByTheIndependentChec
   const Job job = five_axis_finish(mesh, p, {}, &report);
   ASSERT_EQ(job.size(), 1u);
   EXPECT_GT(report.axes_turned_to_clear, 0u) << "the walls turn some axes";
-  const IndependentDistance distance(mesh);
-  const five_axis_check::ToolShape shape = shape_of(p.tool);
-  double worst = 0;
-  size_t checked = 0;
-  const std::vector<Cut> all = cuts(job[0]);
-  for (size_t k = 0; k < all.size(); k += 3) {
-    const Cut& c = all[k];
-    // The end and the middle of the move, the tip and the axis as the controller interpolates them.
-    for (double f : {0.5, 1.0}) {
-      const Vec3 tip = c.from + f * (c.to - c.from);
-      const Vec3 axis = (c.axis_from + f * (c.axis_to - c.axis_from)).normalized();
-      worst = std::max(worst, five_axis_check::tool_depth(distance, shape, tip, axis, 0.25));
-      ++checked;
-    }
-  }
-  EXPECT_GT(checked, 500u);
-  // The tolerance, and the sampling's own shortfall on the shank (3 - sqrt(9 - 0.125^2) = 0.0026 mm).
-  EXPECT_LE(worst, p.tolerance + 0.003) << "over " << checked << " tool positions";
+  // Ball, flutes, shank and holder at every move's end and middle (tip and axis interpolated), by the exact distance
+  // planning does not use.
+  const verify::ToolClearance c = verify::check_tool_clearance(mesh, job, p.allowance);
+  EXPECT_GT(c.positions, 1000u);
+  EXPECT_LE(c.ball_depth_mm, p.tolerance) << c.deepest;
+  EXPECT_LE(c.body_depth_mm, p.tolerance + c.sampling_mm) << c.deepest;
+  // The check sees a gouge: the same toolpath 0.05 mm down goes in by that much.
+  Job lower = job;
+  for (ToolpathPass& pass : lower[0].passes)
+    for (Move& m : pass.moves) m.to.z() -= 0.05;
+  EXPECT_NEAR(verify::check_tool_clearance(mesh, lower, p.allowance).ball_depth_mm, 0.05, 0.01);
 }
 
 TEST(FiveAxisFinish, RefusesAFlatEndMill) {
