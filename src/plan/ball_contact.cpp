@@ -116,6 +116,53 @@ void refine_between(const BallContact& contact, const BallLocation& a, const Bal
   refine_between(contact, m, b, sm, sb, between, out, broke, depth + 1);
 }
 
+void refine_run(const BallContact& contact, const std::vector<BallLocation>& run, const std::vector<double>& at,
+                const std::function<BallLocation(double, const Vec3&)>& between,
+                std::vector<std::vector<BallLocation>>& runs) {
+  if (run.size() < 2) return;
+  std::vector<BallLocation> fine = {run.front()}, piece;
+  for (size_t i = 1; i < run.size(); ++i) {
+    bool broke = false;
+    piece.clear();
+    refine_between(contact, run[i - 1], run[i], at[i - 1], at[i], between, piece, broke);
+    if (broke) {
+      if (fine.size() >= 2) runs.push_back(std::move(fine));
+      fine = {run[i]};
+      continue;
+    }
+    fine.insert(fine.end(), piece.begin(), piece.end());
+  }
+  if (fine.size() >= 2) runs.push_back(std::move(fine));
+}
+
+std::vector<std::vector<BallLocation>> sample_runs(
+    const BallContact& contact, int n, const std::function<double(int)>& at,
+    const std::function<BallLocation(double, const BallLocation*)>& locate,
+    const std::function<BallLocation(double, const Vec3&)>& between,
+    const std::function<void(std::vector<BallLocation>&, const std::vector<double>&)>& adjust) {
+  std::vector<std::vector<BallLocation>> runs;
+  std::vector<BallLocation> run;
+  std::vector<double> params;
+  const auto close = [&]() {
+    if (adjust) adjust(run, params);
+    refine_run(contact, run, params, between, runs);
+    run.clear();
+    params.clear();
+  };
+  for (int k = 0; k <= n; ++k) {
+    const double s = at(k);
+    const BallLocation l = locate(s, run.empty() ? nullptr : &run.back());
+    if (!l.ok) {
+      close();
+      continue;
+    }
+    run.push_back(l);
+    params.push_back(s);
+  }
+  close();
+  return runs;
+}
+
 void add_cuts(ToolpathPass& pass, const std::vector<BallLocation>& run, double radius, double feed, AxisFigures& f) {
   for (size_t i = 0; i < run.size(); ++i) {
     const BallLocation& l = run[i];

@@ -177,47 +177,17 @@ void FiveAxisFinish::smooth(std::vector<Location>& run, const Vec3& from, const 
 std::vector<std::vector<Location>> FiveAxisFinish::line(const Vec3& from, const Vec3& dir, double length) const {
   const double step = std::min(1.0, std::max(R_ / 4, 0.05));
   const int n = std::max(1, static_cast<int>(std::ceil(length / step)));
-  std::vector<std::vector<Location>> runs;
-  std::vector<Location> run;
-  std::vector<double> s;
-  const auto between = [&](double at, const Vec3& axis) {
-    const Vec3 q = from + at * dir;
-    return with_axis(q.x(), q.y(), axis);
-  };
-  auto close = [&]() {
-    if (run.size() >= 2) {
-      smooth(run, from, dir, s);
-      std::vector<Location> fine = {run.front()};
-      std::vector<Location> piece;
-      for (size_t i = 1; i < run.size(); ++i) {
-        bool broke = false;
-        piece.clear();
-        refine_between(contact_, run[i - 1], run[i], s[i - 1], s[i], between, piece, broke);
-        if (broke) {
-          if (fine.size() >= 2) runs.push_back(std::move(fine));
-          fine = {run[i]};
-          continue;
-        }
-        fine.insert(fine.end(), piece.begin(), piece.end());
-      }
-      if (fine.size() >= 2) runs.push_back(std::move(fine));
-    }
-    run.clear();
-    s.clear();
-  };
-  for (int k = 0; k <= n; ++k) {
-    const double at = length * k / n;
-    const Vec3 q = from + at * dir;
-    const Location l = locate(q.x(), q.y(), dir, run.empty() ? nullptr : &run.back().axis, length / n);
-    if (!l.ok) {
-      close();
-      continue;
-    }
-    run.push_back(l);
-    s.push_back(at);
-  }
-  close();
-  return runs;
+  return sample_runs(
+      contact_, n, [&](int k) { return length * k / n; },
+      [&](double at, const Location* previous) {
+        const Vec3 q = from + at * dir;
+        return locate(q.x(), q.y(), dir, previous ? &previous->axis : nullptr, length / n);
+      },
+      [&](double at, const Vec3& axis) {
+        const Vec3 q = from + at * dir;
+        return with_axis(q.x(), q.y(), axis);
+      },
+      [&](std::vector<Location>& run, const std::vector<double>& s) { smooth(run, from, dir, s); });
 }
 
 Job FiveAxisFinish::run(const PlanProgress& progress, PlanReport* report) {

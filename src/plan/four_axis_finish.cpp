@@ -76,41 +76,11 @@ BallLocation FourAxisFinish::locate(double z, double theta, const Vec3* given) c
 std::vector<std::vector<BallLocation>> FourAxisFinish::ring(double z) const {
   const double step = std::min(1.0, std::max(R_ / 4, 0.05));
   const int n = std::max(12, static_cast<int>(std::ceil(2 * M_PI * reach_ / step)));
-  std::vector<std::vector<BallLocation>> runs;
-  std::vector<BallLocation> run;
-  std::vector<double> at;
-  const auto between = [&](double theta, const Vec3& axis) { return locate(z, theta, &axis); };
-  const auto close = [&]() {
-    if (run.size() >= 2) {
-      std::vector<BallLocation> fine = {run.front()}, piece;
-      for (size_t i = 1; i < run.size(); ++i) {
-        bool broke = false;
-        piece.clear();
-        refine_between(contact_, run[i - 1], run[i], at[i - 1], at[i], between, piece, broke);
-        if (broke) {
-          if (fine.size() >= 2) runs.push_back(std::move(fine));
-          fine = {run[i]};
-          continue;
-        }
-        fine.insert(fine.end(), piece.begin(), piece.end());
-      }
-      if (fine.size() >= 2) runs.push_back(std::move(fine));
-    }
-    run.clear();
-    at.clear();
-  };
-  for (int k = 0; k <= n; ++k) {  // the whole turn, its last location the first again
-    const double theta = 2 * M_PI * k / n;
-    const BallLocation l = locate(z, theta, nullptr);
-    if (!l.ok) {
-      close();
-      continue;
-    }
-    run.push_back(l);
-    at.push_back(theta);
-  }
-  close();
-  return runs;
+  // The whole turn, its last location the first again.
+  return sample_runs(
+      contact_, n, [&](int k) { return 2 * M_PI * k / n; },
+      [&](double theta, const BallLocation*) { return locate(z, theta, nullptr); },
+      [&](double theta, const Vec3& axis) { return locate(z, theta, &axis); });
 }
 
 Job FourAxisFinish::run(const PlanProgress& progress, PlanReport* report) {

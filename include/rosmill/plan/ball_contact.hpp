@@ -74,6 +74,21 @@ void refine_between(const BallContact& contact, const BallLocation& a, const Bal
                     const std::function<BallLocation(double, const Vec3&)>& between, std::vector<BallLocation>& out,
                     bool& broke, int depth = 0);
 
+// A run of cutter locations at parameters `at` refined (refine_between) into the runs it breaks into, each of two
+// locations or more, appended to `runs`.
+void refine_run(const BallContact& contact, const std::vector<BallLocation>& run, const std::vector<double>& at,
+                const std::function<BallLocation(double, const Vec3&)>& between,
+                std::vector<std::vector<BallLocation>>& runs);
+
+// A pass sampled at parameters at(0) .. at(n): `locate(s, previous)` gives the cutter location at s (`previous` the
+// one before in the same run, or null), the pass breaking where it gives none; each run is handed to `adjust` (when
+// given: a smoothing of its axes) and refined (refine_run).
+std::vector<std::vector<BallLocation>> sample_runs(
+    const BallContact& contact, int n, const std::function<double(int)>& at,
+    const std::function<BallLocation(double, const BallLocation*)>& locate,
+    const std::function<BallLocation(double, const Vec3&)>& between,
+    const std::function<void(std::vector<BallLocation>&, const std::vector<double>&)>& adjust = {});
+
 // What the cutter locations of the multi-axis passes say of their tool axes, for the plan's report.
 struct AxisFigures {
   double max_tilt_deg = 0;        // from +Z
