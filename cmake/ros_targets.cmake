@@ -83,21 +83,24 @@ if(CATKIN_ENABLE_TESTING)
   endforeach()
   add_custom_target(replay_bags DEPENDS ${replay_bag_files})
   add_dependencies(tests replay_bags)
-  set(replay_test test/ros/replay/recording.test)  # expect_message: words (joined by +) the reason must hold
-  add_rostest(${replay_test} ARGS case:=bz2 expect_views:=3)
-  add_rostest(${replay_test} ARGS case:=lz4 expect_views:=3)
-  add_rostest(${replay_test} ARGS case:=several expect_views:=6)
-  add_rostest(${replay_test} ARGS case:=plain loop:=true views:=3 expect_views:=3)
-  add_rostest(${replay_test} ARGS case:=late_tf expect_views:=3)
-  add_rostest(${replay_test} ARGS case:=too_late_tf expect_done:=false expect_step:=fusion
+  # expect_message: words (joined by +) the reason must hold. `name`: the test's own, so that cases run side by side
+  # (ctest -j) do not write one results file (rosunit names it after the test).
+  set(replay_test test/ros/replay/recording.test)
+  add_rostest(${replay_test} ARGS name:=replay_bz2 case:=bz2 expect_views:=3)
+  add_rostest(${replay_test} ARGS name:=replay_lz4 case:=lz4 expect_views:=3)
+  add_rostest(${replay_test} ARGS name:=replay_several case:=several expect_views:=6)
+  add_rostest(${replay_test} ARGS name:=replay_plain_loop case:=plain loop:=true views:=3 expect_views:=3)
+  add_rostest(${replay_test} ARGS name:=replay_late_tf case:=late_tf expect_views:=3)
+  add_rostest(${replay_test} ARGS name:=replay_too_late_tf case:=too_late_tf expect_done:=false expect_step:=fusion
     expect_message:=no+transform+scanner+table)
-  add_rostest(${replay_test} ARGS case:=no_tf expect_done:=false expect_step:=fusion
+  add_rostest(${replay_test} ARGS name:=replay_no_tf case:=no_tf expect_done:=false expect_step:=fusion
     expect_message:=no+transform+scanner+table)
-  add_rostest(${replay_test} ARGS case:=other_frame expect_done:=false expect_step:=fusion
+  add_rostest(${replay_test} ARGS name:=replay_other_frame case:=other_frame expect_done:=false expect_step:=fusion
     expect_message:=no+transform+camera_link+table)
-  add_rostest(${replay_test} ARGS case:=other_frame sensor_frame:=scanner expect_views:=3)
-  add_rostest(${replay_test} ARGS case:=no_scan first_view_timeout:=5 expect_done:=false expect_step:=views
-    expect_message:=nothing+publishes+/scan/points)
+  add_rostest(${replay_test} ARGS name:=replay_other_frame_named case:=other_frame sensor_frame:=scanner
+    expect_views:=3)
+  add_rostest(${replay_test} ARGS name:=replay_no_scan case:=no_scan first_view_timeout:=5 expect_done:=false
+    expect_step:=views expect_message:=nothing+publishes+/scan/points)
   # The template a cell copies (test/templates/), on the plain recording with the bundled job: the whole pipeline.
   # The recording's tf is exact: its scans fused where tf puts them (README: the fusion's ICP moves them).
   add_rostest(test/templates/cell_recording.test ARGS bag:=${ROSMILL_REPLAY_BAGS}/plain.bag

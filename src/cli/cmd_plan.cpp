@@ -17,23 +17,23 @@
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
-#include "progress_bar.hpp"
 #include "config_file.hpp"
+#include "progress_bar.hpp"
 #include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/verify/tool_clearance.hpp"
+#include "rosmill/gcode/cycle_time.hpp"
 #include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/io/cloud_io.hpp"
 #include "rosmill/io/stl.hpp"
 #include "rosmill/plan/stock.hpp"
-#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/planner/strategy_table.hpp"
 #include "rosmill/toolpath/toolpath_io.hpp"
 #include "rosmill/toolpath/toolpath_stats.hpp"
-#include "rosmill/gcode/cycle_time.hpp"
+#include "rosmill/verify/tool_clearance.hpp"
 #include "work_offset_option.hpp"
 
 namespace rosmill::core::cli {
@@ -197,8 +197,8 @@ void run(const Options& o) {
     clearance = verify::check_tool_clearance(setup.identity() ? mesh : turned, job, params.allowance);
     const double tolerance = std::isnan(params.tolerance) ? kDefaultTolerance : params.tolerance;
     if (clearance->ball_depth_mm > tolerance || clearance->body_depth_mm > tolerance + clearance->sampling_mm)
-      throw Error("tool clearance", "the tilted tool goes " + std::to_string(std::max(clearance->ball_depth_mm,
-                                                                                       clearance->body_depth_mm)) +
+      throw Error("tool clearance", "the tilted tool goes " +
+                                        std::to_string(std::max(clearance->ball_depth_mm, clearance->body_depth_mm)) +
                                         " mm into the design at " + clearance->deepest + ": no program written");
   }
   if (!o.out.empty() && gcode::is_program_path(o.out)) {
@@ -221,8 +221,7 @@ void run(const Options& o) {
     total.rapid_length += s.rapid_length;
   }
   // The program this job posts, timed as the machine's trajectory planner runs it.
-  const double estimated_seconds =
-      gcode::estimate_cycle_time(job, post, machine_trajectory(o.machine)).seconds;
+  const double estimated_seconds = gcode::estimate_cycle_time(job, post, machine_trajectory(o.machine)).seconds;
   if (o.json) {
     nlohmann::json j = {{"strategy", o.strategy},
                         {"toolpaths", job.size()},
@@ -278,15 +277,16 @@ void run(const Options& o) {
       if (r.slot_length_mm > 0) std::printf("  %s\n", slot_text(r).c_str());
     for (const PlanReport& r : reports)
       if (r.strategy == "five-axis" || r.strategy == "four-axis")
-        std::printf("  tool axis: up to %.1f degrees from +Z, turning up to %.2f degrees per mm; %zu cutter locations "
-                    "turned off lead and tilt to clear the part, %zu no axis in the cone reaches (left out); most "
-                    "left at a kept location %.4f mm\n",
-                    r.max_tilt_deg, r.max_axis_rate_deg_per_mm, r.axes_turned_to_clear, r.unreachable_points,
-                    r.max_left_mm);
+        std::printf(
+            "  tool axis: up to %.1f degrees from +Z, turning up to %.2f degrees per mm; %zu cutter locations "
+            "turned off lead and tilt to clear the part, %zu no axis in the cone reaches (left out); most "
+            "left at a kept location %.4f mm\n",
+            r.max_tilt_deg, r.max_axis_rate_deg_per_mm, r.axes_turned_to_clear, r.unreachable_points, r.max_left_mm);
     if (clearance)
-      std::printf("  tool against the design (checked apart from the planner, %zu positions): ball %.4f mm in, "
-                  "flutes, shank and holder %.4f mm (sampled within %.4f mm)\n",
-                  clearance->positions, clearance->ball_depth_mm, clearance->body_depth_mm, clearance->sampling_mm);
+      std::printf(
+          "  tool against the design (checked apart from the planner, %zu positions): ball %.4f mm in, "
+          "flutes, shank and holder %.4f mm (sampled within %.4f mm)\n",
+          clearance->positions, clearance->ball_depth_mm, clearance->body_depth_mm, clearance->sampling_mm);
     for (const PlanReport& r : reports)
       for (const UnclearedPatch& l : r.uncleared) std::printf("  %s\n", uncleared_text(l).c_str());
   }

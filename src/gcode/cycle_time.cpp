@@ -401,7 +401,9 @@ class Timer {
       result_.motion_seconds += rotary_seconds(m, lim_);
       return;
     }
-    const Element e = m.indexes() ? simultaneous_element(m, lim_) : m.is_arc() ? arc_element(m, lim_) : line_element(m, lim_);
+    const Element e = m.indexes()  ? simultaneous_element(m, lim_)
+                      : m.is_arc() ? arc_element(m, lim_)
+                                   : line_element(m, lim_);
     if (e.length <= 1e-9) return;  // the planner drops a move that goes nowhere
     if (!m.rapid && at_speed_ > 0) {  // the planner holds the first feed move until the spindle is at speed
       stop();

@@ -363,7 +363,8 @@ void machine_extent(const CanonMove& m, const WorkOffset& w, double lo[3], doubl
 Vec3 tool_centre_point_extent(const machine::Trunnion& t, const CanonMove& m, const WorkOffset& w, double lo[3],
                               double hi[3], double& lowest_on_table) {
   const double span = std::max({(m.to - m.from).norm(), std::abs(m.a_to - m.a_from), std::abs(m.c_to - m.c_from)});
-  const int n = std::max(1, static_cast<int>(std::ceil(span)));
+  // At most 4096 samples: a longer move (or a hostile one) is sampled coarser, never looped over for ever.
+  const int n = std::isfinite(span) ? static_cast<int>(std::clamp(std::ceil(span), 1.0, 4096.0)) : 4096;
   for (int a = 0; a < 3; ++a) lo[a] = INFINITY, hi[a] = -INFINITY;
   lowest_on_table = INFINITY;
   Vec3 travel = Vec3::Zero(), before = Vec3::Zero();
@@ -428,10 +429,13 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
     const int offset_before = reader.state().work_offset;
     reader.read(lines[i], i + 1);
     if (reader.block().has_m(428)) {
+      // Refused on a machine without tool-centre-point control; its moves are then checked as they read.
       if (!lim.trunnion || lim.trunnion->mode != machine::KinematicsMode::ToolCentrePoint)
-        add(i, "kinematics", "M428 switches to tool-centre-point kinematics, which the machine '" + lim.name +
-                                 "' is not set up for (rotary.mode: tool-centre-point)");
-      tcp = true;
+        add(i, "kinematics",
+            "M428 switches to tool-centre-point kinematics, which the machine '" + lim.name +
+                "' is not set up for (rotary.mode: tool-centre-point)");
+      else
+        tcp = true;
     }
     if (reader.block().has_m(429)) tcp = false;
     if (const std::optional<WorkOffset> set = followed_work_offset(reader)) known[set->index - 1] = *set;
@@ -460,8 +464,8 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
     // An indexing turns the part: the stock's top is another side's from here on (with tool-centre-point control
     // the program's coordinates stay the table's).
     if (reader.moved() && reader.move().indexes() && !tcp) tops.push_back(-INFINITY);
-    steps.push_back({i, reader.moved(), reader.move(), false, s.feed, s.spindle_rpm, s.spindle, offset,
-                     tops.size() - 1, tcp});
+    steps.push_back(
+        {i, reader.moved(), reader.move(), false, s.feed, s.spindle_rpm, s.spindle, offset, tops.size() - 1, tcp});
     // Cutting moves across the part (not plunges or feed retracts) run inside the stock. Under tool-centre-point
     // control every move is an inverse-time feed, the ones that position the tool over the part too: they tell
     // nothing of the stock (give it: LimitCheckOptions::stock_top).
@@ -499,8 +503,9 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
           add(st.line, std::move(limit), std::move(detail));
         });
       } else {
-        add(st.line, "unchecked move", "in tool-centre-point kinematics a move that turns A or C must start and end "
-                                       "at known X, Y, Z, A and C (the joints cannot be followed otherwise)");
+        add(st.line, "unchecked move",
+            "in tool-centre-point kinematics a move that turns A or C must start and end "
+            "at known X, Y, Z, A and C (the joints cannot be followed otherwise)");
       }
     }
     for (int a = 0; a < 3; ++a) {

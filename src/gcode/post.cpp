@@ -307,16 +307,19 @@ void write_pass(Writer& w, const ToolpathPass& pass, int ti, int pi, const PostO
 // machine coordinates at an indexing, the identity kinematics' meaning).
 void check_tool_centre_point(const Job& job, const Dialect& d, const PostOptions& o) {
   if (!d.tool_centre_point)
-    throw Error("post " + d.name, "a toolpath carries a tool axis at every move (simultaneous multi-axis), which the "
-                                  "dialect cannot write (no rotary axes, inverse time or kinematics switch)");
+    throw Error("post " + d.name,
+                "a toolpath carries a tool axis at every move (simultaneous multi-axis), which the "
+                "dialect cannot write (no rotary axes, inverse time or kinematics switch)");
   if (!o.trunnion || o.trunnion->mode != machine::KinematicsMode::ToolCentrePoint)
-    throw Error("post", "a toolpath carries a tool axis at every move (simultaneous multi-axis): it needs a "
-                        "trunnion with tool-centre-point control (the machine file's rotary.mode: tool-centre-point)");
+    throw Error("post",
+                "a toolpath carries a tool axis at every move (simultaneous multi-axis): it needs a "
+                "trunnion with tool-centre-point control (the machine file's rotary.mode: tool-centre-point)");
   if (!std::isfinite(o.index_safe_z))
     throw Error("post", "a multi-axis program needs the machine's safe Z to retract to before the table turns");
   if (o.work_offset && o.work_offset->rotation_deg != 0)
-    throw Error("post", "a multi-axis program's work offset cannot turn about Z (G10 L2 R): the tip is written on the "
-                        "table, which the trunnion turns itself");
+    throw Error("post",
+                "a multi-axis program's work offset cannot turn about Z (G10 L2 R): the tip is written on the "
+                "table, which the trunnion turns itself");
   for (size_t t = 0; t < job.size(); ++t)
     if (job[t].indexed)
       throw Error("post", "toolpath " + std::to_string(t + 1) + " (" + job[t].strategy +
@@ -348,17 +351,20 @@ Vec3 as_written(const Vec3& p, int decimals) {
 // rapid), the program axes' travel at their speeds (X Y Z on the table, A, C) and the joints' (the trunnion's chain
 // along the move, sampled every millimetre of the tip or degree of A or C).
 double tool_centre_point_minutes(const machine::Trunnion& t, const Vec3& origin, const Vec3& from, const Vec3& to,
-                                 const machine::Index& i0, const machine::Index& i1, double feed, const PostOptions& o) {
+                                 const machine::Index& i0, const machine::Index& i1, double feed,
+                                 const PostOptions& o) {
   const double length = (to - from).norm(), da = std::abs(i1.a - i0.a), dc = std::abs(i1.c - i0.c);
   double seconds = feed > 0 ? 60 * length / feed : 0;
   if (o.max_feed > 0) seconds = std::max(seconds, 60 * length / o.max_feed);
   if (t.a.velocity > 0) seconds = std::max(seconds, da / t.a.velocity);
   if (t.c.velocity > 0) seconds = std::max(seconds, dc / t.c.velocity);
-  const int n = std::max(1, static_cast<int>(std::ceil(std::max({length, da, dc}))));
+  const double span = std::max({length, da, dc});
+  const int n = std::isfinite(span) ? static_cast<int>(std::clamp(std::ceil(span), 1.0, 4096.0)) : 4096;
   Vec3 travel = Vec3::Zero(), before = Vec3::Zero();
   for (int k = 0; k <= n; ++k) {
     const double f = static_cast<double>(k) / n;
-    const Vec3 joint = t.machine_point(origin + from + f * (to - from), i0.a + f * (i1.a - i0.a), i0.c + f * (i1.c - i0.c));
+    const Vec3 joint =
+        t.machine_point(origin + from + f * (to - from), i0.a + f * (i1.a - i0.a), i0.c + f * (i1.c - i0.c));
     if (k > 0) travel += (joint - before).cwiseAbs();
     before = joint;
   }
@@ -391,10 +397,10 @@ void write_tool_centre_point(Writer& w, const Dialect& d, const Job& job, const 
       w.set_rotary(turns->front());
       // The spindle over the start, in machine coordinates: the tip then lies on the tool axis through the start, and
       // the first move of tool-centre-point kinematics runs down that axis (machine Z alone).
-      const Vec3 over = trunnion.machine_point(
-          (o.work_offset ? o.work_offset->origin : o.program_origin) +
-              Vec3(tp.start.x(), tp.start.y(), std::max(tp.clearance_z, tp.start.z())),
-          turns->front().a, turns->front().c);
+      const Vec3 over =
+          trunnion.machine_point((o.work_offset ? o.work_offset->origin : o.program_origin) +
+                                     Vec3(tp.start.x(), tp.start.y(), std::max(tp.clearance_z, tp.start.z())),
+                                 turns->front().a, turns->front().c);
       w.line("G53 G0 X" + fixed_text(over.x(), o.decimals) + " Y" + fixed_text(over.y(), o.decimals), origin);
       w.comment("tool-centre-point kinematics: X Y Z are the tool tip on the table");
       w.line("M428", origin);
@@ -421,8 +427,9 @@ void write_tool_centre_point(Writer& w, const Dialect& d, const Job& job, const 
         const int kk = static_cast<int>(k);
         const double feed = moves[k].type == MoveType::Rapid ? 0.0 : moves[k].feed;
         // From the numbers as written (rounded), which the controller moves between.
-        const double minutes = tool_centre_point_minutes(trunnion, table_origin, from, as_written(moves[k].to, o.decimals),
-                                                         (*turns)[flat - 1], (*turns)[flat], feed, o);
+        const double minutes =
+            tool_centre_point_minutes(trunnion, table_origin, from, as_written(moves[k].to, o.decimals),
+                                      (*turns)[flat - 1], (*turns)[flat], feed, o);
         w.move(1, moves[k].to, 1.0 / minutes, LineOrigin{ti, static_cast<int>(p), kk, kk}, nullptr, &(*turns)[flat]);
         from = as_written(moves[k].to, o.decimals);
       }

@@ -50,8 +50,7 @@ PreparedProgram prepare_program(const Job& job, const PostOptions& post_options,
     p.limits_checked = true;
   }
   if (checks.rs274) {
-    VerifyReport report =
-        compare_with_job(p.program, job, run_rs274(p.program.lines), post_options.arc_tolerance);
+    VerifyReport report = compare_with_job(p.program, job, run_rs274(p.program.lines), post_options.arc_tolerance);
     if (!report.ok) throw Error("rs274 verification", report.problem);
     p.rs274 = std::move(report);
   }

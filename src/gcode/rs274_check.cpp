@@ -179,8 +179,10 @@ Rs274Result run_rs274(const std::vector<std::string>& lines, const std::string& 
     // interpreter cannot run (it stops at them): they are read as comments, one line for one as the program has them.
     std::ofstream p(program);
     for (const auto& l : lines) {
-      if (switches_kinematics(l)) p << "(" << l << ": a kinematics switch the controller runs)\n";
-      else p << l << '\n';
+      if (switches_kinematics(l))
+        p << "(" << l << ": a kinematics switch the controller runs)\n";
+      else
+        p << l << '\n';
     }
     std::ofstream t(table);
     for (int id : tools_used(lines)) t << 'T' << id << " P" << id << " Z0 D1 ;rosmill verification\n";

@@ -50,8 +50,8 @@ double edge_contact(const Vec3& o, const Vec3& d, double r, const Vec3& p, const
 }
 
 // The same for the face: the centre at distance r from its plane with the foot inside the triangle.
-double face_contact(const Vec3& o, const Vec3& d, double r, const Vec3& a, const Vec3& b, const Vec3& c,
-                    double t_min, double t_max) {
+double face_contact(const Vec3& o, const Vec3& d, double r, const Vec3& a, const Vec3& b, const Vec3& c, double t_min,
+                    double t_max) {
   Vec3 n = (b - a).cross(c - a);
   const double n_len = n.norm();
   if (n_len == 0) return kInf;

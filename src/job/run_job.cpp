@@ -582,8 +582,9 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   std::optional<TableSetting> table;
   if (trunnion) {
     if (trunnion->mode != machine::KinematicsMode::Identity)
-      throw Error(job.source, "programs for tool-centre-point kinematics are not written: give the machine file "
-                              "rotary.mode identity");
+      throw Error(job.source, "jobs for tool-centre-point kinematics are not written yet (one five- or four-axis "
+                              "finish is: rosmill plan --strategy five-axis): give a machine file with rotary.mode "
+                              "identity for a 3+2 job");
     table = place_on_table(*trunnion, setups.specs.front().fixture, stock, options, job.source + " setups[0]");
     context.table = &*table;
     report.indexed = true;

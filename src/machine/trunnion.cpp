@@ -1,8 +1,8 @@
 #include "rosmill/machine/trunnion.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>

@@ -172,7 +172,8 @@ void add_cuts(ToolpathPass& pass, const std::vector<BallLocation>& run, double r
     pass.moves.push_back(Move{l.tip(radius), MoveType::Feed, feed});
     pass.axes.push_back(l.axis);
     const double len = (l.tip(radius) - run[i - 1].tip(radius)).norm();
-    if (len > 1e-9) f.max_rate_deg_per_mm = std::max(f.max_rate_deg_per_mm, angle_between_deg(l.axis, run[i - 1].axis) / len);
+    if (len > 1e-9)
+      f.max_rate_deg_per_mm = std::max(f.max_rate_deg_per_mm, angle_between_deg(l.axis, run[i - 1].axis) / len);
   }
 }
 
@@ -192,8 +193,9 @@ void report_axes(PlanReport* r, const Toolpath& tp, size_t lines, size_t samples
 
 void check_ball_finishing(const Mesh& mesh, const Tool& tool, const std::string& strategy) {
   if (tool.cutter.type != CutterType::BallEnd)
-    throw Error(strategy, strategy + " finishing takes a ball end mill (a tilted flat or bull-nose cutter's contact "
-                                     "with the mesh is not written yet): give --tool ball:D");
+    throw Error(strategy, strategy +
+                              " finishing takes a ball end mill (a tilted flat or bull-nose cutter's contact "
+                              "with the mesh is not written yet): give --tool ball:D");
   if (mesh.face_count() == 0) throw Error(strategy, "the mesh has no facets");
   check_has_area(mesh, strategy);
 }

@@ -16,9 +16,9 @@ namespace rosmill::core {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kApproach = 2.0;      // mm along the axis over a pass's first cutter location, at the plunge feed
-constexpr double kRingStepDeg = 5.0;   // the search for a clear axis: rings this far apart round the rule's axis
-constexpr int kRingAxes = 12;          // axes per ring
+constexpr double kApproach = 2.0;     // mm along the axis over a pass's first cutter location, at the plunge feed
+constexpr double kRingStepDeg = 5.0;  // the search for a clear axis: rings this far apart round the rule's axis
+constexpr int kRingAxes = 12;         // axes per ring
 
 using Location = BallLocation;
 
@@ -141,8 +141,10 @@ Location FiveAxisFinish::locate(double x, double y, const Vec3& travel, const Ve
   // nearest that clears the holder, stays with the material it leaves (the report's most left).
   l.turned = (l.axis - rule).norm() > 1e-12;
   l.ok = std::isfinite(l.left);
-  if (!l.ok) ++unreachable_;
-  else if (l.turned) ++turned_;
+  if (!l.ok)
+    ++unreachable_;
+  else if (l.turned)
+    ++turned_;
   return l;
 }
 
@@ -197,7 +199,8 @@ Job FiveAxisFinish::run(const PlanProgress& progress, PlanReport* report) {
   // The part's extent along and across the lines.
   double ulo = kInf, uhi = -kInf, vlo = kInf, vhi = -kInf;
   for (int c = 0; c < 4; ++c) {
-    const Vec3 corner(c & 1 ? mesh_.bbox.max.x() : mesh_.bbox.min.x(), c & 2 ? mesh_.bbox.max.y() : mesh_.bbox.min.y(), 0);
+    const Vec3 corner(c & 1 ? mesh_.bbox.max.x() : mesh_.bbox.min.x(), c & 2 ? mesh_.bbox.max.y() : mesh_.bbox.min.y(),
+                      0);
     ulo = std::min(ulo, corner.dot(u)), uhi = std::max(uhi, corner.dot(u));
     vlo = std::min(vlo, corner.dot(v)), vhi = std::max(vhi, corner.dot(v));
   }

@@ -25,8 +25,9 @@ class FourAxisFinish {
         contact_(mesh, p.tool, p.allowance, tol_, p.safe_clearance), mesh_(mesh), R_(p.tool.cutter.radius()),
         lead_(p.tool_axis.lead_or_default(true)) {
     for (int c = 0; c < 4; ++c)
-      reach_ = std::max(reach_, Vec2(c & 1 ? mesh.bbox.max.x() : mesh.bbox.min.x(),
-                                     c & 2 ? mesh.bbox.max.y() : mesh.bbox.min.y()).norm());
+      reach_ = std::max(
+          reach_,
+          Vec2(c & 1 ? mesh.bbox.max.x() : mesh.bbox.min.x(), c & 2 ? mesh.bbox.max.y() : mesh.bbox.min.y()).norm());
   }
 
   Job run(const PlanProgress& progress, PlanReport* report);
@@ -68,8 +69,10 @@ BallLocation FourAxisFinish::locate(double z, double theta, const Vec3* given) c
     }
     if (best.left <= tol_) break;
   }
-  if (!best.ok) ++unreachable_;
-  else if (best.turned) ++turned_;
+  if (!best.ok)
+    ++unreachable_;
+  else if (best.turned)
+    ++turned_;
   return best;
 }
 

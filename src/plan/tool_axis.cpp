@@ -21,9 +21,7 @@ Vec3 slerp_by_angle(const Vec3& a, const Vec3& b, double angle) {
 
 }  // namespace
 
-double angle_between_deg(const Vec3& a, const Vec3& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b)) / kDeg;
-}
+double angle_between_deg(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)) / kDeg; }
 
 Vec3 lead_tilt_axis(const Vec3& n, const Vec3& travel, double lead_deg, double tilt_deg) {
   Vec3 f = travel - travel.dot(n) * n;

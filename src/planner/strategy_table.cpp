@@ -1,6 +1,7 @@
 #include "rosmill/planner/strategy_table.hpp"
 
 #include "rosmill/plan/adaptive.hpp"
+#include "rosmill/plan/contour_toolpath.hpp"
 #include "rosmill/plan/five_axis_finish.hpp"
 #include "rosmill/plan/four_axis_finish.hpp"
 #include "rosmill/plan/grid_rough.hpp"
@@ -8,7 +9,6 @@
 #include "rosmill/plan/rough.hpp"
 #include "rosmill/plan/stock.hpp"
 #include "rosmill/plan/waterline.hpp"
-#include "rosmill/plan/contour_toolpath.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -42,8 +42,8 @@ const std::vector<StrategyEntry>& strategies() {
       {"rough", "z-level zigzag area clearing with ramp entry", false, rough_entry, true},
       {"adaptive", "z-level clearing at a bounded radial engagement (--engagement), helix or ramp entry", false,
        adaptive_entry, true, true},
-      {"grid-rough", "grid-method roughing (Muslimin et al.): levels of the step-down, staircase over the drops",
-       false, [](const StrategyCall& c) { return grid_rough_on(*c.surface, c.params, c.progress, c.report); }, true},
+      {"grid-rough", "grid-method roughing (Muslimin et al.): levels of the step-down, staircase over the drops", false,
+       [](const StrategyCall& c) { return grid_rough_on(*c.surface, c.params, c.progress, c.report); }, true},
       {"contour", "Z-level contours of the slices offset by a flat end mill's radius", true,
        [](const StrategyCall& c) { return plan_contour(*c.mesh, c.params, c.progress); }},
       {"five-axis", "ball-end raster finishing with a tool axis at every cutter location (lead, tilt, cone, rate)",

@@ -301,9 +301,10 @@ geometry_msgs::Quaternion to_quaternion_msg(const Eigen::Quaterniond& q) {
 msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup) {
   // The messages carry one tool axis per toolpath: a multi-axis one would reach the bridge as a 3-axis toolpath.
   if (tp.multi_axis())
-    throw Error("toolpath " + tp.strategy, "carries a tool axis at every move (five-axis), which the ROS toolpath "
-                                           "messages do not hold yet: plan and post it with the rosmill tool "
-                                           "(rosmill plan --strategy five-axis -o prog.ngc)");
+    throw Error("toolpath " + tp.strategy,
+                "carries a tool axis at every move (five-axis), which the ROS toolpath "
+                "messages do not hold yet: plan and post it with the rosmill tool "
+                "(rosmill plan --strategy five-axis -o prog.ngc)");
   msg::Toolpath m;
   m.strategy = tp.strategy;
   m.setup = setup.name;

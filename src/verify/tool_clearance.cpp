@@ -25,9 +25,11 @@ Depth tool_depth(const scan::MeshDistance& distance, const Tool& tool, double al
   const double flutes = tool.cutter.flute_length, stick_out = tool.stick_out_mm();
   Depth d;
   d.ball = std::max(0.0, within(tip + R * axis, R + allowance));
-  for (double s = R + step; s <= stick_out; s += step) d.body = std::max(d.body, within(tip + s * axis, s <= flutes ? R : shank));
+  for (double s = R + step; s <= stick_out; s += step)
+    d.body = std::max(d.body, within(tip + s * axis, s <= flutes ? R : shank));
   // The holder: as long again as its radius twice (a collet nut), sampled the same way.
-  for (double s = stick_out; s <= stick_out + 2 * holder; s += step) d.body = std::max(d.body, within(tip + s * axis, holder));
+  for (double s = stick_out; s <= stick_out + 2 * holder; s += step)
+    d.body = std::max(d.body, within(tip + s * axis, holder));
   return d;
 }
 
@@ -40,7 +42,8 @@ ToolClearance check_tool_clearance(const Mesh& design, const Job& job, double al
   for (size_t t = 0; t < job.size(); ++t) {
     const Toolpath& tp = job[t];
     if (!tp.multi_axis()) continue;
-    const double widest = std::max({tp.tool.cutter.radius(), 0.5 * tp.tool.cutter.shank_diameter, 0.5 * tp.tool.holder_mm()});
+    const double widest =
+        std::max({tp.tool.cutter.radius(), 0.5 * tp.tool.cutter.shank_diameter, 0.5 * tp.tool.holder_mm()});
     out.sampling_mm = std::max(out.sampling_mm, widest - std::sqrt(std::max(0.0, widest * widest - step * step / 4)));
     for (size_t p = 0; p < tp.passes.size(); ++p) {
       const ToolpathPass& pass = tp.passes[p];
@@ -57,8 +60,8 @@ ToolClearance check_tool_clearance(const Mesh& design, const Job& job, double al
             const Depth d = tool_depth(distance, tp.tool, allowance, tip, axis, step);
             ++local.positions;
             if (std::max(d.ball, d.body) > std::max(local.ball_depth_mm, local.body_depth_mm))
-              local.deepest = "toolpath " + std::to_string(t + 1) + ", pass " + std::to_string(p) + ", move " +
-                              std::to_string(k);
+              local.deepest =
+                  "toolpath " + std::to_string(t + 1) + ", pass " + std::to_string(p) + ", move " + std::to_string(k);
             local.ball_depth_mm = std::max(local.ball_depth_mm, d.ball);
             local.body_depth_mm = std::max(local.body_depth_mm, d.body);
           }

@@ -105,8 +105,8 @@ class Simulator {
     double all = NAN, motion = NAN;
   };
   // `progress` sees every status polled during the run (the controller's position on the way).
-  Run run_timed(rosmill::core::control::Controller& c, const std::vector<std::string>& program,
-                double settle_s = 2.0, const rosmill::core::control::Progress& progress = {}) const {
+  Run run_timed(rosmill::core::control::Controller& c, const std::vector<std::string>& program, double settle_s = 2.0,
+                const rosmill::core::control::Progress& progress = {}) const {
     arm();
     const Clock before = clock();
     const auto s =

@@ -46,8 +46,7 @@ inline Job plan_named(const PlanName& n, const Mesh& mesh, const PointCloud& clo
 // The post's options for a multi-axis strategy's program: LinuxCNC's trunnion simulator with tool-centre-point
 // control (config/machine_xyzac_tcp.yaml), whose limits it is checked against.
 inline const gcode::MachineLimits& tool_centre_point_machine() {
-  static const gcode::MachineLimits m =
-      gcode::load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine_xyzac_tcp.yaml");
+  static const gcode::MachineLimits m = gcode::load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine_xyzac_tcp.yaml");
   return m;
 }
 inline gcode::PostOptions multi_axis_post(gcode::PostOptions o) {

@@ -3,13 +3,13 @@
 // by an independent distance to the mesh (five_axis_check.hpp) that shares no code with the planner.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
-#include <unistd.h>
 
-#include "multi_axis_parts.hpp"
 #include "five_axis_check.hpp"
+#include "multi_axis_parts.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/cycle_time.hpp"
 #include "rosmill/gcode/interpreter.hpp"
@@ -109,7 +109,8 @@ TEST(SphereSweep, MeshHierarchyFindsTheFirstContactOfAllFacets) {
     const Vec3 d = Vec3(0.4 * u(rng), 0.4 * u(rng), -1).normalized();
     double brute = INFINITY;
     for (size_t f = 0; f < mesh.face_count(); ++f)
-      brute = std::min(brute, sphere_sweep_triangle(o, d, 3, mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2), 0, 100));
+      brute = std::min(brute,
+                       sphere_sweep_triangle(o, d, 3, mesh.corner(f, 0), mesh.corner(f, 1), mesh.corner(f, 2), 0, 100));
     EXPECT_EQ(rays.first_sphere_contact(o, d, 3, 0, 100), brute);
   }
 }
@@ -174,8 +175,8 @@ TEST(FiveAxisFinish, NoGougeOfBallShankOrHolderAlongTheMovesByTheIndependentChec
   std::vector<Vec3> corners;
   for (size_t f = 0; f < dome.face_count(); ++f)
     for (int i = 0; i < 3; ++i) corners.push_back(dome.corner(f, i));
-  for (const Box3& wall : {Box3::between(Vec3(-30, -30, -6), Vec3(-18, 30, 25)),
-                           Box3::between(Vec3(18, -30, -6), Vec3(30, 30, 25))}) {
+  for (const Box3& wall :
+       {Box3::between(Vec3(-30, -30, -6), Vec3(-18, 30, 25)), Box3::between(Vec3(18, -30, -6), Vec3(30, 30, 25))}) {
     const std::vector<Vec3> w = box_corners(wall);
     corners.insert(corners.end(), w.begin(), w.end());
   }
@@ -337,6 +338,13 @@ TEST(ToolCentrePointProgram, RefusedWithoutToolCentrePointControl) {
       gcode::check_limits({"G21 G90 G54", "M428", "G0 X0 Y0 Z50 A0 C0"}, identity);
   ASSERT_FALSE(v.empty());
   EXPECT_EQ(v.front().limit, "kinematics");
+  // On a mill with no rotary axes at all, the same, and the moves after it checked as they read.
+  const gcode::MachineLimits mill = gcode::load_machine_limits(std::string(ROSMILL_SOURCE_DIR) + "/config/machine.yaml");
+  const std::vector<gcode::LimitViolation> w =
+      gcode::check_limits({"G21 G90 G54", "M428", "G0 X0 Y0 Z50", "G1 X10 Y10 Z40 A10 C20 F500"}, mill);
+  ASSERT_GE(w.size(), 2u);
+  EXPECT_EQ(w[0].limit, "kinematics");
+  EXPECT_EQ(w[1].limit, "rotary axes");
 }
 
 TEST(ToolCentrePointProgram, TheJointsOfAMoveStayInTheEnvelope) {
@@ -370,8 +378,8 @@ TEST(ToolCentrePointProgram, AMoveThatTurnsTheTableIsBoundByTheRotaryAxes) {
   lim.max_acceleration = Vec3(300, 300, 300);
   lim.rotary_velocity = Vec2(30, 30);
   lim.rotary_acceleration = Vec2(300, 300);
-  const gcode::CycleTime t = gcode::estimate_cycle_time(
-      {"G21 G90 G54 G61", "G1 X0 Y0 Z0 A0 C0 F600", "G1 Y10 A10", "G1 Y20 A20"}, lim);
+  const gcode::CycleTime t =
+      gcode::estimate_cycle_time({"G21 G90 G54 G61", "G1 X0 Y0 Z0 A0 C0 F600", "G1 Y10 A10", "G1 Y20 A20"}, lim);
   EXPECT_NEAR(t.motion_seconds, 2 * (1.0 + 10.0 / 300), 1e-6);
   // Blended (G64), ten short moves run on through their ends, parabolically at half the acceleration (LinuxCNC
   // makes no blend arc where a rotary axis turns), in less time than stopping at each; never faster than the

@@ -143,7 +143,8 @@ TEST(MachineLimits, WhatTheCheckCannotFollowIsRefusedWithTheLine) {
   };
   EXPECT_EQ(error_of({"G1 Z-1 F100", "G18 G2 X10 Z-1 I5 K0"}),
             "line 6: arcs outside the XY plane (G17) are not followed");
-  EXPECT_EQ(error_of({"G1 X0 Y0 Z-1 F100", "G93 G1 X5"}), "line 6: a feed move under inverse time (G93) without its F word");
+  EXPECT_EQ(error_of({"G1 X0 Y0 Z-1 F100", "G93 G1 X5"}),
+            "line 6: a feed move under inverse time (G93) without its F word");
   // Followed: an inverse-time move's feed is its F (1/min) times its length, against the machine's.
   const std::vector<LimitViolation> fast = check_limits(program({"G1 X0 Y0 Z-1 F100", "G93 G1 X100 F100"}), m);
   ASSERT_EQ(fast.size(), 1u);

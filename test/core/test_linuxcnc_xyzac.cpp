@@ -9,18 +9,18 @@
 #include <sstream>
 #include <thread>
 
-#include "multi_axis_parts.hpp"
 #include "linuxcnc_simulator.hpp"
-#include "rosmill/gcode/cycle_time.hpp"
-#include "rosmill/gcode/prepare_program.hpp"
-#include "rosmill/geometry/segment_distance.hpp"
-#include "rosmill/plan/five_axis_finish.hpp"
+#include "multi_axis_parts.hpp"
 #include "rosmill/control/program_run.hpp"
+#include "rosmill/gcode/cycle_time.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
 #include "rosmill/gcode/rs274_check.hpp"
+#include "rosmill/geometry/segment_distance.hpp"
 #include "rosmill/machine/trunnion.hpp"
+#include "rosmill/plan/five_axis_finish.hpp"
 #include "test_post_jobs.hpp"
 
 using namespace rosmill::core;
@@ -270,9 +270,12 @@ TEST(LinuxcncXyzac, AFiveAxisFinishKeepsTheTipOnItsCutterLocationsAllAlongTheRun
         best = d;
         // Where along the move, the axis the controller's A and C point the tool along against the one there.
         const Vec3 seg = m.to - m.from;
-        const double f = seg.squaredNorm() > 0 ? std::clamp((smp.tip - m.from).dot(seg) / seg.squaredNorm(), 0.0, 1.0) : 0.0;
-        const Vec3 planned = limits.trunnion->tool_axis(m.a_from + f * (m.a_to - m.a_from), m.c_from + f * (m.c_to - m.c_from));
-        best_axis = std::acos(std::clamp(limits.trunnion->tool_axis(smp.a, smp.c).dot(planned), -1.0, 1.0)) * 180 / M_PI;
+        const double f =
+            seg.squaredNorm() > 0 ? std::clamp((smp.tip - m.from).dot(seg) / seg.squaredNorm(), 0.0, 1.0) : 0.0;
+        const Vec3 planned =
+            limits.trunnion->tool_axis(m.a_from + f * (m.a_to - m.a_from), m.c_from + f * (m.c_to - m.c_from));
+        best_axis =
+            std::acos(std::clamp(limits.trunnion->tool_axis(smp.a, smp.c).dot(planned), -1.0, 1.0)) * 180 / M_PI;
       }
     }
     worst = std::max(worst, best);
@@ -280,8 +283,9 @@ TEST(LinuxcncXyzac, AFiveAxisFinishKeepsTheTipOnItsCutterLocationsAllAlongTheRun
   }
   EXPECT_LT(worst, 0.01) << "over " << samples.size() << " positions read during the run";
   RecordProperty("samples", static_cast<int>(samples.size()));
-  std::printf("five-axis run: %zu positions read, the tip at most %.4f mm off the program's moves, the axis at most "
-              "%.3f degrees off; estimated %.1f s, the simulator %.1f s (%+.1f %%)\n",
-              samples.size(), worst, worst_axis, estimate, run.all, 100 * (estimate - run.all) / run.all);
+  std::printf(
+      "five-axis run: %zu positions read, the tip at most %.4f mm off the program's moves, the axis at most "
+      "%.3f degrees off; estimated %.1f s, the simulator %.1f s (%+.1f %%)\n",
+      samples.size(), worst, worst_axis, estimate, run.all, 100 * (estimate - run.all) / run.all);
   EXPECT_LT(std::abs(estimate - run.all), 0.10 * run.all) << "estimate " << estimate << " s, simulator " << run.all;
 }

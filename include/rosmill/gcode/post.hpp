@@ -35,9 +35,10 @@ struct PostOptions {
   std::string work_offset_note = "from the workpiece's pose on the table";  // the comment above the G10 block
   // Indexed toolpaths (a trunnion table): the machine Z (G53) the tool retracts to before the part turns.
   double index_safe_z = NAN;
-  // Multi-axis toolpaths (a tool axis per move): the trunnion with tool-centre-point control they are written for. The program retracts and turns the table in identity kinematics, switches to tool-centre-point
-  // kinematics (LinuxCNC's M428 on the xyzac-trt configuration), and writes the tip on the table with A and C at
-  // every move (machine/trunnion.hpp indexes_along: the least rotary motion, C's winding kept); M429 at its end.
+  // Multi-axis toolpaths (a tool axis per move): the trunnion with tool-centre-point control they are written for. The
+  // program retracts and turns the table in identity kinematics, switches to tool-centre-point kinematics (LinuxCNC's
+  // M428 on the xyzac-trt configuration), and writes the tip on the table with A and C at every move
+  // (machine/trunnion.hpp indexes_along: the least rotary motion, C's winding kept); M429 at its end.
   std::optional<machine::Trunnion> trunnion;
   // Multi-axis moves are written in inverse time (G93): each takes the longest of its tip's length at its feed, and
   // its program axes' and the machine's joints' travel at these speeds (mm/s of X, Y, Z; the trunnion's own for A

@@ -16,7 +16,7 @@ namespace rosmill::core {
 // The least t in [t_min, t_max] at which the sphere touches triangle (a, b, c); t_min itself when it already touches
 // or overlaps it there; +infinity when it does not within the range. A degenerate triangle meets it by its edges
 // and corners.
-double sphere_sweep_triangle(const Vec3& o, const Vec3& d, double radius, const Vec3& a, const Vec3& b,
-                             const Vec3& c, double t_min, double t_max);
+double sphere_sweep_triangle(const Vec3& o, const Vec3& d, double radius, const Vec3& a, const Vec3& b, const Vec3& c,
+                             double t_min, double t_max);
 
 }  // namespace rosmill::core

@@ -19,10 +19,10 @@ namespace rosmill::core {
 
 // One cutter location: the ball's centre, the tool axis, and how far the ball stands off the point it was aimed at.
 struct BallLocation {
-  bool ok = false;       // the tool reaches it (the shank and holder clear the part on the way)
+  bool ok = false;  // the tool reaches it (the shank and holder clear the part on the way)
   Vec3 centre = Vec3::Zero(), axis = Vec3::UnitZ();
-  double left = 0;       // mm between the centre and where it would touch the aimed-at facet alone
-  bool turned = false;   // the axis is not the strategy's rule's: turned to clear
+  double left = 0;      // mm between the centre and where it would touch the aimed-at facet alone
+  bool turned = false;  // the axis is not the strategy's rule's: turned to clear
   Vec3 tip(double radius) const { return centre - radius * axis; }
 };
 
@@ -91,9 +91,9 @@ std::vector<std::vector<BallLocation>> sample_runs(
 
 // What the cutter locations of the multi-axis passes say of their tool axes, for the plan's report.
 struct AxisFigures {
-  double max_tilt_deg = 0;        // from +Z
-  double max_rate_deg_per_mm = 0; // change of axis along a cutting move
-  double max_left_mm = 0;         // the most a kept location stands off
+  double max_tilt_deg = 0;         // from +Z
+  double max_rate_deg_per_mm = 0;  // change of axis along a cutting move
+  double max_left_mm = 0;          // the most a kept location stands off
 };
 
 // The run's cutting moves after its first location, each to a location's tip with its axis, at `feed`; the figures

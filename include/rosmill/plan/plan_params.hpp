@@ -27,10 +27,10 @@ constexpr double kDefaultTolerance = 0.001;
 // its tip, where the cutting speed is zero. The cone bounds the axis around the setup's +Z (the machine's rotary
 // range), the rate how fast it may turn along a pass.
 struct ToolAxisParams {
-  double lead_deg = NAN;        // NaN: 10 for a ball end mill (Muslimin et al.: off the zero-speed tip), 0 else
+  double lead_deg = NAN;  // NaN: 10 for a ball end mill (Muslimin et al.: off the zero-speed tip), 0 else
   double tilt_deg = 0.0;
-  double cone_deg = 60.0;       // largest angle between the tool axis and +Z
-  double rate_deg_per_mm = 5.0; // largest change of the axis per mm of travel along a pass
+  double cone_deg = 60.0;        // largest angle between the tool axis and +Z
+  double rate_deg_per_mm = 5.0;  // largest change of the axis per mm of travel along a pass
   double lead_or_default(bool ball) const { return std::isnan(lead_deg) ? (ball ? 10.0 : 0.0) : lead_deg; }
 };
 
@@ -62,7 +62,7 @@ struct PlanParams {
   double engagement_deg = NAN;
   // mm/min the machine feeds at most (0: no cap): a feed raised for a thin engagement stops there.
   double max_feed = 0.0;
-  ToolAxisParams tool_axis;    // five-axis finishing
+  ToolAxisParams tool_axis;  // five-axis finishing
 };
 
 // Throws Error naming the field ("parameter allowance") and its accepted range when a value is NaN where NaN does

@@ -28,7 +28,7 @@ struct ToolpathPass {
   std::vector<Move> moves;
   // The tool axis at the end of each move (unit, workpiece frame, from the tip towards the spindle), one per move,
   // for a multi-axis pass; empty when the axis is the frame's +Z throughout (3-axis, and 3+2 once indexed).
-  std::vector<Vec3> axes;
+  std::vector<Vec3> axes = {};
 };
 
 struct Toolpath {

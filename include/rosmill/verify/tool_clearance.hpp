@@ -14,11 +14,11 @@
 namespace rosmill::core::verify {
 
 struct ToolClearance {
-  double ball_depth_mm = 0;    // the most the ball (grown by the allowance) goes into the design
-  double body_depth_mm = 0;    // the most the flutes, shank or holder do (sampled)
-  double sampling_mm = 0;      // what the sampling of the body may miss on top of that
-  size_t positions = 0;        // tool positions checked
-  std::string deepest;         // where the deepest is: "toolpath T, pass P, move M"
+  double ball_depth_mm = 0;  // the most the ball (grown by the allowance) goes into the design
+  double body_depth_mm = 0;  // the most the flutes, shank or holder do (sampled)
+  double sampling_mm = 0;    // what the sampling of the body may miss on top of that
+  size_t positions = 0;      // tool positions checked
+  std::string deepest;       // where the deepest is: "toolpath T, pass P, move M"
 };
 
 // Every multi-axis toolpath of the job against `design` (the plan's frame and units), with the stock `allowance`
