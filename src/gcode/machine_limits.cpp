@@ -355,31 +355,6 @@ void machine_extent(const CanonMove& m, const WorkOffset& w, double lo[3], doubl
   }
 }
 
-// Tool-centre-point kinematics: the controller moves the tip straight on the table and A and C in proportion, so
-// the machine's linear joints follow a curve. Samples along the move, at most a millimetre of the tip or a degree
-// of either rotary axis apart, give the joints' extent (the trunnion's chain, machine_point) and the tip's lowest
-// height on the table. Only a fully known move is followed.
-// Returns the length of each joint's path.
-Vec3 tool_centre_point_extent(const machine::Trunnion& t, const CanonMove& m, const WorkOffset& w, double lo[3],
-                              double hi[3], double& lowest_on_table) {
-  const double span = std::max({(m.to - m.from).norm(), std::abs(m.a_to - m.a_from), std::abs(m.c_to - m.c_from)});
-  // At most 4096 samples: a longer move (or a hostile one) is sampled coarser, never looped over for ever.
-  const int n = std::isfinite(span) ? static_cast<int>(std::clamp(std::ceil(span), 1.0, 4096.0)) : 4096;
-  for (int a = 0; a < 3; ++a) lo[a] = INFINITY, hi[a] = -INFINITY;
-  lowest_on_table = INFINITY;
-  Vec3 travel = Vec3::Zero(), before = Vec3::Zero();
-  for (int k = 0; k <= n; ++k) {
-    const double f = static_cast<double>(k) / n;
-    const Vec3 tip = w.to_machine(m.from + f * (m.to - m.from));
-    const Vec3 joint = t.machine_point(tip, m.a_from + f * (m.a_to - m.a_from), m.c_from + f * (m.c_to - m.c_from));
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], joint[a]), hi[a] = std::max(hi[a], joint[a]);
-    lowest_on_table = std::min(lowest_on_table, tip.z());
-    if (k > 0) travel += (joint - before).cwiseAbs();
-    before = joint;
-  }
-  return travel;
-}
-
 // With tool-centre-point control LinuxCNC limits the speeds of the program's axes (the tip on the table, A, C) but
 // not of the machine's joints, which the turning table can drive several times faster (checked on its xyzac-trt
 // simulator: 47 mm/s on a 20 mm/s joint, without a word). The move's time is what the program asks (its length at
@@ -497,9 +472,14 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
         // from an unknown place is followed from its end, as in identity kinematics.
         CanonMove known = m;
         if ((m.known_from & 7) != 7) known.from = m.to;
-        const Vec3 travel = tool_centre_point_extent(*lim.trunnion, known, st.offset, lo, hi, lowest_on_table);
+        // The joints along the move (the chain's curve), the tip's lowest on the table at an end (it moves straight).
+        const machine::JointSweep joints =
+            machine::sweep_joints(*lim.trunnion, st.offset.to_machine(known.from), st.offset.to_machine(known.to),
+                                  {known.a_from, known.c_from}, {known.a_to, known.c_to});
+        for (int a = 0; a < 3; ++a) lo[a] = joints.lo[a], hi[a] = joints.hi[a];
+        lowest_on_table = std::min(st.offset.to_machine(known.from).z(), st.offset.to_machine(known.to).z());
         any[0] = any[1] = any[2] = true;
-        check_joint_speeds(lim, known, travel, [&](std::string limit, std::string detail) {
+        check_joint_speeds(lim, known, joints.travel, [&](std::string limit, std::string detail) {
           add(st.line, std::move(limit), std::move(detail));
         });
       } else {

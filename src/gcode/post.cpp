@@ -348,8 +348,7 @@ Vec3 as_written(const Vec3& p, int decimals) {
 }
 
 // The minutes a move of a tool-centre-point program takes: the longest of the tip's length at the feed (none for a
-// rapid), the program axes' travel at their speeds (X Y Z on the table, A, C) and the joints' (the trunnion's chain
-// along the move, sampled every millimetre of the tip or degree of A or C).
+// rapid), the program axes' travel at their speeds (X Y Z on the table, A, C) and the joints' (machine::sweep_joints).
 double tool_centre_point_minutes(const machine::Trunnion& t, const Vec3& origin, const Vec3& from, const Vec3& to,
                                  const machine::Index& i0, const machine::Index& i1, double feed,
                                  const PostOptions& o) {
@@ -358,16 +357,7 @@ double tool_centre_point_minutes(const machine::Trunnion& t, const Vec3& origin,
   if (o.max_feed > 0) seconds = std::max(seconds, 60 * length / o.max_feed);
   if (t.a.velocity > 0) seconds = std::max(seconds, da / t.a.velocity);
   if (t.c.velocity > 0) seconds = std::max(seconds, dc / t.c.velocity);
-  const double span = std::max({length, da, dc});
-  const int n = std::isfinite(span) ? static_cast<int>(std::clamp(std::ceil(span), 1.0, 4096.0)) : 4096;
-  Vec3 travel = Vec3::Zero(), before = Vec3::Zero();
-  for (int k = 0; k <= n; ++k) {
-    const double f = static_cast<double>(k) / n;
-    const Vec3 joint =
-        t.machine_point(origin + from + f * (to - from), i0.a + f * (i1.a - i0.a), i0.c + f * (i1.c - i0.c));
-    if (k > 0) travel += (joint - before).cwiseAbs();
-    before = joint;
-  }
+  const Vec3 travel = machine::sweep_joints(t, origin + from, origin + to, i0, i1).travel;
   for (int a = 0; a < 3; ++a)
     if (o.axis_velocity[a] > 0)
       seconds = std::max({seconds, std::abs(to[a] - from[a]) / o.axis_velocity[a], travel[a] / o.axis_velocity[a]});

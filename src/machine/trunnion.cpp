@@ -91,6 +91,22 @@ std::optional<Index> index_for(const Trunnion& t, const Vec3& direction, const I
   return best;
 }
 
+JointSweep sweep_joints(const Trunnion& t, const Vec3& from, const Vec3& to, const Index& i0, const Index& i1) {
+  const double span = std::max({(to - from).norm(), std::abs(i1.a - i0.a), std::abs(i1.c - i0.c)});
+  const int n = std::isfinite(span) ? static_cast<int>(std::clamp(std::ceil(span), 1.0, 4096.0)) : 4096;
+  JointSweep s;
+  Vec3 before = Vec3::Zero();
+  for (int k = 0; k <= n; ++k) {
+    const double f = static_cast<double>(k) / n;
+    const Vec3 joint = t.machine_point(from + f * (to - from), i0.a + f * (i1.a - i0.a), i0.c + f * (i1.c - i0.c));
+    s.lo = s.lo.cwiseMin(joint);
+    s.hi = s.hi.cwiseMax(joint);
+    if (k > 0) s.travel += (joint - before).cwiseAbs();
+    before = joint;
+  }
+  return s;
+}
+
 std::optional<std::vector<Index>> indexes_along(const Trunnion& t, const std::vector<Vec3>& axes, const Index& from,
                                                 std::string* why) {
   const size_t n = axes.size();

@@ -10,6 +10,7 @@
 // towards the spindle) is brought onto machine +Z when R_x(a) R_z(c) d = +Z: cos a = d.z, and C turns d's XY part
 // onto +Y (sin a > 0) or -Y (sin a < 0). Two solutions where the axis is tilted; one A and any C for +Z.
 #pragma once
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,16 @@ struct Index {
 // motion from `from` (the larger of the two axes' times at their velocities, then the sum of the angles); C is taken
 // among its turns by 360 degrees. Empty when no solution lies in the ranges; `why` then says what it would take.
 std::optional<Index> index_for(const Trunnion& t, const Vec3& d, const Index& from, std::string* why = nullptr);
+
+// The machine's linear joints along a move under tool-centre-point control: the tip straight on the table from
+// `from` to `to` (table points, mm), A and C in proportion from i0 to i1, so that the joints follow a curve. Sampled
+// every millimetre of the tip or degree of A or C, at most 4,096 samples (a longer, or hostile, move coarser): the
+// joints' extent and the length of each one's path.
+struct JointSweep {
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  Vec3 travel = Vec3::Zero();
+};
+JointSweep sweep_joints(const Trunnion& t, const Vec3& from, const Vec3& to, const Index& i0, const Index& i1);
 
 // The A and C at every tool axis of a multi-axis path (table frame, unit), for tool-centre-point control: at each
 // axis one of its two solutions (A and -A, C half a turn apart; any C on the pole, where the axis is the table's),
