@@ -152,6 +152,12 @@ MachineLimits load_machine_limits(const std::string& path) {
   return parse_machine_limits(read_input_file(path), path);
 }
 
+std::shared_ptr<const machine::Machine> MachineLimits::machine() const {
+  const Vec3 acceleration = trajectory.max_acceleration.isZero() ? max_acceleration : trajectory.max_acceleration;
+  if (trunnion) return machine::trunnion_mill(*trunnion, envelope, trajectory.max_velocity, acceleration);
+  return machine::three_axis_mill(envelope, trajectory.max_velocity, acceleration);
+}
+
 MachineLimits parse_machine_limits(const std::string& yaml_text, const std::string& path) {
   YAML::Node root;
   try {
@@ -283,24 +289,26 @@ void refuse_unfollowed(const Interpreter& reader, int offset_before, const Known
     throw Error(reader.where(), "arcs outside the XY plane (G17) are not followed");
 }
 
-// The rotary axes against the trunnion's ranges; any rotary word refused on a machine without one.
+// The rotary axes against the machine's rotary joints' ranges; a rotary word refused on a machine without that joint.
 template <class Add>
-void check_rotary(const MachineLimits& lim, const CanonMove& m, bool tcp, Add&& add) {
+void check_rotary(const MachineLimits& lim, const machine::Machine& machine, const CanonMove& m, bool tcp, Add&& add) {
   if (!m.known_rotary && !m.indexes()) return;
-  if (!lim.trunnion) {
+  const machine::Joint* a = machine.joint("A");
+  const machine::Joint* c = machine.joint("C");
+  if (!a || !c) {
     add("rotary axes", "the machine '" + lim.name + "' has no A or C axis");
     return;
   }
-  const machine::Trunnion& t = *lim.trunnion;
   // The table's check and the turning sweep assume the part stands still while the tool moves (3+2).
   if (!tcp && m.indexes() && (m.to - m.from).cwiseAbs().maxCoeff() > 0)
     add("simultaneous move", "A or C turns while X, Y or Z move: a 3+2 program indexes with A and C alone");
-  if ((m.known_rotary & 1) && !t.a_in_range(m.a_to))
-    add(m.a_to < t.a.min ? "rotary a min" : "rotary a max",
-        "A " + fmt(m.a_to) + " outside its range [" + fmt(t.a.min) + ", " + fmt(t.a.max) + "]");
-  if ((m.known_rotary & 2) && !t.c_in_range(m.c_to))
-    add(m.c_to < t.c.min ? "rotary c min" : "rotary c max",
-        "C " + fmt(m.c_to) + " outside its range [" + fmt(t.c.min) + ", " + fmt(t.c.max) + "]");
+  const auto within = [&](const machine::Joint& j, double v, const char* limit) {
+    if (j.within(v)) return;
+    add(std::string(limit) + (v < j.min ? " min" : " max"),
+        j.name + " " + fmt(v) + " outside its range [" + fmt(j.min) + ", " + fmt(j.max) + "]");
+  };
+  if (m.known_rotary & 1) within(*a, m.a_to, "rotary a");
+  if (m.known_rotary & 2) within(*c, m.c_to, "rotary c");
 }
 
 // The extent of a move along each axis the controller knows: its end points, and for an arc the quadrant points
@@ -400,12 +408,13 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
   KnownOffsets known;
   known[0] = lim.work_offset;
   bool tcp = false;
+  const std::shared_ptr<const machine::Machine> machine = lim.machine();
   for (size_t i = 0; i < lines.size(); ++i) {
     const int offset_before = reader.state().work_offset;
     reader.read(lines[i], i + 1);
     if (reader.block().has_m(428)) {
       // Refused on a machine without tool-centre-point control; its moves are then checked as they read.
-      if (!lim.trunnion || lim.trunnion->mode != machine::KinematicsMode::ToolCentrePoint)
+      if (!machine->simultaneous())
         add(i, "kinematics",
             "M428 switches to tool-centre-point kinematics, which the machine '" + lim.name +
                 "' is not set up for (rotary.mode: tool-centre-point)");
@@ -462,7 +471,7 @@ std::vector<LimitViolation> check_limits(const std::vector<std::string>& lines, 
     double lo[3], hi[3];
     bool any[3];
     machine_extent(m, st.machine_coordinates ? WorkOffset{} : st.offset, lo, hi, any);
-    check_rotary(lim, m, st.tcp, [&](std::string limit, std::string detail) { add(st.line, limit, detail); });
+    check_rotary(lim, *machine, m, st.tcp, [&](std::string limit, std::string detail) { add(st.line, limit, detail); });
     double lowest_on_table = INFINITY;
     if (st.tcp && !st.machine_coordinates) {
       if (m.is_arc()) add(st.line, "unchecked move", "an arc in tool-centre-point kinematics is not followed");

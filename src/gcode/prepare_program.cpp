@@ -28,10 +28,12 @@ void require_tool_numbers(const Job& job) {
 }  // namespace
 
 PostOptions with_tool_centre_point(PostOptions o, const MachineLimits& m, const std::string& where) {
-  if (!m.trunnion || m.trunnion->mode != machine::KinematicsMode::ToolCentrePoint)
-    throw Error(where, "the toolpaths carry a tool axis at every move (five-axis): the machine '" + m.name +
-                           "' has no trunnion with tool-centre-point control (rotary.mode: tool-centre-point; "
-                           "config/machine_xyzac_tcp.yaml has)");
+  const std::shared_ptr<const machine::Machine> kind = m.machine();
+  if (!kind->simultaneous() || !kind->trunnion())
+    throw Error(where, "the toolpaths carry a tool axis at every move (five-axis): the machine '" + m.name + "' (a " +
+                           kind->kind() +
+                           ") has no trunnion with tool-centre-point control (rotary.mode: "
+                           "tool-centre-point; config/machine_xyzac_tcp.yaml has)");
   o.trunnion = m.trunnion;
   o.index_safe_z = m.trunnion->safe_z;
   o.axis_velocity = m.trajectory.max_velocity;

@@ -22,7 +22,7 @@ std::string number(double v) {
 
 void check_indexing(const stock::InProcessStock& stock, const TableSetting& table, const machine::Index& from,
                     const machine::Index& to, double clearance, const std::string& where) {
-  const machine::Trunnion& t = *table.trunnion;
+  const machine::Trunnion& t = table.trunnion();
   // Everything that turns, in the table's frame: the material and the fixture.
   std::vector<Vec3> points = stock.material_corners();
   for (Vec3& p : points) p = table.workpiece_on_table.point(p);

@@ -131,10 +131,11 @@ void clamp(SetupReport& r, const SetupSpec& spec, size_t index, const stock::InP
 void index_on_table(SetupReport& r, const SetupSpec& spec, const stock::InProcessStock& stock, TableSetting& table,
                     const std::string& where) {
   std::string why;
-  const std::optional<machine::Index> i = machine::index_for(*table.trunnion, spec.direction, table.last, &why);
-  if (!i) throw Error(where, "this machine cannot index the part for it: " + why);
-  r.index = *i;
-  const Placement table_in_machine = table.trunnion->table_in_machine(i->a, i->c);
+  const std::optional<machine::JointValues> q = table.machine->setup_joints(spec.direction, table.last, &why);
+  if (!q) throw Error(where, "this machine cannot index the part for it: " + why);
+  const machine::Index i = machine::index_of(*q);
+  r.index = i;
+  const Placement table_in_machine = table.trunnion().table_in_machine(i.a, i.c);
   r.frame.name = spec.name;
   r.frame.tool_axis = spec.direction.normalized();
   r.frame.placement = compose(table_in_machine, table.workpiece_on_table, where);
@@ -149,7 +150,7 @@ void index_on_table(SetupReport& r, const SetupSpec& spec, const stock::InProces
   // The program's coordinates are the machine's: G54 at machine zero, set by the program itself.
   r.work_offset = gcode::WorkOffset{};
   r.face_down = face_down(Vec3::UnitZ());  // the part stands on the table as the workpiece frame has it
-  table.last = *i;
+  table.last = *q;
 }
 
 }  // namespace
@@ -185,10 +186,11 @@ double indexing_seconds(const machine::Trunnion& t, const machine::Index& from, 
   return seconds;
 }
 
-TableSetting place_on_table(const machine::Trunnion& trunnion, const fixture::FixtureSpec& fixture,
+TableSetting place_on_table(const machine::Machine& machine, const fixture::FixtureSpec& fixture,
                             const stock::InProcessStock& stock, const JobOptions& o, const std::string& where) {
   TableSetting t;
-  t.trunnion = &trunnion;
+  t.machine = &machine;
+  t.last = machine.home();
   const Box3 raw = stock.bounds_in(SetupFrame{});
   const fixture::Fixture held = fixture::place_fixture(fixture, raw, where + " fixture");
   // The stock centred over the fixture position, on the fixture's seat over the table's top.

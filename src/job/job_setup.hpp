@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rosmill/job/run_job.hpp"
+#include "rosmill/machine/machine.hpp"
 #include "rosmill/plan/checked_surface.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 #include "rosmill/setups/setup_choice.hpp"
@@ -34,13 +35,15 @@ struct JobSetup {
   const Surface& surface() const { return checked ? static_cast<const Surface&>(*checked) : *part_surface; }
 };
 
-// The part on a trunnion table (3+2): clamped once, standing on the table centred over the machine's fixture
-// position, turned by A and C from setup to setup.
+// The part on a machine that turns it between setups (a trunnion table, 3+2): clamped once, standing on the table
+// centred over the machine's fixture position, turned by the machine's joints from setup to setup.
 struct TableSetting {
-  const machine::Trunnion* trunnion = nullptr;
+  const machine::Machine* machine = nullptr;
   Placement workpiece_on_table;        // "table" <- "workpiece"
   fixture::Fixture fixture;            // in the table's frame
-  machine::Index last;                 // where A and C are when the next setup begins
+  machine::JointValues last;           // where the joints are when the next setup begins
+
+  const machine::Trunnion& trunnion() const { return *machine->trunnion(); }
 };
 
 struct SetupContext {
@@ -58,8 +61,9 @@ struct SetupContext {
 // Per cell of the grid, the top of the fixture over its square (-infinity where none).
 std::vector<float> fixture_tops(const fixture::Fixture& f, const stock::GridSpec& g);
 
-// The part clamped on a trunnion's table by the first setup's fixture, as the raw stock stands at A = C = 0.
-TableSetting place_on_table(const machine::Trunnion& trunnion, const fixture::FixtureSpec& fixture,
+// The part clamped on the table of a machine that turns it (its trunnion) by the first setup's fixture, as the raw
+// stock stands at A = C = 0.
+TableSetting place_on_table(const machine::Machine& machine, const fixture::FixtureSpec& fixture,
                             const stock::InProcessStock& stock, const JobOptions& options, const std::string& where);
 
 // Refuses (Error naming `where` and the indexing block) an indexing of the part from `from` to `to` that would turn

@@ -224,13 +224,23 @@ void measure_operation(stock::MachineProgram& program, Job& toolpaths, Engagemen
 }
 
 // Every operation runs the same stages, in order (as noether chains its planner and its modifiers):
-//   plan           the strategy on the stock as it stands (plan_operation)
+//   plan           the strategy on the stock as it stands (plan_operation), then the toolpaths held as the
+//                  machine holds the part (hold_on_machine)
 //   crash checks   the tool, its shank and its holder against the fixture; the shank and the holder against the
 //                  material the stock holds
 //   cut            side by side: the engagement against the stock before the cut and a roughing's feeds from it;
 //                  the moves removed from the stock; the verifier's sweep over a fresh height field of the part
-//   timing         the program as the post writes it, timed as the controller's planner runs it
+//   verification   a rapid into the stock, the material left, a cut below the design (verify_cut)
+//   timing         the program as the post writes it, timed as the controller's planner runs it, and the turn of
+//                  the part before it on a machine that turns it (time_operation)
 // A stage that finds a crash or a cut below the design refuses the job: no program is written.
+
+// On a machine that turns the part, each toolpath is in the machine's frame at its setup's A and C: the post
+// indexes there.
+void hold_on_machine(Job& toolpaths, const SetupReport& setup) {
+  if (!setup.index) return;
+  for (Toolpath& tp : toolpaths) tp.indexed = true, tp.a = setup.index->a, tp.c = setup.index->c;
+}
 
 // The crash checks: a tool, shank or holder in the fixture, a shank or holder in the stock's material.
 void crash_checks(const stock::MachineProgram& program, const SetupReport& sr, const stock::InProcessStock& stock,
@@ -270,6 +280,98 @@ stock::RemovalReport cut(stock::MachineProgram& program, Job& toolpaths, const J
   return removal;
 }
 
+// What the cut did: a rapid through material is a crash, and a cut into the design, as the independent simulation
+// finds it, is a defect of the plan, never a figure to report beside a program; either refuses the job (no
+// program is written). Else the operation's figures: removal, air, the material left seen from the setup.
+void verify_cut(const stock::RemovalReport& removal, const stock::MachineProgram& program, const JobSetup& setup,
+                const stock::InProcessStock& stock, const Job& toolpaths, const std::string& where,
+                const std::string& named, OperationReport& r) {
+  if (removal.collided())
+    throw Error(where, "a rapid runs into the stock at toolpath move " + std::to_string(removal.first_rapid_source) +
+                           " (" + std::to_string(removal.rapid_cut_cells) +
+                           " cells): the stock stands higher than this operation's safe height; give the "
+                           "stock's real shape or raise the clearance");
+  r.moves = program.moves.size();
+  r.removed_mm3 = removal.removed_mm3;
+  r.air_feed_mm = removal.air_feed_mm;
+  r.air_cut_share = removal.air_cut_share();
+  r.collision_line = removal.first_rapid_source;
+  r.remove_seconds = removal.seconds;
+  std::tie(r.min_left_mm, r.max_left_mm) = material_left(setup, stock.view(setup.report.frame));
+  if (r.gouge_mm > 0)
+    throw Error(named, "the verifier finds the cutter " + decimal_text(r.gouge_mm, 3) +
+                           " mm below the design at toolpath " + move_place(toolpaths, r.gouge_move) +
+                           " (setup frame, mm): no program is written");
+  for (const Toolpath& tp : toolpaths) {
+    const ToolpathStats st = toolpath_stats(tp);
+    r.cutting_mm += st.cutting_length;
+    r.rapid_mm += st.rapid_length;
+  }
+}
+
+// Where a machine that turns the part last turned it, and the machine z of the tool when the next turn begins.
+struct IndexingClock {
+  std::optional<machine::Index> at;  // none: not yet
+  double tool_z = 0;
+};
+
+// The operation's program as the post writes it, timed as the controller's planner runs it; on a machine that
+// turns the part, the turn before it (the post indexes before the program's first toolpath and wherever A or C
+// change), counted in the setup's time and the job's.
+void time_operation(const Job& toolpaths, const machine::Machine& machine, const JobSpec& job,
+                    const JobOptions& options, IndexingClock& clock, JobReport& report, OperationReport& r) {
+  if (toolpaths.empty()) return;
+  const machine::Trunnion* trunnion = machine.trunnion();
+  gcode::PostOptions post = gcode::post_options_for(options.dialect);
+  if (trunnion) post.index_safe_z = trunnion->safe_z;
+  r.time_s = gcode::estimate_cycle_time(toolpaths, post, options.trajectory).seconds;
+  SetupReport& setup = report.setups.back();
+  if (!setup.index) return;
+  const machine::Index& to = *setup.index;
+  // The retract and the way down are rapids along Z: at the machine's Z speed when the machine file gives it.
+  const double z_speed = options.trajectory.max_velocity.z();
+  const double rapid_feed = z_speed > 0 ? 60 * z_speed : job.rapid_feed;
+  if (!clock.at || clock.at->a != to.a || clock.at->c != to.c) {
+    const double s = indexing_seconds(*trunnion, clock.at.value_or(machine::Index{}), to, clock.tool_z,
+                                      std::max(toolpaths.front().clearance_z, toolpaths.front().start.z()), rapid_feed,
+                                      options.trajectory.max_acceleration);
+    setup.indexing_s += s;
+    setup.time_s += s;
+    report.time_s += s;
+    clock.at = to;
+  }
+  clock.tool_z = last_position(toolpaths).z();
+}
+
+// The job's totals of the feed path, for the share that cut only air.
+struct JobTotals {
+  double feed_mm = 0, air_mm = 0;
+};
+
+// The operation's figures added to its setup's and the job's.
+void add_operation(const OperationReport& r, const stock::RemovalReport& removal, JobTotals& totals,
+                   JobReport& report) {
+  totals.feed_mm += removal.feed_mm;
+  totals.air_mm += removal.air_feed_mm;
+  report.removed_mm3 += r.removed_mm3;
+  report.time_s += r.time_s;
+  report.gouge_mm = std::max(report.gouge_mm, r.gouge_mm);
+  report.setups.back().operations.push_back(report.operations.size());
+  report.setups.back().time_s += r.time_s;
+  report.operations.push_back(r);
+}
+
+// The report of an operation before it runs: what the job names.
+OperationReport operation_report(const OperationSpec& op) {
+  OperationReport r;
+  r.name = op.name;
+  r.strategy = op.strategy;
+  r.setup = op.setup;
+  r.setup_index = op.setup_index;
+  r.rest = op.rest;
+  return r;
+}
+
 // The job's setups: as the job names them, or chosen from the segmentation; and who finishes which faces.
 struct Setups {
   std::vector<SetupSpec> specs;
@@ -278,12 +380,12 @@ struct Setups {
   std::vector<int> chosen;  // per setup, its index in faces->setups (-1: it finishes no face)
 };
 
-// The room the job's machine has for a setup clamped on its table (none for a trunnion, whose setups turn the part
-// in one clamping, or without a machine).
+// The room the job's machine has for a setup clamped on its table (none for a machine that turns the part, whose
+// setups share one clamping, or without a machine).
 std::optional<setups::MachineRoom> machine_room(const std::vector<OperationSpec>& operations,
-                                                const JobOptions& options) {
+                                                const machine::Machine& machine, const JobOptions& options) {
   const std::optional<gcode::MachineLimits>& m = options.checks.machine;
-  if (!m || m->trunnion) return std::nullopt;
+  if (!m || machine.turns_part()) return std::nullopt;
   setups::MachineRoom room;
   room.name = m->name;
   room.travel = m->envelope;
@@ -311,7 +413,7 @@ void refuse_unfit(const JobSpec& job, const setups::SetupChoice& choice) {
 }
 
 Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProcessStock& stock,
-                      const JobOptions& options) {
+                      const machine::Machine& machine, const JobOptions& options) {
   Setups out;
   out.specs = job.setups;
   out.operations = job.operations;
@@ -327,13 +429,13 @@ Setups resolve_setups(const JobSpec& job, const Mesh& part, const stock::InProce
   o.min_gain_share = job.auto_options.min_gain;
   o.held_face = job.auto_options.held_face;
   o.stock = stock.bounds_in(SetupFrame{});
-  if (job.auto_setups) o.machine = machine_room(job.operations, options);
-  // On a trunnion a direction is a setup only where A and C can bring it under the spindle.
-  const std::optional<gcode::MachineLimits>& m = options.checks.machine;
-  if (job.auto_setups && m && m->trunnion)
-    o.direction_refused = [t = *m->trunnion](const Vec3& d) {
+  if (job.auto_setups) o.machine = machine_room(job.operations, machine, options);
+  // On a machine that turns the part a direction is a setup only where its joints can bring it under the spindle.
+  if (job.auto_setups && machine.turns_part())
+    o.direction_refused = [&machine](const Vec3& d) {
       std::string why;
-      return machine::index_for(t, d, machine::Index{}, &why) ? std::string() : "this machine cannot index the part for it: " + why;
+      return machine.setup_joints(d, machine.home(), &why) ? std::string()
+                                                           : "this machine cannot index the part for it: " + why;
     };
   if (job.auto_setups && job.setup_defaults.fixture.kind != fixture::FixtureSpec::Kind::None)
     o.fixture = job.setup_defaults.fixture;
@@ -400,8 +502,8 @@ std::string setup_note(const SetupReport& s, size_t index) {
 // The job's programs: one per setup (the part stays clamped; the tools change with M6 T between its operations),
 // or one per operation on request, each setting its setup's work offset. Every program is prepared and checked
 // before any is written, so a job that fails a check leaves no program behind.
-void write_programs(const JobSpec& job, const std::vector<Job>& planned, const JobOptions& options,
-                    JobReport& report) {
+void write_programs(const JobSpec& job, const std::vector<Job>& planned, const machine::Machine& machine,
+                    const JobOptions& options, JobReport& report) {
   std::vector<std::pair<std::string, gcode::Program>> programs;
   // Every rapid was swept through the in-process stock, which knows the stock's top under it: the links low over
   // the material need not clear the whole stock's top.
@@ -423,7 +525,7 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const J
     post.work_offset = setup.work_offset;
     post.work_offset_note = setup_note(setup, index);
     if (report.indexed) {
-      post.index_safe_z = options.checks.machine->trunnion->safe_z;
+      post.index_safe_z = machine.trunnion()->safe_z;
       post.work_offset_note = "at machine zero: identity kinematics, the program's X Y Z are the machine's axes "
                               "(the simulator starts in them, and LinuxCNC's rs274 reads the program as it runs)";
       post.title = "rosmill job " + job.source + ": " + std::to_string(report.setups.size()) +
@@ -524,6 +626,53 @@ SurfaceAccount account_of_job(const JobSpec& job, const std::vector<OperationSpe
   return account_surface(in);
 }
 
+// The kind of machine the job runs on: its machine file's, or a 3-axis mill without limits when it has none.
+std::shared_ptr<const machine::Machine> machine_of(const JobOptions& options) {
+  if (options.checks.machine) return options.checks.machine->machine();
+  const Box3 anywhere{Vec3::Constant(-INFINITY), Vec3::Constant(INFINITY)};
+  return machine::three_axis_mill(anywhere, Vec3::Zero(), Vec3::Zero());
+}
+
+// A registration places the part as it sits: the setup whose datum is the part's own origin (the others' fixtures
+// place them on the table). Two such setups cannot both be where it found the part.
+void refuse_two_registered_setups(const JobSpec& job, const Setups& setups, const JobOptions& options) {
+  const size_t at_workpiece = std::count_if(setups.specs.begin(), setups.specs.end(),
+                                            [](const SetupSpec& s) { return s.datum == Datum::Workpiece; });
+  if (options.work_offset && at_workpiece > 1)
+    throw Error(job.source, "a registered work offset places the part of one setup; " + std::to_string(at_workpiece) +
+                                " of this job's setups have the workpiece datum");
+}
+
+// What setup selection found, in the report: the surface no setup reaches, and per facet the setup that finishes it
+// (the choice's own indices turned into the job's).
+void report_chosen_setups(const JobSpec& job, const Setups& setups, const Mesh& part, JobReport& report) {
+  report.setups_chosen = job.auto_setups;
+  report.part_area = setups.faces->total_area;
+  report.unreachable_area = setups.faces->unreachable_area;
+  report.unreachable = setups.faces->unreachable;
+  report.facet_setup = setups::facet_setups(*setups.faces, part.face_count());
+  for (int& s : report.facet_setup)
+    if (s >= 0) s = int(std::find(setups.chosen.begin(), setups.chosen.end(), s) - setups.chosen.begin());
+}
+
+// The setup `index` begins on the stock as the operations before left it; on a machine that turns the part, the
+// turn from the setup before is first swept for a collision with the retracted tool.
+JobSetup next_setup(const Setups& setups, size_t index, const stock::InProcessStock& stock, const SetupContext& context,
+                    JobReport& report) {
+  const JobSpec& job = context.job;
+  const TableSetting* table = context.table;
+  SetupContext c = context;
+  c.chosen = setups.faces ? setups.chosen[index] : -1;
+  const machine::Index before = table ? machine::index_of(table->last) : machine::Index{};
+  JobSetup setup = begin_setup(setups.specs[index], index, stock, c);
+  if (table)
+    check_indexing(stock, *table, before, *setup.report.index, context.options.checks.machine->clearance_over_stock,
+                   job.source + " setups[" + std::to_string(index) + "] (" + setup.report.name + ")");
+  setup.report.source = job.auto_setups ? setups.faces->setups[size_t(setups.chosen[index])].source : "given";
+  report.setups.push_back(setup.report);
+  return setup;
+}
+
 }  // namespace
 
 Mesh read_part(const JobSpec& job) { return read_mesh(job.part, job.units); }
@@ -555,44 +704,28 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   report.stock_mm3 = stock.volume();
   report.stock_box = raw_box;
   check_tool_numbers(job.operations, options, job.source);
-  const Setups setups = resolve_setups(job, part, stock, options);
+  const std::shared_ptr<const machine::Machine> machine = machine_of(options);
+  const Setups setups = resolve_setups(job, part, stock, *machine, options);
   if (options.operations_known) options.operations_known(setups.operations);
-  // A registration places the part as it sits: the setup whose datum is the part's own origin (the others' fixtures
-  // place them on the table). Two such setups cannot both be where it found the part.
-  const size_t at_workpiece = std::count_if(setups.specs.begin(), setups.specs.end(),
-                                            [](const SetupSpec& s) { return s.datum == Datum::Workpiece; });
-  if (options.work_offset && at_workpiece > 1)
-    throw Error(job.source, "a registered work offset places the part of one setup; " + std::to_string(at_workpiece) +
-                                " of this job's setups have the workpiece datum");
-  if (setups.faces) {
-    report.setups_chosen = job.auto_setups;
-    report.part_area = setups.faces->total_area;
-    report.unreachable_area = setups.faces->unreachable_area;
-    report.unreachable = setups.faces->unreachable;
-    // Per facet, the setup that finishes it (the choice's own indices turned into the job's).
-    report.facet_setup = setups::facet_setups(*setups.faces, part.face_count());
-    for (int& s : report.facet_setup)
-      if (s >= 0) s = int(std::find(setups.chosen.begin(), setups.chosen.end(), s) - setups.chosen.begin());
-  }
+  refuse_two_registered_setups(job, setups, options);
+  if (setups.faces) report_chosen_setups(job, setups, part, report);
   SetupContext context{job, options, part, stock_mesh ? &*stock_mesh : nullptr,
                        setups.faces ? &*setups.faces : nullptr, 0};
-  // A trunnion table turns the part through the setups in one clamping (3+2): placed on its table once.
-  const machine::Trunnion* trunnion =
-      options.checks.machine && options.checks.machine->trunnion ? &*options.checks.machine->trunnion : nullptr;
+  // A machine that turns the part holds it in one clamping through the setups (3+2): placed on its table once.
   std::optional<TableSetting> table;
-  if (trunnion) {
-    if (trunnion->mode != machine::KinematicsMode::Identity)
+  if (machine->turns_part()) {
+    if (machine->simultaneous())
       throw Error(job.source, "jobs for tool-centre-point kinematics are not written yet (one five- or four-axis "
                               "finish is: rosmill plan --strategy five-axis): give a machine file with rotary.mode "
                               "identity for a 3+2 job");
-    table = place_on_table(*trunnion, setups.specs.front().fixture, stock, options, job.source + " setups[0]");
+    table = place_on_table(*machine, setups.specs.front().fixture, stock, options, job.source + " setups[0]");
     context.table = &*table;
     report.indexed = true;
     report.workpiece_on_table = table->workpiece_on_table;
   }
-  double feed_mm = 0, air_mm = 0;
-  std::optional<machine::Index> indexed_at;  // where the program last turned the table (none: not yet)
-  double tool_z = trunnion ? trunnion->safe_z : 0.0;  // machine z of the tool when the next indexing begins
+  JobTotals totals;
+  IndexingClock clock;
+  if (const machine::Trunnion* t = machine->trunnion()) clock.tool_z = t->safe_z;
   std::vector<Job> planned;  // each operation's toolpaths, for the programs
   std::optional<JobSetup> setup;
   EngagementStock engagement;
@@ -603,26 +736,12 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
       break;
     }
     const OperationSpec& op = setups.operations[k];
-    if (!setup || op.setup_index != report.setups.size() - 1) {
-      SetupContext c = context;
-      c.chosen = setups.faces ? setups.chosen[op.setup_index] : -1;
-      const machine::Index before = table ? table->last : machine::Index{};
-      setup = begin_setup(setups.specs[op.setup_index], op.setup_index, stock, c);
-      if (table) {
-        check_indexing(stock, *table, before, *setup->report.index, options.checks.machine->clearance_over_stock,
-                       job.source + " setups[" + std::to_string(op.setup_index) + "] (" + setup->report.name + ")");
-      }
-      setup->report.source = job.auto_setups ? setups.faces->setups[size_t(setups.chosen[op.setup_index])].source : "given";
-      report.setups.push_back(setup->report);
-    }
+    if (!setup || op.setup_index != report.setups.size() - 1)
+      setup = next_setup(setups, op.setup_index, stock, context, report);
     const std::string where = job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "]";
-    OperationReport r;
-    r.name = op.name;
-    r.strategy = op.strategy;
-    r.setup = op.setup;
-    r.setup_index = op.setup_index;
-    r.rest = op.rest;
-    // Planning takes the first 90 % of an operation's progress, the removal from the stock the rest.
+    OperationReport r = operation_report(op);
+    // Stage plan: the strategy on the stock as it stands. It takes the first 90 % of the operation's progress,
+    // the removal from the stock the rest.
     bool stopped = false;
     const PlanProgress progress = [&](double f) { return !(stopped = !go_on(k, 0.9 * f)); };
     auto t0 = std::chrono::steady_clock::now();
@@ -636,70 +755,19 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     }
     r.plan_seconds = seconds_since(t0);
     const SetupReport& sr = report.setups.back();
-    // On a trunnion, each toolpath is in the machine's frame at its setup's A and C: the post indexes there.
-    if (sr.index)
-      for (Toolpath& tp : toolpaths) tp.indexed = true, tp.a = sr.index->a, tp.c = sr.index->c;
+    hold_on_machine(toolpaths, sr);
     stock::MachineProgram program = stock::program_from_job(toolpaths);
     const std::string named = where + " (" + op.name + ", setup " + sr.name + ")";
+    // Stage crash checks.
     crash_checks(program, sr, stock, named);
+    // Stage cut: feeds from the engagement, the removal and the verifier's sweep side by side.
     const stock::RemovalReport removal = cut(program, toolpaths, *setup, stock, engagement, options, job.resolution, r);
-    // A rapid through material is a crash: no program of this job is written.
-    if (removal.collided())
-      throw Error(where, "a rapid runs into the stock at toolpath move " + std::to_string(removal.first_rapid_source) +
-                             " (" + std::to_string(removal.rapid_cut_cells) +
-                             " cells): the stock stands higher than this operation's safe height; give the "
-                             "stock's real shape or raise the clearance");
-    r.moves = program.moves.size();
-    r.removed_mm3 = removal.removed_mm3;
-    r.air_feed_mm = removal.air_feed_mm;
-    r.air_cut_share = removal.air_cut_share();
-    r.collision_line = removal.first_rapid_source;
-    r.remove_seconds = removal.seconds;
-    const stock::HeightField after = stock.view(sr.frame);
-    std::tie(r.min_left_mm, r.max_left_mm) = material_left(*setup, after);
-    // A cut into the design, as the independent simulation finds it, is a defect of the plan, never a figure to
-    // report beside a program: no program of this job is written.
-    if (r.gouge_mm > 0)
-      throw Error(named,
-                  "the verifier finds the cutter " + decimal_text(r.gouge_mm, 3) + " mm below the design at toolpath " +
-                      move_place(toolpaths, r.gouge_move) + " (setup frame, mm): no program is written");
-    for (const Toolpath& tp : toolpaths) {
-      const ToolpathStats s = toolpath_stats(tp);
-      r.cutting_mm += s.cutting_length;
-      r.rapid_mm += s.rapid_length;
-    }
-    // The operation's program as the post writes it, timed as the controller's planner runs it.
-    if (!toolpaths.empty()) {
-      gcode::PostOptions post = gcode::post_options_for(options.dialect);
-      if (trunnion) post.index_safe_z = trunnion->safe_z;
-      r.time_s = gcode::estimate_cycle_time(toolpaths, post, options.trajectory).seconds;
-    }
-    if (sr.index && !toolpaths.empty()) {
-      // The post indexes before the program's first toolpath and wherever A or C change.
-      const machine::Index& to = *sr.index;
-      // The retract and the way down are rapids along Z: at the machine's Z speed when the machine file gives it.
-      const double z_speed = options.trajectory.max_velocity.z();
-      const double rapid_feed = z_speed > 0 ? 60 * z_speed : job.rapid_feed;
-      if (!indexed_at || indexed_at->a != to.a || indexed_at->c != to.c) {
-        const double s = indexing_seconds(*trunnion, indexed_at.value_or(machine::Index{}), to, tool_z,
-                                          std::max(toolpaths.front().clearance_z, toolpaths.front().start.z()),
-                                          rapid_feed, options.trajectory.max_acceleration);
-        report.setups.back().indexing_s += s;
-        report.setups.back().time_s += s;
-        report.time_s += s;
-        indexed_at = to;
-      }
-      tool_z = last_position(toolpaths).z();
-    }
+    // Stage verification: what the cut did to the stock and the design.
+    verify_cut(removal, program, *setup, stock, toolpaths, where, named, r);
+    // Stage timing: the program as the post writes it and the controller's planner runs it, and the indexing.
+    time_operation(toolpaths, *machine, job, options, clock, report, r);
     planned.push_back(toolpaths);
-    feed_mm += removal.feed_mm;
-    air_mm += removal.air_feed_mm;
-    report.removed_mm3 += r.removed_mm3;
-    report.time_s += r.time_s;
-    report.gouge_mm = std::max(report.gouge_mm, r.gouge_mm);
-    report.setups.back().operations.push_back(report.operations.size());
-    report.setups.back().time_s += r.time_s;
-    report.operations.push_back(r);
+    add_operation(r, removal, totals, report);
     if (options.operation_done)
       options.operation_done(
           {k, report.operations.back(), planned.back(), report.setups.back(), report.facet_setup, stock, part});
@@ -709,9 +777,10 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     }
   }
   if (!options.out_dir.empty()) {
-    write_programs(job, planned, options, report);
-    if (trunnion && !options.per_operation)
-      check_indexed_program(job, *trunnion, part, stock_mesh ? &*stock_mesh : nullptr, raw_box, planned, report);
+    write_programs(job, planned, *machine, options, report);
+    if (machine->turns_part() && !options.per_operation)
+      check_indexed_program(job, *machine->trunnion(), part, stock_mesh ? &*stock_mesh : nullptr, raw_box, planned,
+                            report);
   }
   report.left_mm3 = stock.volume();
   report.accept_unfinished = job.accept_unfinished;
@@ -720,7 +789,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
     report.min_left_mm = report.surface.min_left_mm;
     report.max_left_mm = report.surface.max_left_mm;
   }
-  report.air_cut_share = feed_mm > 0 ? air_mm / feed_mm : 0.0;
+  report.air_cut_share = totals.feed_mm > 0 ? totals.air_mm / totals.feed_mm : 0.0;
   report.stock_bytes = stock.bytes();
   return report;
 }

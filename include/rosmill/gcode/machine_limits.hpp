@@ -9,6 +9,7 @@
 #include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/types.hpp"
+#include "rosmill/machine/machine.hpp"
 #include "rosmill/machine/trunnion.hpp"
 
 namespace rosmill::core::gcode {
@@ -35,6 +36,10 @@ struct MachineLimits {
   // A trunnion table (machine/trunnion.hpp) when the file has `rotary:`: its A and C ranges are limits like the
   // envelope, and a job's setups become A/C indexing in one program (3+2).
   std::optional<machine::Trunnion> trunnion;
+
+  // The kind of machine these limits describe (machine/machine.hpp): a 3-axis mill, or a trunnion mill in the mode
+  // its file gives, its joints over the envelope at the trajectory's velocities and accelerations.
+  std::shared_ptr<const machine::Machine> machine() const;
 };
 
 // Reads and validates the YAML file; throws Error naming the file and the field.
