@@ -2,13 +2,15 @@
 
 #include <sensor_msgs/point_cloud2_iterator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include "rosmill/error.hpp"
-#include "rosmill/value_range.hpp"
-#include "rosmill/toolpath/toolpath_stats.hpp"
 #include "rosmill/gcode/cycle_time.hpp"
+#include "rosmill/gcode/prepare_program.hpp"
+#include "rosmill/toolpath/toolpath_stats.hpp"
+#include "rosmill/value_range.hpp"
 
 namespace rosmill::edge {
 
@@ -299,12 +301,6 @@ geometry_msgs::Quaternion to_quaternion_msg(const Eigen::Quaterniond& q) {
 }  // namespace
 
 msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup) {
-  // The messages carry one tool axis per toolpath: a multi-axis one would reach the bridge as a 3-axis toolpath.
-  if (tp.multi_axis())
-    throw Error("toolpath " + tp.strategy,
-                "carries a tool axis at every move (five-axis), which the ROS toolpath "
-                "messages do not hold yet: plan and post it with the rosmill tool "
-                "(rosmill plan --strategy five-axis -o prog.ngc)");
   msg::Toolpath m;
   m.strategy = tp.strategy;
   m.setup = setup.name;
@@ -329,6 +325,8 @@ msg::Toolpath to_toolpath_msg(const core::Toolpath& tp, const SetupFrame& setup)
       out.moves[i].move_type = to_move_type_msg(pass.moves[i].type);
       out.moves[i].feed_rate = pass.moves[i].feed * kMetrePerSecondPerMmPerMinute;
     }
+    out.axes.reserve(pass.axes.size());
+    for (const Vec3& a : pass.axes) out.axes.push_back(to_direction_msg(a));
   }
   return m;
 }
@@ -343,6 +341,24 @@ void check_setup_rotation(const geometry_msgs::Quaternion& q, const std::string&
     throw Error(where + " setup_rotation", "must be a unit quaternion (or all zeros for +Z), got (" +
                                                std::to_string(q.x) + ", " + std::to_string(q.y) + ", " +
                                                std::to_string(q.z) + ", " + std::to_string(q.w) + ")");
+}
+
+// A multi-axis pass's tool axes: none, or one unit vector per move. A zero or scaled axis would tilt the tool
+// somewhere else than planned, a missing one leave moves without an axis.
+std::vector<Vec3> from_axes_msg(const msg::ToolpathPass& pass, const std::string& where) {
+  if (pass.axes.empty()) return {};
+  if (pass.axes.size() != pass.moves.size())
+    throw Error(where + " axes", "must hold one tool axis per move (" + std::to_string(pass.moves.size()) +
+                                     " moves), or none for a 3-axis pass; got " + std::to_string(pass.axes.size()));
+  std::vector<Vec3> axes;
+  axes.reserve(pass.axes.size());
+  for (size_t k = 0; k < pass.axes.size(); ++k) {
+    const Vec3 a = from_direction_msg(pass.axes[k]);
+    if (!a.allFinite() || std::abs(a.norm() - 1.0) > 1e-6)
+      throw Error(where + " axes[" + std::to_string(k) + "]", "a tool axis must be a finite unit vector");
+    axes.push_back(a);
+  }
+  return axes;
 }
 
 }  // namespace
@@ -380,6 +396,7 @@ core::Toolpath from_toolpath_msg(const msg::Toolpath& m, const std::string& wher
       if (moves[i].type != MoveType::Rapid && !(moves[i].feed > 0))
         throw Error(at, "a feed or plunge move needs a positive feed_rate");
     }
+    tp.passes[p].axes = from_axes_msg(m.passes[p], where + " pass " + std::to_string(p));
   }
   return tp;
 }
@@ -456,7 +473,8 @@ PlanParams from_plan_parameters(const msg::PlanParameters& m, const core::Tool& 
   return p;
 }
 
-msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, const gcode::TrajectoryLimits& trajectory) {
+msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds,
+                                      const gcode::TrajectoryLimits& trajectory, const gcode::MachineLimits* machine) {
   msg::PlanStatistics s;
   Box3 box;
   for (const core::Toolpath& tp : job) {
@@ -468,8 +486,15 @@ msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, c
     s.rapid_length += to_metres(st.rapid_length);
     box.add(tp.bounds());
   }
-  if (!job.empty())
-    s.estimated_duration = gcode::estimate_cycle_time(job, gcode::post_options_for("linuxcnc"), trajectory).seconds;
+  const bool multi_axis = std::any_of(job.begin(), job.end(), [](const core::Toolpath& tp) { return tp.multi_axis(); });
+  const bool tcp = machine && machine->machine()->simultaneous();
+  if (multi_axis && !tcp) {
+    s.estimated_duration = NAN;
+  } else if (!job.empty()) {
+    gcode::PostOptions post = gcode::post_options_for("linuxcnc");
+    if (multi_axis) post = gcode::with_tool_centre_point(post, *machine, "parameter machine");
+    s.estimated_duration = gcode::estimate_cycle_time(job, post, trajectory).seconds;
+  }
   s.planning_time = planning_seconds;
   if (!box.empty()) {
     s.bounds_min = to_point_msg(box.min);

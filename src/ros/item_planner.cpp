@@ -23,7 +23,10 @@ PlannerSettings planner_settings(const ::ros::NodeHandle& pnh) {
   s.cloud_input = cloud_input_param(pnh);
   s.option_prefix = pnh.resolveName("") + "/";
   const std::string machine = string_param(pnh, "machine", "");
-  if (!machine.empty()) s.trajectory = gcode::load_machine_limits(machine).trajectory;
+  if (!machine.empty()) {
+    s.machine = gcode::load_machine_limits(machine);
+    s.trajectory = s.machine->trajectory;
+  }
   s.tools.get(s.tool_id);  // the default tool must exist
   named_setup(s.setup, "parameter " + pnh.resolveName("setup"));
   check_plan_name(s.strategy, &s.presets, "parameter " + pnh.resolveName("strategy"));
@@ -92,7 +95,8 @@ PlanOutcome ItemPlanner::plan(const msg::PlanItem& item, const PlanInputs& input
   header.frame_id = setup_frames_.publish(settings_.frame_id, out.setup);
   header.stamp = ::ros::Time::now();
   out.job_msg = to_job_msg(out.job, out.setup, header);
-  out.statistics = to_statistics_msg(out.job, (::ros::WallTime::now() - t0).toSec(), settings_.trajectory);
+  out.statistics = to_statistics_msg(out.job, (::ros::WallTime::now() - t0).toSec(), settings_.trajectory,
+                                     settings_.machine ? &*settings_.machine : nullptr);
   return out;
 }
 

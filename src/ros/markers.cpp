@@ -1,5 +1,6 @@
 #include "rosmill/ros/markers.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "rosmill/ros/convert.hpp"
@@ -134,6 +135,27 @@ visualization_msgs::Marker pass_marker(const core::ToolpathPass& pass, Vec3 at, 
   return m;
 }
 
+// A multi-axis pass's tool axes: a LINE_LIST of short strokes from the cutter location up its tool axis, one every
+// `spacing` mm of the path (more where the pass is long, at most about 2,000), so that the tilt reads along the path.
+visualization_msgs::Marker axes_marker(const core::ToolpathPass& pass, const SetupFrame& setup,
+                                       const std_msgs::Header& header, const std::string& ns, double length) {
+  visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::LINE_LIST);
+  m.scale.x = 0.0003;  // line width, m
+  m.color = rgba(0.3f, 0.9f, 1.0f, 0.9f);
+  double path = 0;
+  for (size_t k = 1; k < pass.moves.size(); ++k) path += (pass.moves[k].to - pass.moves[k - 1].to).norm();
+  const double spacing = std::max(2.0, path / 2000.0);
+  double since = INFINITY;  // the first move gets a stroke
+  for (size_t k = 0; k < pass.moves.size() && k < pass.axes.size(); ++k) {
+    if (k > 0) since += (pass.moves[k].to - pass.moves[k - 1].to).norm();
+    if (since < spacing || pass.moves[k].type == MoveType::Rapid) continue;
+    since = 0;
+    m.points.push_back(to_point_msg(setup.to_workpiece_frame(pass.moves[k].to)));
+    m.points.push_back(to_point_msg(setup.to_workpiece_frame(pass.moves[k].to + length * pass.axes[k])));
+  }
+  return m;
+}
+
 visualization_msgs::Marker tool_marker(const core::Toolpath& tp, const SetupFrame& setup,
                                        const std_msgs::Header& header, const std::string& ns) {
   visualization_msgs::Marker m = base_marker(header, ns, 0, visualization_msgs::Marker::CYLINDER);
@@ -169,6 +191,9 @@ visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFram
       const std::string name = pass.name.empty() ? "pass" + std::to_string(p) : pass.name;
       array.markers.push_back(
           pass_marker(pass, at, setup, header, prefix + std::to_string(p) + "_" + name, cut_colour));
+      if (!pass.axes.empty())
+        array.markers.push_back(axes_marker(pass, setup, header, prefix + std::to_string(p) + "_" + name + "/axes",
+                                            std::max(5.0, 2.0 * tp.tool.cutter.diameter)));
       at = pass.moves.back().to;
     }
     array.markers.push_back(tool_marker(tp, setup, header, prefix + "tool"));

@@ -73,6 +73,16 @@ std::string ProgramRunner::write_program(const msg::ToolpathJob& msg, const Job&
                          "set ~machine to one with `rotary:` (config/machine_xyzac.yaml)");
     options.index_safe_z = settings_.checks.machine->trunnion->safe_z;
   }
+  const bool multi_axis = std::any_of(job.begin(), job.end(), [](const core::Toolpath& tp) { return tp.multi_axis(); });
+  if (multi_axis) {
+    // Simultaneous five- or four-axis: written for the trunnion's tool-centre-point control, which the machine file
+    // must say it has (the post refuses the job otherwise).
+    if (!settings_.checks.machine)
+      throw Error("job",
+                  "carries a tool axis at every move (five-axis), and the bridge has no machine file: set "
+                  "~machine to a trunnion with tool-centre-point control (config/machine_xyzac_tcp.yaml)");
+    options = gcode::with_tool_centre_point(options, *settings_.checks.machine, "~machine");
+  }
   gcode::ProgramChecks checks = settings_.checks;
   checks.limits.rapids_checked_by_stock = msg.rapids_checked_by_stock;
   program = gcode::prepare_program(job, options, checks).program;

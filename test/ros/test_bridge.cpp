@@ -116,6 +116,14 @@ TEST_F(Bridge, BadGoalsAreRefusedWithTheirReason) {
   EXPECT_EQ(run(client, goal), State::ABORTED);
   EXPECT_NE(client.getResult()->message.find("setup_rotation"), std::string::npos) << client.getResult()->message;
 
+  // A tool axis at every move (five-axis) on this 3-axis machine: refused, naming what it would take.
+  goal.job = square_job();
+  goal.job.toolpaths[0].passes[0].axes.assign(goal.job.toolpaths[0].passes[0].moves.size(), geometry_msgs::Vector3());
+  for (auto& axis : goal.job.toolpaths[0].passes[0].axes) axis.z = 1;
+  EXPECT_EQ(run(client, goal), State::ABORTED);
+  EXPECT_NE(client.getResult()->message.find("tool-centre-point control"), std::string::npos)
+      << client.getResult()->message;
+
   goal.job = square_job();
   goal.from_line = 10000;
   EXPECT_EQ(run(client, goal), State::ABORTED);

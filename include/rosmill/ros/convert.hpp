@@ -14,20 +14,21 @@
 #include <optional>
 #include <string>
 
-#include "rosmill/ros/namespaces.hpp"
 #include "rosmill/PlanParameters.h"
 #include "rosmill/PlanStatistics.h"
 #include "rosmill/Tool.h"
-#include "rosmill/ToolpathJob.h"
 #include "rosmill/Toolpath.h"
+#include "rosmill/ToolpathJob.h"
+#include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
+#include "rosmill/geometry/setup_frame.hpp"
 #include "rosmill/plan/plan_params.hpp"
+#include "rosmill/ros/namespaces.hpp"
 #include "rosmill/toolpath/job.hpp"
 #include "rosmill/toolpath/toolpath.hpp"
-#include "rosmill/geometry/setup_frame.hpp"
 
 namespace rosmill::edge {
 
@@ -80,7 +81,11 @@ void set_work_offset(msg::ToolpathJob& msg, const gcode::WorkOffset& offset);
 
 // Planning parameters of a request on top of the tool's; throws Error naming the bad field.
 PlanParams from_plan_parameters(const msg::PlanParameters& msg, const core::Tool& tool, const PlanParams& defaults);
-// The estimated duration: the job's LinuxCNC program timed by the machine's trajectory planner (cycle_time.hpp).
-msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds, const gcode::TrajectoryLimits& trajectory);
+// The estimated duration: the job's LinuxCNC program timed by the machine's trajectory planner (cycle_time.hpp). A
+// multi-axis job is timed as written for `machine`'s tool-centre-point control; without such a machine its
+// duration is not known (NaN).
+msg::PlanStatistics to_statistics_msg(const Job& job, double planning_seconds,
+                                      const gcode::TrajectoryLimits& trajectory,
+                                      const gcode::MachineLimits* machine = nullptr);
 
 }  // namespace rosmill::edge

@@ -9,7 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
-
+#include <optional>
 #include <string>
 
 #include "rosmill/PlanItem.h"
@@ -17,6 +17,7 @@
 #include "rosmill/ToolpathJob.h"
 #include "rosmill/cloud/cloud_input.hpp"
 #include "rosmill/cutter/tool_table.hpp"
+#include "rosmill/gcode/machine_limits.hpp"
 #include "rosmill/gcode/trajectory_limits.hpp"
 #include "rosmill/planner/plan_request.hpp"
 #include "rosmill/planner/presets.hpp"
@@ -39,6 +40,7 @@ struct PlannerSettings {
   // The machine's trajectory planner (parameter machine: its machine file) that times the plans; without: the
   // time at the feeds alone.
   gcode::TrajectoryLimits trajectory;
+  std::optional<gcode::MachineLimits> machine;  // the same file: a five-axis plan is timed for its TCP control
 };
 
 // The settings from the node's private parameters; an Error names a bad one.

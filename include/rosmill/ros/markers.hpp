@@ -48,7 +48,8 @@ visualization_msgs::Marker mesh_marker(const IndexedTriangles& part, const std_m
 // blend); a CYLINDER for the tool at the toolpath's start. Positions are rotated from the setup frame back into the
 // workpiece frame so the path is drawn around the part as it sits. Starts with a DELETEALL so older views vanish.
 // `ns_prefix` goes before every namespace (a job's operations: "rough/toolpath0/..."). With `cut_colour`, the feeds
-// and plunges take it (a job's setup's colour) and the rapids are grey.
+// and plunges take it (a job's setup's colour) and the rapids are grey. A multi-axis pass adds its tool axes, a
+// LINE_LIST of strokes up the axis along the path, in "<pass namespace>/axes".
 visualization_msgs::MarkerArray toolpath_markers(const Job& job, const SetupFrame& setup,
                                                  const std_msgs::Header& header, const std::string& ns_prefix = "",
                                                  const std_msgs::ColorRGBA* cut_colour = nullptr);

@@ -12,6 +12,8 @@
 namespace {
 
 using namespace rosmill;
+using core::SetupFrame;
+using core::Vec3;
 
 edge::msg::Toolpath valid_toolpath() {
   edge::msg::Toolpath m;
@@ -48,6 +50,31 @@ TEST(ConvertFindings, ToolpathNumbersThatAreNotFiniteAreRefused) {
     edge::msg::Toolpath m = valid_toolpath();
     spoil(m);
     EXPECT_NE(error_of([&] { edge::from_toolpath_msg(m, "toolpath"); }).find(reason), std::string::npos) << reason;
+  }
+}
+
+// A five-axis pass's tool axes cross the message and back; an axis count that is not the moves' or an axis that is
+// not a finite unit vector is refused naming the pass and the axis.
+TEST(ConvertFindings, ToolAxesCrossTheMessageAndBadOnesAreRefused) {
+  core::Toolpath tp = edge::from_toolpath_msg(valid_toolpath());
+  tp.passes[0].axes = {Vec3::UnitZ(), Vec3(0.6, 0, 0.8)};
+  const edge::msg::Toolpath m = edge::to_toolpath_msg(tp, SetupFrame{});
+  ASSERT_EQ(m.passes[0].axes.size(), 2u);
+  const core::Toolpath back = edge::from_toolpath_msg(m);
+  ASSERT_TRUE(back.multi_axis());
+  EXPECT_LT((back.passes[0].axes[1] - Vec3(0.6, 0, 0.8)).norm(), 1e-15);
+  EXPECT_FALSE(edge::from_toolpath_msg(valid_toolpath()).multi_axis());  // none: a 3-axis pass
+
+  const std::pair<void (*)(edge::msg::Toolpath&), std::string> cases[] = {
+      {[](edge::msg::Toolpath& m) { m.passes[0].axes.pop_back(); }, "pass 0 axes: must hold one tool axis per move"},
+      {[](edge::msg::Toolpath& m) { m.passes[0].axes[1].z = 2.0; }, "pass 0 axes[1]: a tool axis must be a finite"},
+      {[](edge::msg::Toolpath& m) { m.passes[0].axes[0].x = std::nan(""); }, "pass 0 axes[0]"},
+      {[](edge::msg::Toolpath& m) { m.passes[0].axes[0] = geometry_msgs::Vector3(); }, "pass 0 axes[0]"},
+  };
+  for (const auto& [spoil, reason] : cases) {
+    edge::msg::Toolpath bad = m;
+    spoil(bad);
+    EXPECT_NE(error_of([&] { edge::from_toolpath_msg(bad, "toolpath"); }).find(reason), std::string::npos) << reason;
   }
 }
 
