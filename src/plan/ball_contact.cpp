@@ -65,12 +65,16 @@ double BallContact::push(const Vec3& target, const Vec3& axis, Vec3& centre) con
   const Vec3 start = target + run * axis;
   const double t = std::min(run, rays_.first_sphere_contact(start, -axis, ra_, 0.0, run));
   centre = start - t * axis;
-  // A shank wider than the ball, and the holder, swept the same way to where they end up (their lower ends'
-  // centres: conservative by a sphere's cap).
-  const double shank = 0.5 * tool_.cutter.shank_diameter;
-  if (shank > ra_ && !swept_clear(centre + (tool_.cutter.flute_length - R_) * axis, axis, shank)) return kInf;
-  if (!swept_clear(centre + (tool_.stick_out_mm() - R_) * axis, axis, 0.5 * tool_.holder_mm())) return kInf;
+  if (!shank_and_holder_clear(centre, axis)) return kInf;
   return run - t;
+}
+
+// A shank wider than the ball, and the holder, swept down the axis to where they stand with the ball at `centre`
+// (their lower ends' centres: conservative by a sphere's cap).
+bool BallContact::shank_and_holder_clear(const Vec3& centre, const Vec3& axis) const {
+  const double shank = 0.5 * tool_.cutter.shank_diameter;
+  if (shank > ra_ && !swept_clear(centre + (tool_.cutter.flute_length - R_) * axis, axis, shank)) return false;
+  return swept_clear(centre + (tool_.stick_out_mm() - R_) * axis, axis, 0.5 * tool_.holder_mm());
 }
 
 BallLocation BallContact::locate(const Vec3& point, const Vec3& facet_normal, const Vec3& axis) const {
@@ -79,6 +83,10 @@ BallLocation BallContact::locate(const Vec3& point, const Vec3& facet_normal, co
   l.left = push(point + ra_ * facet_normal, axis, l.centre);
   l.ok = std::isfinite(l.left);
   return l;
+}
+
+bool BallContact::body_clear(const Vec3& centre, const Vec3& axis) const {
+  return swept_clear(centre, axis, ra_ - tol_) && shank_and_holder_clear(centre, axis);
 }
 
 bool BallContact::gouges(const Vec3& centre) const {
@@ -97,7 +105,7 @@ void refine_between(const BallContact& contact, const BallLocation& a, const Bal
   const Vec3 axis = (a.axis + b.axis).normalized();
   // The ball halfway along the move, where the controller puts it.
   const Vec3 halfway = 0.5 * (a.tip(R) + b.tip(R)) + R * axis;
-  const bool gouges = contact.gouges(halfway);
+  const bool gouges = contact.gouges(halfway) || !contact.body_clear(halfway, axis);
   if (!gouges && contact.touches(halfway, std::max(a.left, b.left))) {
     out.push_back(b);
     return;

@@ -18,6 +18,7 @@
 #include "rosmill/geometry/mesh_ray.hpp"
 #include "rosmill/geometry/primitives.hpp"
 #include "rosmill/geometry/sphere_sweep.hpp"
+#include "rosmill/io/stl.hpp"
 #include "rosmill/machine/trunnion.hpp"
 #include "rosmill/plan/five_axis_finish.hpp"
 #include "rosmill/plan/four_axis_finish.hpp"
@@ -201,6 +202,23 @@ TEST(FiveAxisFinish, NoGougeOfBallShankOrHolderAlongTheMovesByTheIndependentChec
   for (ToolpathPass& pass : lower[0].passes)
     for (Move& m : pass.moves) m.to.z() -= 0.05;
   EXPECT_NEAR(verify::check_tool_clearance(mesh, lower, p.allowance).ball_depth_mm, 0.05, 0.01);
+}
+
+// A prismatic part with features on five sides (a pocket with an island, a step, a slot, holes, a groove), finished
+// from above in five axes as a new user would (`rosmill plan five_sided.stl --strategy five-axis --tool ball:6`):
+// sharp convex edges and walls the cone's edge meets. No part of the tool goes into the part between the cutter
+// locations either, by the independent check.
+TEST(FiveAxisFinish, APrismaticPartWithFeaturesOnFiveSidesIsFinishedClear) {
+  const Mesh mesh = read_stl(std::string(ROSMILL_SOURCE_DIR) + "/test/data/parts/five_sided.stl");
+  PlanParams p = ball_params(6);
+  p.tolerance = 0.001;  // the default's
+  PlanReport report;
+  const Job job = five_axis_finish(mesh, p, {}, &report);
+  ASSERT_EQ(job.size(), 1u);
+  const verify::ToolClearance c = verify::check_tool_clearance(mesh, job, p.allowance);
+  EXPECT_GT(c.positions, 1000u);
+  EXPECT_LE(c.ball_depth_mm, p.tolerance) << c.deepest;
+  EXPECT_LE(c.body_depth_mm, p.tolerance + c.sampling_mm) << c.deepest;
 }
 
 TEST(FiveAxisFinish, RefusesAFlatEndMill) {

@@ -44,6 +44,10 @@ class BallContact {
   bool swept_clear(const Vec3& end, const Vec3& axis, double r) const;
   // The ball (grown by the allowance) centred at `centre` goes into the part by more than the tolerance.
   bool gouges(const Vec3& centre) const;
+  // The tool with its ball centred at `centre` along `axis` stands clear of the part: the ball and the flutes above
+  // it (a sphere a tolerance thinner than the grown ball swept down the axis to the centre), a wider shank and the
+  // holder (swept the same way to their lower ends), as push() leaves them at a cutter location.
+  bool body_clear(const Vec3& centre, const Vec3& axis) const;
   // It comes within the tolerance and `slack` of the part.
   bool touches(const Vec3& centre, double slack) const;
 
@@ -57,6 +61,8 @@ class BallContact {
   const Tool& tool() const { return tool_; }
 
  private:
+  bool shank_and_holder_clear(const Vec3& centre, const Vec3& axis) const;
+
   const Mesh& mesh_;
   MeshRays rays_;
   std::vector<std::array<Vec3, 3>> normals_;
@@ -67,9 +73,10 @@ class BallContact {
 
 // Cutter locations between a and b (b appended, the locations inserted before it), halving the move until the ball
 // halfway along each, the tip and the axis interpolated as the controller moves them, neither goes into the part
-// nor stands off it by more than the tolerance beyond what its ends leave. `between(s, axis)` is the cutter
-// location at parameter s of the pass with a given axis. `broke` is set where the tool cannot reach between them
-// (or a halving at the deepest still goes in): the pass must break there.
+// nor stands off it by more than the tolerance beyond what its ends leave, and the rest of the tool there stands
+// clear of the part (body_clear: the axis turning between two locations swings flutes, shank and holder). `between(s,
+// axis)` is the cutter location at parameter s of the pass with a given axis. `broke` is set where the tool cannot
+// reach between them (or a halving at the deepest still goes in): the pass must break there.
 void refine_between(const BallContact& contact, const BallLocation& a, const BallLocation& b, double sa, double sb,
                     const std::function<BallLocation(double, const Vec3&)>& between, std::vector<BallLocation>& out,
                     bool& broke, int depth = 0);
