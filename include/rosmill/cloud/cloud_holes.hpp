@@ -1,6 +1,6 @@
 // Holes in a scan: cells of a plan-view grid that hold no point.
 //
-// Empty cells connected to the grid's border are outside the part (the seed's "free boundary": the cutter may
+// Empty cells connected to the grid's border are outside the part (Muslimin et al.'s "free boundary": the cutter may
 // go down there). Empty cells enclosed by data are missing data (occlusion, a dark or shiny spot): the cutter
 // must never plunge into them. Policy (stated, and reported per hole):
 //   Bridge (default, conservative): the hole is covered by a flat lid at the height of the highest point in the

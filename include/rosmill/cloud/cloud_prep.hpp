@@ -1,4 +1,5 @@
-// Cloud preparation, the seed's first step: bring a scan into the workpiece frame before planning.
+// Cloud preparation, the first step of Muslimin et al.'s direct toolpath generation: bring a scan into the
+// workpiece frame before planning.
 //
 //   1. NaN and infinite points dropped; coordinates scaled to millimetres.
 //   2. Orientation: the machined surface faces +Z. Either a given 4x4 transform (e.g. from tf2, in the input's

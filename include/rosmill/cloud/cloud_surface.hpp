@@ -5,7 +5,7 @@
 // at plan distance d from the cutter axis holds the tip up at
 //     d <= Rf:            z_p
 //     Rf < d <= R:        z_p - r + sqrt(r² - (d - Rf)²)      (the torus; the ball's z_p + sqrt(R² - d²) - R)
-// and the highest over the points under the footprint wins: the seed's z_c less R, the tip height.
+// and the highest over the points under the footprint wins: Muslimin et al.'s z_c less R, the tip height.
 //
 // Missing data, the stated policy (never plunge into it):
 //  - Holes (enclosed empty cells of a coarse plan-view grid) are covered by lids at the highest neighbouring
@@ -14,7 +14,7 @@
 //    circle it sits over, r: its corner radius), and a flat end mill's sharp edge reaches past the last point. So
 //    every point stands for a level disc of radius c = max(0, ρ - sqrt(2 r s)) (ρ: the cloud's sampling radius,
 //    s: the sink allowed): in the formula above, Rf and R both grow by c. Where the cloud is dense for the
-//    cutter c = 0 and the seed's bare formula holds; where it is sparse the discs bridge the gaps and the cutter
+//    cutter c = 0 and Muslimin et al.'s bare formula holds; where it is sparse the discs bridge the gaps and the cutter
 //    stays at the neighbouring points' height. The price is stock left on slopes (at most c tan θ).
 #pragma once
 #include <cmath>
