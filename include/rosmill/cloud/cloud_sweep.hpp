@@ -1,8 +1,8 @@
 // How deep the points of a cloud reach into a cutter that moves in a straight line: the check of the path
 // between two cutter locations (Muslimin et al., section 3.3.2 case 2, "paths between grids are checked"), exact
-// against every point under the swept footprint. Along a move the tip rises linearly and a point's distance from the axis is
-// convex, so the depth of one point is a concave function of the position along the move: its maximum is at an
-// end or where the point, seen from the cutter, is an edge contact (cutter/contact.hpp's edge_contact).
+// against every point under the swept footprint. Along a move the tip rises linearly and a point's distance from
+// the axis is convex, so the depth of one point is a concave function of the position along the move: its maximum
+// is at an end or where the point, seen from the cutter, is an edge contact (cutter/contact.hpp's edge_contact).
 #pragma once
 #include "rosmill/cloud/cloud_surface.hpp"
 

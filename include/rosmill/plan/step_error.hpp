@@ -21,8 +21,8 @@ double step_error(const Vec3& p1, const Vec3& p2, const Vec3& pi);
 
 // Over the run of CL samples [first, last] of `cl`: keeps `first`, `last`, every sample marked in `corner`, one
 // sample per `interval` of plan length (the CL spacing on level ground of Muslimin et al., 2R), and the buffer
-// points that bring every sample's |ε| to at most `eps`. Appends the kept indices to `kept` in order; returns how many of
-// them are buffer points.
+// points that bring every sample's |ε| to at most `eps`. Appends the kept indices to `kept` in order; returns
+// how many of them are buffer points.
 size_t buffer_points(const std::vector<Vec3>& cl, const std::vector<uint8_t>& corner, size_t first, size_t last,
                      double interval, double eps, std::vector<uint32_t>& kept);
 
