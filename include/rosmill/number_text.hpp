@@ -12,6 +12,13 @@ inline std::string decimal_text(double value, int digits) {
   return text;
 }
 
+// At most `digits` significant digits, in fixed or exponent notation as printf's %g chooses ("0.25", "1e+03").
+inline std::string significant_text(double value, int digits) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return text;
+}
+
 // The fewest digits after the point (at most 17) that read back as exactly `value`, in fixed notation ("6.35", "10").
 inline std::string shortest_text(double value) {
   char text[400];

@@ -2,20 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "rosmill/error.hpp"
+#include "rosmill/number_text.hpp"
 
 namespace rosmill::core::gcode {
 namespace {
 
 // A number as the machine file shows it: no trailing zeros.
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", std::abs(v) < 1e-12 ? 0.0 : v);
-  return buf;
-}
+std::string num(double v) { return significant_text(std::abs(v) < 1e-12 ? 0.0 : v, 10); }
 
 double positive(const LinuxcncIni& ini, const std::string& section, const std::string& key) {
   const double v = ini.number(section, key);

@@ -9,12 +9,12 @@
 #include <cmath>
 #include <optional>
 #include <set>
-#include <sstream>
 
 #include "rosmill/error.hpp"
-#include "rosmill/input_file.hpp"
-#include "rosmill/toolpath/canon_arc.hpp"
 #include "rosmill/gcode/interpreter.hpp"
+#include "rosmill/input_file.hpp"
+#include "rosmill/number_text.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 
 namespace rosmill::core::gcode {
 namespace {
@@ -41,12 +41,7 @@ double number(const YAML::Node& n, const std::string& what, const std::string& p
   throw Error(path, what + " is not a finite number");
 }
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v) { return significant_text(v, 10); }
 
 machine::RotaryAxis rotary_axis(const YAML::Node& node, const std::string& name, const std::string& path) {
   const std::string where = path + " rotary." + name;

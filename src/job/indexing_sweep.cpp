@@ -1,22 +1,18 @@
 // The part turning on a trunnion while the tool waits above it (job_setup.hpp: check_indexing).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "job_setup.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/post.hpp"
+#include "rosmill/number_text.hpp"
 
 namespace rosmill::core::job {
 namespace {
 
 constexpr double kStepDeg = 0.5;  // the turn is looked at every half degree
 
-std::string number(double v) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.3f", v);
-  return s;
-}
+std::string number(double v) { return decimal_text(v, 3); }
 
 }  // namespace
 

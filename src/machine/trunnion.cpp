@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
+
+#include "rosmill/number_text.hpp"
 
 namespace rosmill::core::machine {
 namespace {
@@ -24,11 +25,7 @@ Vec3 pivot_of(const Trunnion& t) { return Vec3(0, t.pivot.y(), t.pivot.z()); }
 // The turn of C by whole turns nearest `near` (the axis can go round many times; the least motion wins).
 double nearest_turn(double c, double near) { return c + 360.0 * std::round((near - c) / 360.0); }
 
-std::string degrees(double v) {
-  char s[32];
-  std::snprintf(s, sizeof s, "%.4g", v);
-  return s;
-}
+std::string degrees(double v) { return significant_text(v, 4); }
 
 }  // namespace
 

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "rosmill/number_text.hpp"
 
 namespace rosmill::core::verify {
 namespace {
@@ -13,11 +14,7 @@ constexpr Rgb kColours[] = {{90, 0, 60},    {170, 0, 20},  {235, 70, 50},  {255,
                             {70, 70, 70}};
 constexpr size_t kOnDesign = 4, kNotCut = 9, kNoDesign = 10;
 
-std::string mm(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
+std::string mm(double v) { return significant_text(v, 6); }
 
 }  // namespace
 
