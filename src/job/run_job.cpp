@@ -93,9 +93,6 @@ std::pair<double, double> material_left(const JobSetup& s, const stock::HeightFi
   return {lo, hi};
 }
 
-// The deepest cut below the design by the operation's program and the toolpath move that made it (0: none), from
-// the verifier, which sweeps the program over a fresh height field of the part in the setup's frame, apart from
-// the stock the operations carry: a second opinion on the gouge that the stock's material left gives.
 // Where the tool is after a job's last move.
 Vec3 last_position(const Job& toolpaths) {
   for (auto t = toolpaths.rbegin(); t != toolpaths.rend(); ++t)
@@ -104,6 +101,9 @@ Vec3 last_position(const Job& toolpaths) {
   return toolpaths.empty() ? Vec3::Zero() : toolpaths.back().start;
 }
 
+// The deepest cut below the design by the operation's program and the toolpath move that made it (0: none), from
+// the verifier, which sweeps the program over a fresh height field of the part in the setup's frame, apart from
+// the stock the operations carry: a second opinion on the gouge that the stock's material left gives.
 std::pair<double, uint32_t> verified_gouge(const JobSetup& s, const stock::MachineProgram& program, double cell) {
   if (program.moves.empty()) return {0.0, 0};
   verify::VerifyOptions o;

@@ -11,7 +11,7 @@ class ThreeAxisMill final : public Machine {
   const std::vector<Joint>& joints() const override { return joints_; }
   ToolPose forward(const JointValues& q) const override { return {Vec3(q.at(0), q.at(1), q.at(2)), Vec3::UnitZ()}; }
   std::optional<JointValues> inverse(const ToolPose& pose, const JointValues&, std::string* why) const override {
-    if ((pose.axis.normalized() - Vec3::UnitZ()).norm() > 1e-9) {
+    if (!((pose.axis.normalized() - Vec3::UnitZ()).norm() <= 1e-9)) {  // a NaN axis too
       if (why) *why = "a 3-axis mill holds the tool along +Z";
       return std::nullopt;
     }

@@ -16,13 +16,13 @@ const std::string kConfig = std::string(ROSMILL_SOURCE_DIR) + "/config/";
 }  // namespace
 
 TEST(Machine, ThreeAxisMillFromItsFile) {
-  const auto m = gcode::load_machine_limits(kConfig + "machine.yaml").machine();
+  const gcode::MachineLimits limits = gcode::load_machine_limits(kConfig + "machine.yaml");
+  const auto m = limits.machine();
   EXPECT_EQ(m->kind(), "3-axis mill");
   EXPECT_FALSE(m->turns_part());
   EXPECT_FALSE(m->simultaneous());
   EXPECT_EQ(m->trunnion(), nullptr);
   ASSERT_EQ(m->joints().size(), 3u);
-  const gcode::MachineLimits limits = gcode::load_machine_limits(kConfig + "machine.yaml");
   for (int i = 0; i < 3; ++i) {
     EXPECT_EQ(m->joints()[size_t(i)].min, limits.envelope.min[i]);
     EXPECT_EQ(m->joints()[size_t(i)].max, limits.envelope.max[i]);
@@ -34,6 +34,8 @@ TEST(Machine, ThreeAxisMillFromItsFile) {
   std::string why;
   EXPECT_FALSE(m->inverse({p, Vec3(1, 0, 1).normalized()}, m->home(), &why));
   EXPECT_NE(why.find("along +Z"), std::string::npos) << why;
+  EXPECT_FALSE(m->inverse({p, Vec3::Constant(NAN)}, m->home()));  // no axis at all
+  EXPECT_FALSE(m->inverse({Vec3::Constant(NAN), Vec3::UnitZ()}, m->home()));
   EXPECT_FALSE(m->inverse({limits.envelope.max + Vec3(0, 0, 1), Vec3::UnitZ()}, m->home(), &why));
   EXPECT_EQ(why.rfind("Z ", 0), 0u) << why;
   // Every side is a setup on a mill: the part is turned over by hand, the joints stay where they are.
@@ -89,6 +91,8 @@ TEST(Machine, TrunnionRefusesSetupsItsRangesCannotReach) {
   const auto side = m->setup_joints(Vec3::UnitX(), m->home());
   ASSERT_TRUE(side);
   EXPECT_LT((m->forward(*side).axis - Vec3::UnitX()).norm(), 1e-12);
+  EXPECT_FALSE(m->inverse({Vec3::Constant(NAN), Vec3::UnitX()}, m->home()));  // no tip
+  EXPECT_FALSE(m->inverse({Vec3::Zero(), Vec3::Constant(NAN)}, m->home()));   // no axis
 }
 
 TEST(Machine, TrunnionWithToolCentrePointControlCutsSimultaneously) {
