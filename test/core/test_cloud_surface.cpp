@@ -141,7 +141,9 @@ TEST(CloudSurface, IndexCellChangesNoDropAndNoSweep) {
         const Vec3 from(xy[i].x(), xy[i].y(), a[i].z - 0.3), to(xy[i + 1].x(), xy[i + 1].y(), a[i + 1].z - 0.3);
         const SweepHit ha = sweep_depth(ref, c, from, to), hb = sweep_depth(s, c, from, to);
         ASSERT_EQ(ha.depth, hb.depth) << "cell " << cell << " move " << i;
-        if (ha.depth > 0) ASSERT_NEAR(ha.at, hb.at, 1e-9);
+        if (ha.depth > 0) {
+          ASSERT_NEAR(ha.at, hb.at, 1e-9);
+        }
       }
     }
   }
@@ -283,7 +285,9 @@ void expect_within_sampling_bound(const std::string& name, const Mesh& mesh, dou
           ASSERT_FALSE(d.touched) << name << " at " << x << ", " << y;
           continue;
         }
-        if (std::isfinite(bound.lo)) ASSERT_TRUE(d.touched) << name << " at " << x << ", " << y;
+        if (std::isfinite(bound.lo)) {
+          ASSERT_TRUE(d.touched) << name << " at " << x << ", " << y;
+        }
         if (!d.touched) continue;
         ASSERT_GE(d.z, bound.lo - 1e-9) << name << " " << cutter_type_name(c.type) << " at " << x << ", " << y;
         ASSERT_LE(d.z, bound.hi + 1e-9) << name << " " << cutter_type_name(c.type) << " at " << x << ", " << y;

@@ -159,8 +159,12 @@ TEST(FixtureCollision, SweepAgreesWithDensePositions) {
         inside |= meets_at(tip, p, -0.01);
         near |= meets_at(tip, p, 0.01 + (c - a).norm() / n);
       }
-      if (inside) EXPECT_TRUE(swept) << p.name << " move " << k;
-      if (swept) EXPECT_TRUE(near) << p.name << " move " << k;
+      if (inside) {
+        EXPECT_TRUE(swept) << p.name << " move " << k;
+      }
+      if (swept) {
+        EXPECT_TRUE(near) << p.name << " move " << k;
+      }
       hits += swept;
     }
   }

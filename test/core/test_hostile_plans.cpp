@@ -169,7 +169,9 @@ TEST(Segmentation, TheReachableFractionNeverExceedsOne) {
       EXPECT_LE(seg.reachable_fraction(), 1.0) << name << " " << setup;
       EXPECT_GE(seg.reachable_fraction(), 0.0) << name << " " << setup;
       EXPECT_NEAR(seg.reachable_fraction(), seg.reachable_area() / sp.total_area(), 1e-12) << name << " " << setup;
-      if (std::string(setup) == "5axis") EXPECT_EQ(seg.reachable_fraction(), 1.0) << name;
+      if (std::string(setup) == "5axis") {
+        EXPECT_EQ(seg.reachable_fraction(), 1.0) << name;
+      }
     }
   }
 }

@@ -163,8 +163,12 @@ TEST(Post, DecimalsKeepRoundingWithinATenthOfTheTolerance) {
     SCOPED_TRACE(tol);
     EXPECT_GE(d, 3);
     EXPECT_LE(d, 6);
-    if (d < 6) EXPECT_LE(std::sqrt(3.0) / 2 * std::pow(10.0, -d), tol / 10 + 1e-15);
-    if (d > 3) EXPECT_GT(std::sqrt(3.0) / 2 * std::pow(10.0, -(d - 1)), tol / 10);  // the fewest that do
+    if (d < 6) {
+      EXPECT_LE(std::sqrt(3.0) / 2 * std::pow(10.0, -d), tol / 10 + 1e-15);
+    }
+    if (d > 3) {
+      EXPECT_GT(std::sqrt(3.0) / 2 * std::pow(10.0, -(d - 1)), tol / 10);  // the fewest that do
+    }
   }
   EXPECT_EQ(gcode::decimals_for_tolerance(0.001), 4);
   EXPECT_EQ(gcode::decimals_for_tolerance(0.01), 3);

@@ -192,10 +192,14 @@ TEST(Rs274Verify, AResumedProgramMovesAsTheOriginalFromItsLine) {
       EXPECT_EQ(restored.tool, before.tool) << line;
       EXPECT_EQ(restored.length_offset, before.length_offset) << line;
       EXPECT_EQ(restored.spindle, before.spindle) << line;
-      if (before.spindle != 5) EXPECT_DOUBLE_EQ(restored.spindle_rpm, before.spindle_rpm) << line;
+      if (before.spindle != 5) {
+        EXPECT_DOUBLE_EQ(restored.spindle_rpm, before.spindle_rpm) << line;
+      }
       EXPECT_EQ(restored.flood, before.flood) << line;
       // Before the program's first feed the way down uses SendOptions::resume_feed; after it, the program's feed.
-      if (before.feed > 0) EXPECT_DOUBLE_EQ(restored.feed, before.feed) << line;
+      if (before.feed > 0) {
+        EXPECT_DOUBLE_EQ(restored.feed, before.feed) << line;
+      }
       ++resumes;
     }
     EXPECT_GE(resumes, 8u);

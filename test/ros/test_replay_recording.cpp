@@ -39,11 +39,15 @@ TEST(Replay, GivesWhatTheRecordingHolds) {
   EXPECT_EQ(run->step, step) << run->message;
   // The words the reason must hold, joined by '+' (an argument of a rostest has no spaces).
   std::stringstream list(words);
-  for (std::string word; std::getline(list, word, '+');)
-    if (!word.empty()) EXPECT_NE(run->message.find(word), std::string::npos) << "no '" << word << "' in the reason: "
-                                                                             << run->message;
+  for (std::string word; std::getline(list, word, '+');) {
+    if (!word.empty()) {
+      EXPECT_NE(run->message.find(word), std::string::npos) << "no '" << word << "' in the reason: " << run->message;
+    }
+  }
   const int views = pnh.param("expect_views", -1);
-  if (views >= 0) EXPECT_EQ(run->views, static_cast<uint32_t>(views)) << run->fusion;
+  if (views >= 0) {
+    EXPECT_EQ(run->views, static_cast<uint32_t>(views)) << run->fusion;
+  }
   if (!run->done) return;
 
   // Where make_cell_recording.py placed the part: its origin at (0.1, 0.05, 0) m, turned 30 degrees about z.
