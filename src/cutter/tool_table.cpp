@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -12,6 +13,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/input_file.hpp"
 #include "rosmill/number_text.hpp"
+#include "rosmill/yaml/fields.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -20,106 +22,54 @@ const std::set<std::string> kFields = {"id", "name", "type", "diameter", "corner
                                        "shank_diameter", "spindle_rpm", "feed", "plunge_feed", "stepover",
                                        "stepdown", "stick_out", "holder_diameter", "feed_engagement"};
 
-// Reads the fields of one tool entry; `where` is "file: tool N" so that every message names both.
-class EntryReader {
- public:
-  EntryReader(const YAML::Node& node, std::string where) : node_(node), where_(std::move(where)) {}
-
-  double number(const std::string& field, bool required, double fallback) const {
-    const YAML::Node v = node_[field];
-    if (!v) {
-      if (required) fail(field, "is missing");
-      return fallback;
-    }
-    double x = 0;
-    try {
-      x = v.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(field, "is not a number" + got(v));
-    }
-    if (!std::isfinite(x)) fail(field, "is not finite");
-    return x;
-  }
-  double positive(const std::string& field, bool required = true, double fallback = 0) const {
-    const double x = number(field, required, fallback);
-    if (!(x > 0)) fail(field, "must be > 0" + got(node_[field]));
-    return x;
-  }
-  std::string text(const std::string& field, bool required, const std::string& fallback) const {
-    const YAML::Node v = node_[field];
-    if (!v) {
-      if (required) fail(field, "is missing");
-      return fallback;
-    }
-    if (!v.IsScalar()) fail(field, "must be a text");
-    return v.Scalar();
-  }
-  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
-    throw Error(where_, "field '" + field + "' " + what);
-  }
-
- private:
-  static std::string got(const YAML::Node& v) { return v && v.IsScalar() ? ", got '" + v.Scalar() + "'" : ""; }
-  const YAML::Node& node_;
-  std::string where_;
-};
-
-Cutter read_cutter(const EntryReader& e) {
-  const std::string type = e.text("type", true, "");
-  const double d = e.positive("diameter");
+Cutter read_cutter(const yaml::Fields& f) {
+  const std::string type = f.text("type", "", true);
+  const double d = f.required_positive("diameter");
   Cutter c;
   if (type == "flat") {
     c = Cutter::flat(d);
-    if (e.number("corner_radius", false, 0) != 0) e.fail("corner_radius", "must be 0 for a flat end mill");
+    if (f.number("corner_radius", 0) != 0) f.fail("corner_radius", "must be 0 for a flat end mill");
   } else if (type == "ball") {
     c = Cutter::ball(d);
-    const double r = e.number("corner_radius", false, 0.5 * d);
-    if (std::abs(r - 0.5 * d) > 1e-9 * d) e.fail("corner_radius", "must be half the diameter for a ball end mill");
+    const double r = f.number("corner_radius", 0.5 * d);
+    if (std::abs(r - 0.5 * d) > 1e-9 * d) f.fail("corner_radius", "must be half the diameter for a ball end mill");
   } else if (type == "bull") {
-    const double r = e.positive("corner_radius");
-    if (r > 0.5 * d) e.fail("corner_radius", "is larger than half the diameter");
+    const double r = f.required_positive("corner_radius");
+    if (r > 0.5 * d) f.fail("corner_radius", "is larger than half the diameter");
     c = Cutter::bull(d, r);
   } else {
-    e.fail("type", "must be flat, ball or bull, got '" + type + "'");
+    f.fail("type", "must be flat, ball or bull, got '" + type + "'");
   }
-  c.flute_length = e.positive("flute_length");
-  c.shank_diameter = e.positive("shank_diameter");
+  c.flute_length = f.required_positive("flute_length");
+  c.shank_diameter = f.required_positive("shank_diameter");
   return c;
 }
 
 Tool read_tool(const YAML::Node& node, const std::string& source, size_t index) {
-  std::string where = source + ": tool #" + std::to_string(index + 1);
-  if (!node.IsMap()) throw Error(where, "must be a map of fields");
-  if (node["id"] && node["id"].IsScalar()) where = source + ": tool " + node["id"].Scalar();
-  for (const auto& kv : node) {
-    if (!kv.first.IsScalar()) throw Error(where, "a field name must be a text");
-    const std::string key = kv.first.Scalar();
-    if (!kFields.count(key)) throw Error(where, "unknown field '" + key + "'");
-  }
-  const EntryReader e(node, where);
+  const yaml::Fields f(node, source, "tools[" + std::to_string(index) + "]", kFields);
   Tool t;
-  const double id = e.number("id", true, 0);
+  const double id = f.required_number("id");
   if (id < 1 || id != std::floor(id) || id > kMaxToolNumber)
-    e.fail("id", "must be a whole number in [1, " + std::to_string(kMaxToolNumber) + "]");
+    f.fail("id", "must be a whole number in [1, " + std::to_string(kMaxToolNumber) + "], got " + f.node("id").Scalar());
   t.id = static_cast<int>(id);
-  t.cutter = read_cutter(e);
-  t.name = e.text("name", false, std::string(cutter_type_name(t.cutter.type)) + " " + e.text("diameter", true, ""));
-  t.spindle_rpm = e.positive("spindle_rpm");
-  t.feed = e.positive("feed");
-  t.plunge_feed = e.positive("plunge_feed");
-  t.stepover = e.positive("stepover");
-  if (t.stepover > t.cutter.diameter) e.fail("stepover", "is larger than the diameter");
-  t.stepdown = e.positive("stepdown");
-  if (t.stepdown > t.cutter.flute_length) e.fail("stepdown", "is larger than the flute length");
-  t.feed_engagement = e.number("feed_engagement", false, NAN);
+  t.cutter = read_cutter(f);
+  t.name = f.text("name", std::string(cutter_type_name(t.cutter.type)) + " " + f.node("diameter").Scalar());
+  t.spindle_rpm = f.required_positive("spindle_rpm");
+  t.feed = f.required_positive("feed");
+  t.plunge_feed = f.required_positive("plunge_feed");
+  t.stepover = f.required_positive("stepover");
+  if (t.stepover > t.cutter.diameter) f.fail("stepover", "is larger than the diameter");
+  t.stepdown = f.required_positive("stepdown");
+  if (t.stepdown > t.cutter.flute_length) f.fail("stepdown", "is larger than the flute length");
+  t.feed_engagement = f.number("feed_engagement", NAN);
   if (!std::isnan(t.feed_engagement) && !(t.feed_engagement > 0 && t.feed_engagement <= 180))
-    e.fail("feed_engagement", "must lie in (0, 180] degrees, got " + e.text("feed_engagement", true, ""));
-  t.stick_out = e.number("stick_out", false, NAN);
+    f.fail("feed_engagement", "must lie in (0, 180] degrees, got " + f.node("feed_engagement").Scalar());
+  t.stick_out = f.number("stick_out", NAN);
   if (!std::isnan(t.stick_out) && t.stick_out < t.cutter.flute_length)
-    e.fail("stick_out", "is shorter than the flute length");
-  t.holder_diameter = e.number("holder_diameter", false, NAN);
+    f.fail("stick_out", "is shorter than the flute length");
+  t.holder_diameter = f.number("holder_diameter", NAN);
   if (!std::isnan(t.holder_diameter) && t.holder_diameter < t.cutter.shank_diameter)
-    e.fail("holder_diameter", "is smaller than the shank's diameter");
+    f.fail("holder_diameter", "is smaller than the shank's diameter");
   return t;
 }
 
@@ -133,22 +83,23 @@ const Tool& ToolTable::get(int id) const {
   throw Error(source, "no tool with id " + std::to_string(id) + " (ids: " + ids.str() + ")");
 }
 
-ToolTable parse_tool_table(const std::string& yaml_text, const std::string& name) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw Error(name + ":" + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg);
-  }
-  if (!root.IsMap() || !root["tools"]) throw Error(name, "expected a map with a 'tools' list");
-  const YAML::Node list = root["tools"];
-  if (!list.IsSequence() || list.size() == 0) throw Error(name, "'tools' must be a non-empty list");
+ToolTable parse_tool_table(const std::string& yaml_text, const std::string& name,
+                           const std::set<std::string>& other_fields) {
+  std::set<std::string> fields = other_fields;
+  fields.insert("tools");
+  const yaml::Fields top(yaml::parse(yaml_text, name), name, "", fields);
+  const YAML::Node list = top.node("tools");
+  if (!list || !list.IsSequence() || list.size() == 0) top.fail("tools", "expected a non-empty list of tools");
   ToolTable table;
   table.source = name;
-  std::set<int> seen;
+  std::map<int, int> first_line;  // tool number: the line of its entry
   for (size_t i = 0; i < list.size(); ++i) {
     Tool t = read_tool(list[i], name, i);
-    if (!seen.insert(t.id).second) throw Error(name + ": tool " + std::to_string(t.id), "field 'id' is used twice");
+    const int line = list[i].Mark().line + 1;
+    if (const auto [at, fresh] = first_line.emplace(t.id, line); !fresh)
+      throw Error(
+          yaml::line_of(list[i]["id"], name) + " tools[" + std::to_string(i) + "].id",
+          "tool " + std::to_string(t.id) + " is listed twice (first at line " + std::to_string(at->second) + ")");
     table.tools.push_back(std::move(t));
   }
   return table;

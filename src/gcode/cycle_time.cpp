@@ -371,14 +371,16 @@ class Timer {
       at_speed_ = now() + (lim_.spindle_at_speed_share * rpm - rpm_) / lim_.spindle_acceleration;
     rpm_ = rpm;
   }
-  // A move in machine coordinates (G53): to `machine` less the G54 origin (the tool length offset not counted).
-  // The reader leaves its axes unknown; the next move starts where it ends.
-  void machine_move(const Vec3& from, const Vec3& machine, const bool given[3], bool rapid, double feed) {
+  // A move in machine coordinates (G53): to `machine` less the G54 origin and, in Z, the tool length offset in
+  // force (G43 made the program's Z the tip's, `length` below the spindle's). The reader leaves its axes unknown;
+  // the next move starts where it ends.
+  void machine_move(const Vec3& from, const Vec3& machine, const bool given[3], bool rapid, double feed,
+                    double length) {
     CanonMove m;
     m.from = from;
     m.to = from;
     for (int i = 0; i < 3; ++i)
-      if (given[i]) m.to[i] = machine[i] - origin_[i];
+      if (given[i]) m.to[i] = machine[i] - origin_[i] - (i == 2 ? length : 0.0);
     m.rapid = rapid;
     m.feed = float(feed);
     move(m);
@@ -463,7 +465,9 @@ CycleTime estimate_cycle_time(const std::vector<std::string>& program, const Tra
     if (b.has_g(530) && b.has_linear()) {
       const bool given[3] = {b.has('X'), b.has('Y'), b.has('Z')};
       const Vec3 to(given[0] ? b.get('X') : 0, given[1] ? b.get('Y') : 0, given[2] ? b.get('Z') : 0);
-      timer.machine_move(before, to, given, in.state().motion == 0, in.state().feed);
+      const int h = in.state().length_offset;
+      timer.machine_move(before, to, given, in.state().motion == 0, in.state().feed,
+                         h >= 0 ? limits.tool_length(h) : 0.0);
     }
     if (in.state().ended) break;
   }

@@ -1,143 +1,124 @@
 #include "rosmill/gcode/machine_limits.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <set>
+#include <tuple>
+#include <utility>
 
+#include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/interpreter.hpp"
 #include "rosmill/input_file.hpp"
 #include "rosmill/number_text.hpp"
 #include "rosmill/toolpath/canon_arc.hpp"
+#include "rosmill/yaml/fields.hpp"
 
 namespace rosmill::core::gcode {
 namespace {
 
-double positive(const YAML::Node& root, const char* key, const std::string& path) {
-  const YAML::Node n = root[key];
-  if (!n) throw Error(path, std::string("field '") + key + "' is missing");
-  double v;
-  try {
-    v = n.as<double>();
-  } catch (const YAML::Exception&) {
-    throw Error(path, std::string("field '") + key + "' is not a number");
-  }
-  if (!std::isfinite(v) || v <= 0) throw Error(path, std::string("field '") + key + "' must be a positive number");
-  return v;
-}
-
-double number(const YAML::Node& n, const std::string& what, const std::string& path) {
-  try {
-    const double v = n.as<double>();
-    if (std::isfinite(v)) return v;
-  } catch (const YAML::Exception&) {
-  }
-  throw Error(path, what + " is not a finite number");
-}
-
 std::string fmt(double v) { return significant_text(v, 10); }
 
-machine::RotaryAxis rotary_axis(const YAML::Node& node, const std::string& name, const std::string& path) {
-  const std::string where = path + " rotary." + name;
-  if (!node || !node.IsMap()) throw Error(where, "missing: {range: [min, max], velocity: deg/s, acceleration: deg/s^2}");
+// [lo, hi] with lo below hi.
+std::pair<double, double> range_of(const yaml::Fields& f, const std::string& key, const std::string& what) {
+  const YAML::Node r = f.node(key);
+  if (!r || !r.IsSequence() || r.size() != 2) f.fail(key, "must be [min, max]" + what);
+  const double lo = f.converted<double>(r[0], key, "expected a number"),
+               hi = f.converted<double>(r[1], key, "expected a number");
+  if (!std::isfinite(lo) || !std::isfinite(hi)) f.fail(key, "expected finite numbers");
+  if (!(lo < hi)) f.fail(key, "min must be below max");
+  return {lo, hi};
+}
+
+machine::RotaryAxis rotary_axis(const yaml::Fields& rotary, const std::string& name) {
+  const YAML::Node node = rotary.node(name);
+  if (!node || !node.IsMap()) rotary.fail(name, "missing: {range: [min, max], velocity: deg/s, acceleration: deg/s^2}");
+  const yaml::Fields f(node, rotary.file(), rotary.place(name), {"range", "velocity", "acceleration"});
   machine::RotaryAxis a;
-  const YAML::Node r = node["range"];
-  if (!r || !r.IsSequence() || r.size() != 2) throw Error(where, "range must be [min, max] (degrees)");
-  a.min = number(r[0], "rotary." + name + ".range min", path);
-  a.max = number(r[1], "rotary." + name + ".range max", path);
-  if (!(a.min < a.max)) throw Error(where, "range: min must be below max");
-  a.velocity = positive(node, "velocity", where);
-  a.acceleration = positive(node, "acceleration", where);
+  std::tie(a.min, a.max) = range_of(f, "range", " (degrees)");
+  a.velocity = f.required_positive("velocity");
+  a.acceleration = f.required_positive("acceleration");
   return a;
 }
 
-Vec3 point3(const YAML::Node& node, const std::string& what, const std::string& path) {
-  if (!node || !node.IsSequence() || node.size() != 3) throw Error(path, "field '" + what + "' must be [x, y, z]");
-  return Vec3(number(node[0], what, path), number(node[1], what, path), number(node[2], what, path));
+// {x: V, y: V, z: V}, each greater than 0.
+Vec3 per_axis(const yaml::Fields& f, const std::string& key) {
+  const yaml::Fields v(f.node(key), f.file(), f.place(key), {"x", "y", "z"});
+  return Vec3(v.required_positive("x"), v.required_positive("y"), v.required_positive("z"));
+}
+
+// {tool number: length offset in mm, ...}: the controller's tool table.
+std::map<int, double> tool_lengths(const yaml::Fields& f, const std::string& key) {
+  const YAML::Node table = f.node(key);
+  if (!table.IsMap()) f.fail(key, "must be {tool number: length offset in mm, ...} (the controller's tool table)");
+  std::map<int, double> lengths;
+  for (const auto& kv : table) {
+    const std::string where = f.where_at(kv.first, key);
+    const int tool = parse_tool_number(kv.first.IsScalar() ? kv.first.Scalar() : "?", where);
+    const double length = f.converted<double>(kv.second, key, "expected a length in mm");
+    if (!std::isfinite(length)) throw Error(where, "tool " + std::to_string(tool) + "'s length is not finite");
+    lengths[tool] = length;
+  }
+  return lengths;
 }
 
 // `trajectory:`: the controller's trajectory planner; every field optional (LinuxCNC's defaults).
-void read_trajectory(const YAML::Node& t, const std::string& path, TrajectoryLimits& out) {
-  const std::string where = path + " trajectory";
-  if (!t.IsMap()) throw Error(where, "must be a map");
-  static const std::set<std::string> known = {"max_velocity", "max_linear_velocity", "max_linear_acceleration",
-                                             "servo_period", "optimization_depth", "arc_blend", "tangent_kink_ratio",
-                                             "max_feed_override", "tool_change_seconds", "spindle_start_seconds",
-                                             "tool_change_position", "spindle_acceleration", "spindle_at_speed_share"};
-  for (const auto& kv : t)
-    if (!known.count(kv.first.Scalar())) throw Error(where, "unknown field '" + kv.first.Scalar() + "'");
-  static const char* axes[] = {"x", "y", "z"};
-  if (const YAML::Node v = t["max_velocity"]) {
-    if (!v.IsMap()) throw Error(where, "field 'max_velocity' must be {x: V, y: V, z: V} (mm/s)");
-    for (int a = 0; a < 3; ++a) out.max_velocity[a] = positive(v, axes[a], where + ".max_velocity");
-  }
-  if (t["max_linear_velocity"]) out.max_linear_velocity = positive(t, "max_linear_velocity", where);
-  if (t["max_linear_acceleration"]) out.max_linear_acceleration = positive(t, "max_linear_acceleration", where);
-  if (t["servo_period"]) out.servo_period = positive(t, "servo_period", where);
-  if (t["optimization_depth"]) {
-    const double d = positive(t, "optimization_depth", where);
-    if (d != std::floor(d) || d > 100000) throw Error(where, "field 'optimization_depth' must be a whole number of segments");
+void read_trajectory(const yaml::Fields& top, TrajectoryLimits& out) {
+  const yaml::Fields t(
+      top.node("trajectory"), top.file(), "trajectory",
+      {"max_velocity", "max_linear_velocity", "max_linear_acceleration", "servo_period", "optimization_depth",
+       "arc_blend", "tangent_kink_ratio", "max_feed_override", "tool_change_seconds", "spindle_start_seconds",
+       "tool_change_position", "spindle_acceleration", "spindle_at_speed_share", "tool_lengths"});
+  if (t.has("max_velocity")) out.max_velocity = per_axis(t, "max_velocity");
+  out.max_linear_velocity = t.positive("max_linear_velocity", out.max_linear_velocity);
+  out.max_linear_acceleration = t.positive("max_linear_acceleration", out.max_linear_acceleration);
+  out.servo_period = t.positive("servo_period", out.servo_period);
+  if (t.has("optimization_depth")) {
+    const double d = t.positive("optimization_depth", 0, 100000);
+    if (d != std::floor(d)) t.fail("optimization_depth", "must be a whole number of segments");
     out.optimization_depth = int(d);
   }
-  if (const YAML::Node b = t["arc_blend"]) {
-    try {
-      out.arc_blend = b.as<bool>();
-    } catch (const YAML::Exception&) {
-      throw Error(where, "field 'arc_blend' must be true or false");
-    }
-  }
-  if (t["tangent_kink_ratio"]) out.tangent_kink_ratio = positive(t, "tangent_kink_ratio", where);
-  if (t["max_feed_override"]) out.max_feed_override = positive(t, "max_feed_override", where);
-  if (const YAML::Node p = t["tool_change_position"]) {
-    out.tool_change_position = point3(p, "trajectory.tool_change_position", path);
+  out.arc_blend = t.flag("arc_blend", out.arc_blend);
+  out.tangent_kink_ratio = t.positive("tangent_kink_ratio", out.tangent_kink_ratio);
+  out.max_feed_override = t.positive("max_feed_override", out.max_feed_override);
+  if (t.has("tool_change_position")) {
+    out.tool_change_position = t.vector3("tool_change_position");
     out.has_tool_change_position = true;
   }
-  if (t["spindle_acceleration"]) out.spindle_acceleration = positive(t, "spindle_acceleration", where);
-  if (t["spindle_at_speed_share"]) {
-    out.spindle_at_speed_share = positive(t, "spindle_at_speed_share", where);
-    if (out.spindle_at_speed_share > 1) throw Error(where, "field 'spindle_at_speed_share' must be at most 1");
-  }
-  for (const char* key : {"tool_change_seconds", "spindle_start_seconds"}) {
-    if (!t[key]) continue;
-    const double v = number(t[key], std::string("trajectory.") + key, path);
-    if (v < 0) throw Error(where, std::string("field '") + key + "' must be >= 0");
-    (std::string(key) == "tool_change_seconds" ? out.tool_change_seconds : out.spindle_start_seconds) = v;
-  }
+  out.spindle_acceleration = t.positive("spindle_acceleration", out.spindle_acceleration);
+  out.spindle_at_speed_share = t.positive("spindle_at_speed_share", out.spindle_at_speed_share, 1);
+  out.tool_change_seconds = t.number("tool_change_seconds", out.tool_change_seconds, 0);
+  out.spindle_start_seconds = t.number("spindle_start_seconds", out.spindle_start_seconds, 0);
+  if (t.has("tool_lengths")) out.tool_lengths = tool_lengths(t, "tool_lengths");
 }
 
 // `rotary:` of a trunnion table (XYZAC): A about machine X carrying C about the table's Z.
-machine::Trunnion trunnion(const YAML::Node& r, const MachineLimits& m, const std::string& path) {
-  if (!r.IsMap()) throw Error(path, "field 'rotary' must be a map");
-  static const std::set<std::string> known = {"kinematics", "a", "c", "c_centre", "a_pivot", "mode", "safe_z",
-                                             "max_tool_length"};
-  for (const auto& kv : r)
-    if (!known.count(kv.first.Scalar())) throw Error(path, "unknown field 'rotary." + kv.first.Scalar() + "'");
-  if (!r["kinematics"] || r["kinematics"].Scalar() != "trunnion-ac")
-    throw Error(path, "rotary.kinematics must be trunnion-ac (A about X carrying C about Z: LinuxCNC's xyzac-trt)");
+machine::Trunnion trunnion(const yaml::Fields& top, const MachineLimits& m) {
+  const yaml::Fields r(top.node("rotary"), top.file(), "rotary",
+                       {"kinematics", "a", "c", "c_centre", "a_pivot", "mode", "safe_z", "max_tool_length"});
+  if (r.text("kinematics", "", true) != "trunnion-ac")
+    r.fail("kinematics", "must be trunnion-ac (A about X carrying C about Z: LinuxCNC's xyzac-trt)");
   machine::Trunnion t;
-  t.a = rotary_axis(r["a"], "a", path);
-  t.c = rotary_axis(r["c"], "c", path);
-  t.centre = point3(r["c_centre"], "rotary.c_centre", path);
-  t.pivot = point3(r["a_pivot"], "rotary.a_pivot", path);
-  const std::string mode = r["mode"] ? r["mode"].Scalar() : "identity";
-  if (mode == "identity") t.mode = machine::KinematicsMode::Identity;
-  else if (mode == "tool-centre-point") t.mode = machine::KinematicsMode::ToolCentrePoint;
-  else throw Error(path, "rotary.mode must be identity or tool-centre-point, got '" + mode + "'");
-  if (!r["safe_z"]) throw Error(path, "field 'rotary.safe_z' is missing (machine Z the tool retracts to to index)");
-  t.safe_z = number(r["safe_z"], "rotary.safe_z", path);
-  if (t.safe_z < m.envelope.min.z() || t.safe_z > m.envelope.max.z())
-    throw Error(path, "rotary.safe_z lies outside the envelope's z range");
-  if (!r["max_tool_length"])
-    throw Error(path, "field 'rotary.max_tool_length' is missing (the longest tool's length offset, mm: its tip "
-                      "hangs that far below the safe Z while the part turns)");
-  t.max_tool_length = number(r["max_tool_length"], "rotary.max_tool_length", path);
-  if (!(t.max_tool_length >= 0)) throw Error(path, "rotary.max_tool_length must be 0 or more (mm)");
+  t.a = rotary_axis(r, "a");
+  t.c = rotary_axis(r, "c");
+  t.centre = r.vector3("c_centre");
+  t.pivot = r.vector3("a_pivot");
+  const std::string mode = r.text("mode", "identity");
+  if (mode != "identity" && mode != "tool-centre-point")
+    r.fail("mode", "must be identity or tool-centre-point, got '" + mode + "'");
+  t.mode = mode == "identity" ? machine::KinematicsMode::Identity : machine::KinematicsMode::ToolCentrePoint;
+  if (!r.has("safe_z")) r.fail("safe_z", "missing (machine Z the tool retracts to to index)");
+  t.safe_z = r.required_number("safe_z", m.envelope.min.z(), m.envelope.max.z());
+  if (!r.has("max_tool_length"))
+    r.fail("max_tool_length",
+           "missing (the longest tool's length offset, mm: its tip hangs that far below the safe "
+           "Z while the part turns)");
+  t.max_tool_length = r.required_number("max_tool_length", 0);
   return t;
 }
 
@@ -154,54 +135,41 @@ std::shared_ptr<const machine::Machine> MachineLimits::machine() const {
 }
 
 MachineLimits parse_machine_limits(const std::string& yaml_text, const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw Error(path, std::string("not valid YAML: ") + e.what());
-  }
-  if (!root.IsMap()) throw Error(path, "expected a map of machine fields");
+  const YAML::Node root = yaml::parse(yaml_text, path);
+  if (!root.IsMap()) throw Error(yaml::line_of(root, path), "expected a map of machine fields");
+  const yaml::Fields f(root, path, "",
+                       {"name", "envelope", "work_offset", "table_z", "max_feed", "max_spindle_rpm",
+                        "clearance_over_stock", "fixture_position", "max_acceleration", "rotary", "trajectory"});
   MachineLimits m;
-  if (root["name"] && !root["name"].IsScalar()) throw Error(path, "field 'name' must be a text");
-  m.name = root["name"] ? root["name"].Scalar() : "";
-  const YAML::Node env = root["envelope"];
-  if (!env || !env.IsMap()) throw Error(path, "field 'envelope' (x, y, z: [min, max]) is missing");
+  m.name = f.has("name") ? f.text("name", "") : "";
+  if (!f.has("envelope")) f.fail("envelope", "missing (x, y, z: [min, max])");
+  const yaml::Fields env(f.node("envelope"), path, "envelope", {"x", "y", "z"});
   static const char* axes[3] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a) {
-    const YAML::Node r = env[axes[a]];
-    const std::string field = std::string("envelope.") + axes[a];
-    if (!r || !r.IsSequence() || r.size() != 2) throw Error(path, "field '" + field + "' must be [min, max]");
-    m.envelope.min[a] = number(r[0], field + " min", path);
-    m.envelope.max[a] = number(r[1], field + " max", path);
-    if (!(m.envelope.min[a] < m.envelope.max[a])) throw Error(path, "field '" + field + "': min must be below max");
-  }
-  if (const YAML::Node w = root["work_offset"]) {
-    if (!w.IsSequence() || w.size() != 3) throw Error(path, "field 'work_offset' must be [x, y, z]");
-    for (int a = 0; a < 3; ++a) m.work_offset.origin[a] = number(w[a], "work_offset", path);
-  }
-  if (!root["table_z"]) throw Error(path, "field 'table_z' is missing");
-  m.table_z = number(root["table_z"], "table_z", path);
-  if (m.table_z < m.envelope.min.z() - 1e-9 || m.table_z > m.envelope.max.z())
-    throw Error(path, "table_z " + fmt(m.table_z) + " lies outside the envelope's z range");
-  m.max_feed = positive(root, "max_feed", path);
-  m.max_spindle_rpm = positive(root, "max_spindle_rpm", path);
-  m.clearance_over_stock = number(root["clearance_over_stock"], "clearance_over_stock", path);
-  if (m.clearance_over_stock < 0) throw Error(path, "field 'clearance_over_stock' must be >= 0");
+  for (int a = 0; a < 3; ++a) std::tie(m.envelope.min[a], m.envelope.max[a]) = range_of(env, axes[a], "");
+  if (f.has("work_offset")) m.work_offset.origin = f.vector3("work_offset");
+  m.table_z = f.required_number("table_z", m.envelope.min.z() - 1e-9, m.envelope.max.z());
+  m.max_feed = f.required_positive("max_feed");
+  m.max_spindle_rpm = f.required_positive("max_spindle_rpm");
+  m.clearance_over_stock = f.required_number("clearance_over_stock", 0);
   m.fixture_position = m.work_offset.origin.head<2>();
-  if (const YAML::Node fp = root["fixture_position"]) {
-    if (!fp.IsSequence() || fp.size() != 2) throw Error(path, "field 'fixture_position' must be [x, y]");
-    for (int a = 0; a < 2; ++a) m.fixture_position[a] = number(fp[a], "fixture_position", path);
-    for (int a = 0; a < 2; ++a)
-      if (m.fixture_position[a] < m.envelope.min[a] || m.fixture_position[a] > m.envelope.max[a])
-        throw Error(path, "fixture_position lies outside the envelope");
+  if (const YAML::Node fp = f.node("fixture_position")) {
+    if (!fp.IsSequence() || fp.size() != 2) f.fail("fixture_position", "must be [x, y]");
+    for (int a = 0; a < 2; ++a) {
+      m.fixture_position[a] = f.converted<double>(fp[a], "fixture_position", "expected a number");
+      if (!(m.fixture_position[a] >= m.envelope.min[a] && m.fixture_position[a] <= m.envelope.max[a]))
+        f.fail("fixture_position", "lies outside the envelope");
+    }
   }
-  if (const YAML::Node acc = root["max_acceleration"]) {
-    if (!acc.IsMap()) throw Error(path, "field 'max_acceleration' must be {x: A, y: A, z: A} (mm/s^2)");
-    for (int a = 0; a < 3; ++a) m.max_acceleration[a] = positive(acc, axes[a], path + " max_acceleration");
-  }
-  if (const YAML::Node r = root["rotary"]) m.trunnion = trunnion(r, m, path);
+  if (f.has("max_acceleration")) m.max_acceleration = per_axis(f, "max_acceleration");
+  if (f.has("rotary")) m.trunnion = trunnion(f, m);
   m.trajectory.max_acceleration = m.max_acceleration;
-  if (const YAML::Node t = root["trajectory"]) read_trajectory(t, path, m.trajectory);
+  if (f.has("trajectory")) read_trajectory(f, m.trajectory);
+  if (m.trunnion)
+    for (const auto& [tool, length] : m.trajectory.tool_lengths)
+      if (length > m.trunnion->max_tool_length)
+        f.fail("trajectory", "tool " + std::to_string(tool) + "'s length offset " + fmt(length) +
+                                 " mm is over rotary.max_tool_length " + fmt(m.trunnion->max_tool_length) +
+                                 " (its tip would hang below what the safe Z clears while the part turns)");
   if (m.trunnion) {
     m.trajectory.rotary_velocity = Vec2(m.trunnion->a.velocity, m.trunnion->c.velocity);
     m.trajectory.rotary_acceleration = Vec2(m.trunnion->a.acceleration, m.trunnion->c.acceleration);

@@ -7,13 +7,13 @@
 #include <set>
 #include <sstream>
 
+#include "job_files.hpp"
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/input_file.hpp"
 #include "rosmill/gcode/work_offset.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
+#include "rosmill/input_file.hpp"
 #include "setup_yaml.hpp"
-#include "yaml_fields.hpp"
 
 namespace rosmill::core::job {
 namespace {
@@ -196,13 +196,7 @@ SetupSpec default_setup(const JobSpec& job, const Vec3& direction) {
 }
 
 JobSpec parse_job(const std::string& text, const std::string& name, const std::string& folder) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(name + ":" + std::to_string(e.mark.line + 1), "not valid YAML: " + e.msg);
-  }
-  const Fields f(root, name, "",
+  const Fields f(yaml::parse(text, name), name, "",
                  {"part", "units", "resolution", "rapid_feed", "stock", "operations", "setups", "fixture", "datum",
                   "overlap", "held_face", "auto", "accept_unfinished"});
   JobSpec job;

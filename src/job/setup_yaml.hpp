@@ -2,8 +2,8 @@
 #pragma once
 #include <string>
 
+#include "job_files.hpp"
 #include "rosmill/job/job_spec.hpp"
-#include "yaml_fields.hpp"
 
 namespace rosmill::core::job {
 

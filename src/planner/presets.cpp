@@ -9,83 +9,64 @@
 #include "rosmill/cutter/tool_table.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/input_file.hpp"
+#include "rosmill/yaml/fields.hpp"
 
 namespace rosmill::core {
 namespace {
 
-double optional_number(const YAML::Node& node, const char* field, double fallback, const std::string& where) {
-  const YAML::Node v = node[field];
-  if (!v) return fallback;
-  double x = 0;
-  try {
-    x = v.as<double>();
-  } catch (const YAML::Exception&) {
-    throw Error(where, std::string("field '") + field + "' is not a number");
-  }
-  if (!std::isfinite(x) || x < 0) throw Error(where, std::string("field '") + field + "' must be a number >= 0");
-  return x;
-}
-
-std::string text(const YAML::Node& node, const char* field, bool required, const std::string& where) {
-  const YAML::Node v = node[field];
-  if (!v) {
-    if (required) throw Error(where, std::string("field '") + field + "' is missing");
-    return "";
-  }
-  if (!v.IsScalar()) throw Error(where, std::string("field '") + field + "' must be a text");
-  return v.Scalar();
-}
-
-Preset read_preset(const YAML::Node& node, const ToolTable& tools, const std::string& where) {
-  if (!node.IsMap()) throw Error(where, "must be a map of fields");
+Preset read_preset(const YAML::Node& node, const ToolTable& tools, const std::string& file, size_t index) {
+  const yaml::Fields f(
+      node, file, "presets[" + std::to_string(index) + "]",
+      {"name", "strategy", "description", "tool", "stepover", "stepdown", "allowance", "tolerance", "sampling"});
   Preset p;
-  p.name = text(node, "name", true, where);
-  const std::string at = where + " (" + p.name + ")";
-  p.strategy = text(node, "strategy", true, at);
-  p.description = text(node, "description", false, at);
-  const double id = optional_number(node, "tool", 0, at);
-  if (id < 1) throw Error(at, "field 'tool' must name a tool of the table by its id");
-  p.tool = tools.get(int(id));
-  p.stepover = optional_number(node, "stepover", NAN, at);
-  p.stepdown = optional_number(node, "stepdown", NAN, at);
-  p.allowance = optional_number(node, "allowance", 0.0, at);
-  p.tolerance = optional_number(node, "tolerance", NAN, at);
-  const std::string sampling = text(node, "sampling", false, at);
-  if (!sampling.empty()) p.sampling = parse_sampling(sampling, at + ": field 'sampling'");
+  p.name = f.text("name", "", true);
+  p.strategy = f.text("strategy", "", true);
+  p.description = f.text("description", "");
+  const double id = f.required_number("tool", 1, kMaxToolNumber);
+  if (id != std::floor(id)) f.fail("tool", "must name a tool of the table by its id");
+  try {
+    p.tool = tools.get(int(id));
+  } catch (const Error& e) {
+    f.fail("tool", e.what());
+  }
+  p.stepover = f.number("stepover", NAN, 0);
+  p.stepdown = f.number("stepdown", NAN, 0);
+  p.allowance = f.number("allowance", 0.0, 0);
+  p.tolerance = f.number("tolerance", NAN, 0);
+  const std::string sampling = f.text("sampling", "");
+  if (!sampling.empty()) p.sampling = parse_sampling(sampling, f.where("sampling"));
   return p;
 }
 
-PlanTemplate read_template(const YAML::Node& node, const PresetTable& table, const std::string& where) {
-  if (!node.IsMap()) throw Error(where, "must be a map of fields");
+PlanTemplate read_template(const YAML::Node& node, const PresetTable& table, const std::string& file, size_t index) {
+  const yaml::Fields f(node, file, "templates[" + std::to_string(index) + "]",
+                       {"name", "description", "stages", "weights"});
   PlanTemplate t;
-  t.name = text(node, "name", true, where);
-  const std::string at = where + " (" + t.name + ")";
-  t.description = text(node, "description", false, at);
-  if (!node["stages"] || !node["stages"].IsSequence() || node["stages"].size() == 0)
-    throw Error(at, "field 'stages' must list presets");
-  for (const YAML::Node& s : node["stages"]) {
-    if (!s.IsScalar()) throw Error(at, "field 'stages' must list presets by name");
+  t.name = f.text("name", "", true);
+  t.description = f.text("description", "");
+  const YAML::Node stages = f.node("stages");
+  if (!stages || !stages.IsSequence() || stages.size() == 0) f.fail("stages", "must list presets by name");
+  for (const YAML::Node& s : stages) {
+    if (!s.IsScalar()) throw Error(f.where_at(s, "stages"), "must list presets by name");
     t.stages.push_back(s.Scalar());
-    if (!table.find(t.stages.back())) throw Error(at, "stage '" + t.stages.back() + "' is not a preset of the table");
+    if (!table.find(t.stages.back()))
+      throw Error(f.where_at(s, "stages"), "'" + t.stages.back() + "' is not a preset of the table");
   }
-  double sum = 0;
-  if (node["weights"]) {
-    if (!node["weights"].IsSequence()) throw Error(at, "field 'weights' must list one share per stage");
-    for (const YAML::Node& w : node["weights"]) {
-      double share = NAN;
-      try {
-        share = w.as<double>();
-      } catch (const YAML::Exception&) {
-      }
-      if (!std::isfinite(share) || share < 0) throw Error(at, "field 'weights' must hold numbers >= 0");
-      t.weights.push_back(share);
-      sum += share;
-    }
-    if (t.weights.size() != t.stages.size() || !(std::abs(sum - 1.0) < 1e-6))
-      throw Error(at, "field 'weights' must give one share per stage, summing to 1");
-  } else {
+  const YAML::Node weights = f.node("weights");
+  if (!weights) {
     t.weights.assign(t.stages.size(), 1.0 / double(t.stages.size()));
+    return t;
   }
+  if (!weights.IsSequence()) f.fail("weights", "must list one share per stage");
+  double sum = 0;
+  for (const YAML::Node& w : weights) {
+    const double share = f.converted<double>(w, "weights", "expected a number");
+    if (!std::isfinite(share) || share < 0) throw Error(f.where_at(w, "weights"), "must hold numbers >= 0");
+    t.weights.push_back(share);
+    sum += share;
+  }
+  if (t.weights.size() != t.stages.size() || !(std::abs(sum - 1.0) < 1e-6))
+    f.fail("weights", "must give one share per stage, summing to 1");
   return t;
 }
 
@@ -105,18 +86,17 @@ const PlanTemplate* PresetTable::find_template(const std::string& name) const {
 
 PresetTable parse_presets(const std::string& yaml_text, const std::string& name) {
   // The presets' tools are a tool table in the same file (config/tools.yaml's format).
-  const ToolTable tools = parse_tool_table(yaml_text, name);
-  const YAML::Node root = YAML::Load(yaml_text);  // valid YAML: the tool table's reader has checked it
+  const ToolTable tools = parse_tool_table(yaml_text, name, {"presets", "templates"});
+  const yaml::Fields f(yaml::parse(yaml_text, name), name, "", {"tools", "presets", "templates"});
   PresetTable table;
   table.source = name;
-  const YAML::Node presets = root["presets"];
-  if (!presets || !presets.IsSequence()) throw Error(name, "has no 'presets' list");
-  for (size_t i = 0; i < presets.size(); ++i)
-    table.presets.push_back(read_preset(presets[i], tools, name + ": preset #" + std::to_string(i + 1)));
-  const YAML::Node templates = root["templates"];
-  if (templates && templates.IsSequence())
-    for (size_t i = 0; i < templates.size(); ++i)
-      table.templates.push_back(read_template(templates[i], table, name + ": template #" + std::to_string(i + 1)));
+  const YAML::Node presets = f.node("presets");
+  if (!presets || !presets.IsSequence()) f.fail("presets", "expected a list of presets");
+  for (size_t i = 0; i < presets.size(); ++i) table.presets.push_back(read_preset(presets[i], tools, name, i));
+  const YAML::Node templates = f.node("templates");
+  if (templates && !templates.IsSequence()) f.fail("templates", "expected a list of templates");
+  for (size_t i = 0; templates && i < templates.size(); ++i)
+    table.templates.push_back(read_template(templates[i], table, name, i));
   return table;
 }
 

@@ -90,8 +90,9 @@ TEST(ChipThinning, ToolTableReadsFeedEngagement) {
   const ToolTable left_out = parse_tool_table(row + "}\n", "tools.yaml");
   EXPECT_TRUE(std::isnan(left_out.tools[0].feed_engagement));
   EXPECT_NEAR(left_out.tools[0].feed_engagement_deg(), 78.463, 1e-3);
-  EXPECT_NE(error_of([&] { parse_tool_table(row + ", feed_engagement: 0}\n", "tools.yaml"); })
-                .find("tools.yaml: tool 1: field 'feed_engagement' must lie in (0, 180] degrees"),
+  EXPECT_NE(error_of([&] {
+              parse_tool_table(row + ", feed_engagement: 0}\n", "tools.yaml");
+            }).find("tools[0].feed_engagement: must lie in (0, 180] degrees"),
             std::string::npos);
   EXPECT_NE(error_of([&] { parse_tool_table(row + ", feed_engagement: 200}\n", "tools.yaml"); })
                 .find("feed_engagement"),

@@ -55,6 +55,27 @@ TEST(CycleTime, RapidsRunAtTheAxesLimitsAlongTheirDirection) {
               2 * rest_to_rest(100, 30.48, 508), 1e-9);
 }
 
+// G43 makes the program's Z the tool's tip, its length below the spindle: a retract to a machine Z (G53, before a
+// trunnion turns the part) runs from the spindle's height, the tip's plus that length, and so does the way back.
+TEST(CycleTime, AMachineCoordinateRetractRunsFromTheSpindleOfTheToolInItsLengthOffset) {
+  const std::vector<std::string> program = {"G21 G90 G61", "G10 L2 P1 X0 Y0 Z0", "G54 G0 X0 Y0 Z0", "T5 M6", "G43 H5",
+                                            "G0 Z50",      "G53 G0 Z110",        "G0 Z60"};
+  TrajectoryLimits t = sim();
+  // Without the tool table: 60 mm up, 50 down. With tool 5 30 mm long: machine Z 80 up to 110 (the tip at program
+  // Z 80), then 20 mm down to Z 60.
+  EXPECT_NEAR(seconds(program, t),
+              rest_to_rest(50, 30.48, 508) + rest_to_rest(60, 30.48, 508) + rest_to_rest(50, 30.48, 508), 1e-9);
+  t.tool_lengths = {{5, 30.0}, {6, 12.0}};
+  EXPECT_NEAR(seconds(program, t),
+              rest_to_rest(50, 30.48, 508) + rest_to_rest(30, 30.48, 508) + rest_to_rest(20, 30.48, 508), 1e-9);
+  // G49 takes the offset off: machine Z is the program's again.
+  std::vector<std::string> cancelled = program;
+  cancelled.insert(cancelled.begin() + 6, "G49");
+  t.tool_lengths = {{5, 30.0}};
+  EXPECT_NEAR(seconds(cancelled, t),
+              rest_to_rest(50, 30.48, 508) + rest_to_rest(60, 30.48, 508) + rest_to_rest(50, 30.48, 508), 1e-9);
+}
+
 TEST(CycleTime, ExactStopStopsAtTheCornerAndBlendingDoesNot) {
   const std::vector<std::string> corner = {"G0 X0 Y0 Z0", "G1 X50 F1200", "Y50"};
   std::vector<std::string> exact = {"G21 G90 G61"}, blended = {"G21 G90 G64 P0.01"};
@@ -111,6 +132,26 @@ TEST(CycleTime, TheMachineFileCarriesTheSimulatorsPlanner) {
   EXPECT_DOUBLE_EQ(m.trajectory.max_linear_velocity, 53.34);
   EXPECT_DOUBLE_EQ(m.trajectory.servo_period, 0.001);
   EXPECT_EQ(m.trajectory.optimization_depth, 50);
+  // The trunnion simulator's tool table (xyzac-trt.tbl).
+  const MachineLimits x = load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine_xyzac.yaml");
+  EXPECT_DOUBLE_EQ(x.trajectory.tool_length(5), 30.0);
+  EXPECT_DOUBLE_EQ(x.trajectory.tool_length(2), 15.0);
+  EXPECT_DOUBLE_EQ(x.trajectory.tool_length(42), 0.0);
+  const std::string base =
+      "name: m\nenvelope: {x: [0, 1], y: [0, 1], z: [0, 1]}\ntable_z: 0\nmax_feed: 1\n"
+      "max_spindle_rpm: 1\nclearance_over_stock: 0\n";
+  auto error = [&](const std::string& trajectory) {
+    try {
+      parse_machine_limits(base + "trajectory:\n  " + trajectory + "\n", "m.yaml");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error("tool_lengths: {5: 30, 0: 2}").rfind("m.yaml:8 trajectory.tool_lengths: tool number '0'", 0), 0u)
+      << error("tool_lengths: {5: 30, 0: 2}");
+  EXPECT_EQ(error("tool_lengths: {5: long}"), "m.yaml:8 trajectory.tool_lengths: expected a length in mm, got 'long'");
+  EXPECT_EQ(error("tool_lengths: [30]").rfind("m.yaml:8 trajectory.tool_lengths: must be {tool number", 0), 0u);
   try {
     parse_machine_limits("name: m\nenvelope: {x: [0, 1], y: [0, 1], z: [0, 1]}\ntable_z: 0\nmax_feed: 1\n"
                          "max_spindle_rpm: 1\nclearance_over_stock: 0\ntrajectory: {servo_period: -1}\n",

@@ -31,9 +31,9 @@ std::string temp_file(const std::string& name, const std::string& bytes) {
 // fuzz_tables: a tool entry whose field name is a sequence escaped as yaml-cpp's bad conversion.
 TEST(FuzzFindings, ToolFieldNameThatIsNotTextIsRefused) {
   const std::string input = "\ntools:\n- {[]}";
-  EXPECT_NE(error_of([&] { parse_presets(input, "presets.yaml"); }).find("a field name must be a text"),
+  EXPECT_NE(error_of([&] { parse_presets(input, "presets.yaml"); }).find("a field's name must be a text"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { parse_tool_table(input, "tools.yaml"); }).find("tools.yaml: tool #1"), std::string::npos);
+  EXPECT_NE(error_of([&] { parse_tool_table(input, "tools.yaml"); }).find("tools.yaml:3 tools[0]"), std::string::npos);
 }
 
 // fuzz_tables: a template's weight that is not a number escaped as yaml-cpp's bad conversion (the fuzzer's input
@@ -57,8 +57,9 @@ TEST(FuzzFindings, TemplateWeightThatIsNotANumberIsRefused) {
 // fuzz_tables: a machine name that is a sequence ("name: []", after the selector byte 2) escaped as yaml-cpp's bad
 // conversion.
 TEST(FuzzFindings, MachineNameThatIsNotTextIsRefused) {
-  EXPECT_NE(error_of([] { gcode::parse_machine_limits("name: []", "machine.yaml"); })
-                .find("machine.yaml: field 'name' must be a text"),
+  EXPECT_NE(error_of([] {
+              gcode::parse_machine_limits("name: []", "machine.yaml");
+            }).find("machine.yaml:1 name: expected a text"),
             std::string::npos);
 }
 

@@ -56,7 +56,7 @@ TEST(PlanPresets, BadTablesAreErrorsNamingTheEntry) {
               parse_presets(tools + "presets:\n  - {name: a, strategy: raster, tool: 1}\ntemplates:\n"
                                     "  - {name: b, stages: [{x: 1}]}\n",
                             "p.yaml");
-            }).find("p.yaml: template #1 (b): field 'stages' must list presets by name"),
+            }).find("templates[0].stages: must list presets by name"),
             std::string::npos);
   const PresetTable ok = parse_presets(tools + "presets:\n  - {name: a, strategy: raster, tool: 1}\n", "p.yaml");
   EXPECT_EQ(ok.presets.size(), 1u);

@@ -1,5 +1,5 @@
 // Tool table: the shipped config/tools.yaml reads, and every kind of bad entry is refused with a message that
-// names the file, the tool and the field.
+// names the file, the line and the field.
 #include <gtest/gtest.h>
 
 #include "rosmill/cutter/tool_table.hpp"
@@ -56,22 +56,29 @@ TEST(ToolTable, GoodEntryFields) {
   EXPECT_DOUBLE_EQ(b.stepdown, 1.5);
 }
 
-TEST(ToolTable, ErrorsNameFileToolAndField) {
-  EXPECT_EQ(table_error(with("diameter: 8", "diameter: -8")), "t.yaml: tool 7: field 'diameter' must be > 0, got '-8'");
-  EXPECT_EQ(table_error(with("feed: 1400", "feed: fast")), "t.yaml: tool 7: field 'feed' is not a number, got 'fast'");
-  EXPECT_EQ(table_error(with("type: bull", "type: drill")), "t.yaml: tool 7: field 'type' must be flat, ball or bull, got 'drill'");
+TEST(ToolTable, ErrorsNameFileLineAndField) {
+  EXPECT_EQ(table_error(with("diameter: 8", "diameter: -8")),
+            "t.yaml:2 tools[0].diameter: must be greater than 0, got -8");
+  EXPECT_EQ(table_error(with("feed: 1400", "feed: fast")), "t.yaml:3 tools[0].feed: expected a number, got 'fast'");
+  EXPECT_EQ(table_error(with("type: bull", "type: drill")),
+            "t.yaml:2 tools[0].type: must be flat, ball or bull, got 'drill'");
   EXPECT_EQ(table_error(with("corner_radius: 1", "corner_radius: 5")),
-            "t.yaml: tool 7: field 'corner_radius' is larger than half the diameter");
-  EXPECT_EQ(table_error(with(", stepdown: 1.5", "")), "t.yaml: tool 7: field 'stepdown' is missing");
-  EXPECT_EQ(table_error(with("stepover: 2", "stepover: 20")), "t.yaml: tool 7: field 'stepover' is larger than the diameter");
-  EXPECT_EQ(table_error(with("name: bull", "nmae: bull")), "t.yaml: tool 7: unknown field 'nmae'");
-  EXPECT_EQ(table_error(with("id: 7", "id: 2.5")), "t.yaml: tool 2.5: field 'id' must be a whole number in [1, 99999]");
-  EXPECT_EQ(table_error(std::string(kGood) + std::string(kGood).substr(7)), "t.yaml: tool 7: field 'id' is used twice");
-  EXPECT_EQ(table_error("tools: []"), "t.yaml: 'tools' must be a non-empty list");
+            "t.yaml:2 tools[0].corner_radius: is larger than half the diameter");
+  EXPECT_EQ(table_error(with(", stepdown: 1.5", "")), "t.yaml:2 tools[0].stepdown: missing (required)");
+  EXPECT_EQ(table_error(with("stepover: 2", "stepover: 20")),
+            "t.yaml:3 tools[0].stepover: is larger than the diameter");
+  EXPECT_EQ(table_error(with("name: bull", "nmae: bull"))
+                .rfind("t.yaml:2 tools[0].nmae: unknown field (expected one of corner_radius, diameter, feed,", 0),
+            0u);
+  EXPECT_EQ(table_error(with("id: 7", "id: 2.5")),
+            "t.yaml:2 tools[0].id: must be a whole number in [1, 99999], got 2.5");
+  EXPECT_EQ(table_error(std::string(kGood) + std::string(kGood).substr(7)),
+            "t.yaml:4 tools[1].id: tool 7 is listed twice (first at line 2)");
+  EXPECT_EQ(table_error("tools: []"), "t.yaml:1 tools: expected a non-empty list of tools");
+  EXPECT_EQ(table_error("tool: []").rfind("t.yaml:1 tool: unknown field (expected one of tools)", 0), 0u);
   EXPECT_NE(table_error("tools: [ {id: 1").find("t.yaml:1: not valid YAML"), std::string::npos);
-  EXPECT_NE(table_error(with("type: bull, diameter: 8, corner_radius: 1", "type: ball, diameter: 8, corner_radius: 1"))
-                .find("field 'corner_radius' must be half the diameter"),
-            std::string::npos);
+  EXPECT_EQ(table_error(with("type: bull, diameter: 8, corner_radius: 1", "type: ball, diameter: 8, corner_radius: 1")),
+            "t.yaml:2 tools[0].corner_radius: must be half the diameter for a ball end mill");
 }
 
 TEST(ToolTable, ResolveSpecOrId) {

@@ -102,14 +102,18 @@ TEST(Trunnion, MachineFileFieldsAreChecked) {
     t.replace(at, from.size(), to);
     return error_of([&] { gcode::parse_machine_limits(t, "m.yaml"); });
   };
-  EXPECT_NE(refused("trunnion-ac", "head-bc").find("rotary.kinematics must be trunnion-ac"), std::string::npos);
-  EXPECT_NE(refused("[-100, 50]", "[50, -100]").find("rotary.a: range: min must be below max"), std::string::npos);
+  EXPECT_NE(refused("trunnion-ac", "head-bc").find("rotary.kinematics: must be trunnion-ac"), std::string::npos);
+  EXPECT_NE(refused("[-100, 50]", "[50, -100]").find("rotary.a.range: min must be below max"), std::string::npos);
   EXPECT_NE(refused("[-100, 50], velocity: 30, ", "[-100, 50], ").find("velocity"),
             std::string::npos);
-  EXPECT_NE(refused("safe_z: 110", "safe_z: 130").find("rotary.safe_z lies outside the envelope"), std::string::npos);
-  EXPECT_NE(refused("max_tool_length: 30", "").find("rotary.max_tool_length' is missing"), std::string::npos);
-  EXPECT_NE(refused("safe_z: 110", "safe_z: 110\n  spin: 3").find("unknown field 'rotary.spin'"), std::string::npos);
+  EXPECT_NE(refused("safe_z: 110", "safe_z: 130").find("rotary.safe_z: must lie in [-120, 120], got 130"),
+            std::string::npos);
+  EXPECT_NE(refused("max_tool_length: 30", "").find("rotary.max_tool_length: missing"), std::string::npos);
+  EXPECT_NE(refused("safe_z: 110", "safe_z: 110\n  spin: 3").find("rotary.spin: unknown field"), std::string::npos);
   EXPECT_NE(refused("a_pivot: [0, 20, 10]", "a_pivot: [0, 20]").find("rotary.a_pivot"), std::string::npos);
+  EXPECT_NE(
+      refused("5: 30, 6: 30", "5: 40, 6: 30").find("tool 5's length offset 40 mm is over rotary.max_tool_length 30"),
+      std::string::npos);
 }
 
 // The known answers on this machine (A from -100 to 50 degrees): +Z at A 0; the sides at A -90 with C turning the

@@ -1,5 +1,6 @@
 // The tool table (config/tools.yaml): every tool's cutter and how to run it, validated when read.
 #pragma once
+#include <set>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,12 @@ struct ToolTable {
   const Tool& get(int id) const;
 };
 
-// Reads and validates a table; every error names the file, the tool (id or position) and the field.
+// Reads and validates a table; every error names the file, the line and the field ("tools.yaml:22 tools[4].feed").
 ToolTable read_tool_table(const std::string& path);
-// The same from YAML text; `name` stands for the file in messages.
-ToolTable parse_tool_table(const std::string& yaml_text, const std::string& name);
+// The same from YAML text; `name` stands for the file in messages. `other_fields`: the top-level fields besides
+// `tools` that the file may hold (a presets file's presets and templates), any other is refused.
+ToolTable parse_tool_table(const std::string& yaml_text, const std::string& name,
+                           const std::set<std::string>& other_fields = {});
 
 // A tool with the defaults of a bare cutter spec (no table): feeds by diameter, stepover 10 % (ball, bull) or
 // 40 % (flat) of the diameter, step-down half the diameter. Its number (T word) is kNoToolNumber.

@@ -2,6 +2,7 @@
 // LinuxCNC's configuration gives them ([TRAJ], [AXIS_x], [EMCMOT], [DISPLAY]; rosmill machine --from-ini reads them
 // from a LinuxCNC ini file). Millimetres, degrees and seconds.
 #pragma once
+#include <map>
 #include "rosmill/geometry/types.hpp"
 
 namespace rosmill::core::gcode {
@@ -27,6 +28,14 @@ struct TrajectoryLimits {
   double spindle_acceleration = 0;
   double spindle_at_speed_share = 1.0;
   double spindle_start_seconds = 0;      // more per M3/M4, whatever the speed
+  // The controller's tool table: each tool's length offset (mm, its Z; [EMCIO] TOOL_TABLE), which G43 adds to the
+  // program's Z. A move in machine coordinates (G53, the retract before the table turns) runs that much shorter or
+  // longer than the program's numbers say. A tool not listed: no offset.
+  std::map<int, double> tool_lengths;
+  double tool_length(int tool) const {
+    const auto at = tool_lengths.find(tool);
+    return at == tool_lengths.end() ? 0.0 : at->second;
+  }
 
   bool limited() const { return max_acceleration.maxCoeff() > 0; }
 };
