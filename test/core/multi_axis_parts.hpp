@@ -50,6 +50,21 @@ inline Mesh dome_on_plate(double r, double w, double t, int segments = 144, int 
   return rosmill::core::build_mesh(c);
 }
 
+// The dome (radius 15 on a plate 36 mm wide) between two walls higher than it along X: where the rule's tool axis
+// would put the holder into a wall, the axis must turn.
+inline Mesh dome_between_walls() {
+  const Mesh dome = dome_on_plate(15, 18, 6, 96, 32);
+  std::vector<Vec3> corners;
+  for (size_t f = 0; f < dome.face_count(); ++f)
+    for (int i = 0; i < 3; ++i) corners.push_back(dome.corner(f, i));
+  for (const Box3& wall :
+       {Box3::between(Vec3(-30, -30, -6), Vec3(-18, 30, 25)), Box3::between(Vec3(18, -30, -6), Vec3(30, 30, 25))}) {
+    const std::vector<Vec3> w = rosmill::core::box_corners(wall);
+    corners.insert(corners.end(), w.begin(), w.end());
+  }
+  return rosmill::core::build_mesh(corners);
+}
+
 // A cylinder of radius r from z = 0 to h about the Z axis, its sides in `segments` facets, closed by its ends.
 inline Mesh cylinder_standing(double r, double h, int segments = 180) {
   std::vector<Vec3> c;

@@ -172,16 +172,7 @@ TEST(FiveAxisFinish, DomeAxesAreTheNormalTurnedByTheLeadAndTheBallTouchesTheMesh
 
 TEST(FiveAxisFinish, NoGougeOfBallShankOrHolderAlongTheMovesByTheIndependentCheck) {
   // A dome inside a pocket's walls: where the rule's axis would put the holder into a wall, the axis turns.
-  Mesh dome = dome_on_plate(15, 18, 6, 96, 32);
-  std::vector<Vec3> corners;
-  for (size_t f = 0; f < dome.face_count(); ++f)
-    for (int i = 0; i < 3; ++i) corners.push_back(dome.corner(f, i));
-  for (const Box3& wall :
-       {Box3::between(Vec3(-30, -30, -6), Vec3(-18, 30, 25)), Box3::between(Vec3(18, -30, -6), Vec3(30, 30, 25))}) {
-    const std::vector<Vec3> w = box_corners(wall);
-    corners.insert(corners.end(), w.begin(), w.end());
-  }
-  const Mesh mesh = build_mesh(corners);
+  const Mesh mesh = test_parts::dome_between_walls();
   PlanParams p = ball_params(6);
   p.stepover = 3;
   p.tool.stick_out = 26;
