@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "rosmill/error.hpp"
+#include "rosmill/gcode/linuxcnc_tool_table.hpp"
+#include "rosmill/input_file.hpp"
 #include "rosmill/number_text.hpp"
 
 namespace rosmill::core::gcode {
@@ -17,6 +21,18 @@ double positive(const LinuxcncIni& ini, const std::string& section, const std::s
   const double v = ini.number(section, key);
   if (!(v > 0)) throw Error(ini.path(), "[" + section + "] " + key + " must be positive, got " + num(v));
   return v;
+}
+
+// The tool table the ini names (a path from the ini's folder): each tool's length offset, which the estimate of a
+// machine-coordinate move (G53) needs.
+void write_tool_lengths(std::ostringstream& y, const LinuxcncIni& ini, double mm) {
+  const std::string name = ini.text("EMCIO", "TOOL_TABLE");
+  const std::string path = (std::filesystem::path(ini.path()).parent_path() / name).string();
+  const std::map<int, double> lengths = tool_lengths_from_table(read_input_file(path), path, mm);
+  y << "  tool_lengths: {";
+  for (auto t = lengths.begin(); t != lengths.end(); ++t)
+    y << (t == lengths.begin() ? "" : ", ") << t->first << ": " << num(t->second);
+  y << "}  # mm: [EMCIO] TOOL_TABLE " << name << ", each tool's length offset (Z)\n";
 }
 
 }  // namespace
@@ -102,6 +118,7 @@ std::string machine_yaml_from_ini(const LinuxcncIni& ini) {
       << "]  # machine mm: [EMCIO] TOOL_CHANGE_POSITION\n";
   }
   y << "  spindle_start_seconds: 0  # not in the ini: the spindle's time to reach its speed\n";
+  if (ini.has("EMCIO", "TOOL_TABLE")) write_tool_lengths(y, ini, mm);
   return y.str();
 }
 

@@ -6,9 +6,12 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "rosmill/error.hpp"
 #include "rosmill/gcode/cycle_time.hpp"
 #include "rosmill/gcode/linuxcnc_ini.hpp"
+#include "rosmill/gcode/linuxcnc_tool_table.hpp"
 #include "rosmill/gcode/machine_from_ini.hpp"
 #include "rosmill/gcode/machine_limits.hpp"
 
@@ -160,6 +163,27 @@ TEST(CycleTime, TheMachineFileCarriesTheSimulatorsPlanner) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("servo_period"), std::string::npos) << e.what();
   }
+}
+
+// The trunnion simulator's ini names its tool table: `rosmill machine --from-ini` writes each tool's length offset,
+// the ones config/machine_xyzac.yaml holds.
+TEST(MachineFromIni, TheToolTableTheIniNamesGivesEachToolsLength) {
+  const std::string ini =
+      "/usr/share/doc/linuxcnc/examples/sample-configs/sim/axis/vismach/5axis/table-rotary-tilting/xyzac-trt.ini";
+  if (::access(ini.c_str(), R_OK) != 0) GTEST_SKIP() << "LinuxCNC's sample configurations are not installed";
+  const MachineLimits m = parse_machine_limits(machine_yaml_from_ini(LinuxcncIni::read(ini)), "from ini");
+  const MachineLimits config = load_machine_limits(ROSMILL_SOURCE_DIR "/config/machine_xyzac.yaml");
+  EXPECT_EQ(m.trajectory.tool_lengths, config.trajectory.tool_lengths);
+  EXPECT_DOUBLE_EQ(m.trajectory.tool_length(5), 30.0);
+  // The table's own errors name its file and line.
+  EXPECT_THROW(tool_lengths_from_table("T1 P1 Z0\nT2 P2 Zlong\n", "t.tbl", 1), Error);
+  try {
+    tool_lengths_from_table("T1 P1 Z0 ;one\n\nT1 P2 Z3\n", "t.tbl", 1);
+    ADD_FAILURE() << "a tool listed twice was taken";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "t.tbl:3: tool 1 is listed twice");
+  }
+  EXPECT_DOUBLE_EQ(tool_lengths_from_table("T3 P3 Z1 D2\n", "t.tbl", 25.4).at(3), 25.4);
 }
 
 TEST(MachineFromIni, TheSimulatorsIniGivesTheMachineFilesNumbersWithTheirSources) {
