@@ -322,9 +322,11 @@ void time_operation(const Job& toolpaths, const machine::Machine& machine, const
                     const JobOptions& options, IndexingClock& clock, JobReport& report, OperationReport& r) {
   if (toolpaths.empty()) return;
   const machine::Trunnion* trunnion = machine.trunnion();
-  gcode::PostOptions post = gcode::post_options_for(options.dialect);
-  if (trunnion) post.index_safe_z = trunnion->safe_z;
-  r.time_s = gcode::estimate_cycle_time(toolpaths, post, options.trajectory).seconds;
+  // The operation's own moves: on a machine that turns the part, without the retract, turn and way down the post
+  // writes before an indexed toolpath (the indexing clock below counts them once per turn, as the program runs them).
+  Job moves = toolpaths;
+  for (Toolpath& tp : moves) tp.indexed = false;
+  r.time_s = gcode::estimate_cycle_time(moves, gcode::post_options_for(options.dialect), options.trajectory).seconds;
   SetupReport& setup = report.setups.back();
   if (!setup.index) return;
   const machine::Index& to = *setup.index;
