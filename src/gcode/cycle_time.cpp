@@ -397,6 +397,16 @@ class Timer {
       m.known_from = 7;
       start_.reset();
     }
+    // An axis the reader has lost (after a G53 move) but this timer followed: from where that move left it, and
+    // there still where the move does not name it.
+    for (int i = 0; i < 3; ++i) {
+      const uint8_t bit = uint8_t(1u << i);
+      if (!(held_known_ & bit)) continue;
+      if (!(m.known_from & bit)) m.from[i] = held_[i], m.known_from |= bit;
+      if (!(m.known_to & bit)) m.to[i] = m.from[i], m.known_to |= bit;
+    }
+    for (int i = 0; i < 3; ++i)
+      if (m.known_to >> i & 1) held_[i] = m.to[i], held_known_ |= uint8_t(1u << i);
     const bool tip_moves = m.from_known() && (m.to - m.from).squaredNorm() > 1e-18;
     if (m.indexes() && !tip_moves) {  // the rotary axes alone (an indexing, a turn in place): from rest to rest
       stop();
@@ -430,6 +440,8 @@ class Timer {
   double tolerance_now_ = 0;       // exact stop until the program sets G64
   Vec3 origin_ = Vec3::Zero();
   std::optional<Vec3> start_;      // where the next move starts when the reader cannot know (after a tool change)
+  Vec3 held_ = Vec3::Zero();       // the position as far as the timer knows it, for the axes in held_known_
+  uint8_t held_known_ = 0;
   double rpm_ = 0, at_speed_ = 0;
   CycleTime result_;
 };

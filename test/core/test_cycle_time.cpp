@@ -71,6 +71,10 @@ TEST(CycleTime, AMachineCoordinateRetractRunsFromTheSpindleOfTheToolInItsLengthO
   t.tool_lengths = {{5, 30.0}, {6, 12.0}};
   EXPECT_NEAR(seconds(program, t),
               rest_to_rest(50, 30.48, 508) + rest_to_rest(30, 30.48, 508) + rest_to_rest(20, 30.48, 508), 1e-9);
+  // The reader loses Z at a G53 move; the estimate follows it: a move in X alone, then the way down from the
+  // retract's height (before, the way down was taken as going nowhere: a short 3+2 program was estimated 3 s short).
+  EXPECT_NEAR(seconds({"G21 G90 G61", "G10 L2 P1 X0 Y0 Z0", "G54 G0 X0 Y0 Z0", "G53 G0 Z60", "G0 X10", "G0 Z0"}),
+              rest_to_rest(60, 30.48, 508) + rest_to_rest(10, 30.48, 508) + rest_to_rest(60, 30.48, 508), 1e-9);
   // G49 takes the offset off: machine Z is the program's again.
   std::vector<std::string> cancelled = program;
   cancelled.insert(cancelled.begin() + 6, "G49");
