@@ -6,6 +6,22 @@
 #
 #   rosmill_precompiled_headers()   after every target is declared: each library and program of this folder reuses
 #                                   its donor's headers (sources with options of their own compile without them).
+#
+# Off by default where a compiler cache is used (ccache, CMakeLists.txt): ccache hashes a precompiled header whole,
+# and one built in another folder differs, so a clean clone's build would miss the cache for every source that
+# reads it, where without them it finds what another build of the same sources compiled. Measured on 8 sources
+# compiled alone: 52.3 CPU seconds without, 41.5 with (a fifth less) on a cold build.
+if(CCACHE_PROGRAM)
+  set(precompiled_default OFF)
+else()
+  set(precompiled_default ON)
+endif()
+option(ROSMILL_PRECOMPILED_HEADERS "precompile the standard library's and Eigen's headers" ${precompiled_default})
+if(NOT ROSMILL_PRECOMPILED_HEADERS)
+  function(rosmill_precompiled_headers)
+  endfunction()
+  return()
+endif()
 set(ROSMILL_PRECOMPILED_HEADERS <algorithm> <array> <cmath> <cstddef> <cstdint> <cstdio> <functional> <limits>
   <memory> <optional> <sstream> <string> <utility> <vector> <Eigen/Core> <Eigen/Geometry>)
 set(precompiled_folder ${CMAKE_BINARY_DIR}/precompiled)
