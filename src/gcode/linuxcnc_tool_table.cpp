@@ -1,6 +1,8 @@
 #include "rosmill/gcode/linuxcnc_tool_table.hpp"
 
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "rosmill/cutter/tool_table.hpp"
