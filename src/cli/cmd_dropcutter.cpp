@@ -5,11 +5,11 @@
 #include <memory>
 
 #include <nlohmann/json.hpp>
-#include <tbb/global_control.h>
 
 #include "command.hpp"
 #include "rosmill/error.hpp"
 #include "rosmill/io/stl.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/plan/drop_grid.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 
@@ -33,9 +33,7 @@ void write_xyz(const std::string& path, const std::vector<Vec3>& points) {
 void run(const Options& o) {
   const Cutter cutter = parse_cutter_spec(o.tool, "--tool");
   if (o.threads < 0) throw Error("--threads", "must be >= 1");
-  std::unique_ptr<tbb::global_control> limit;
-  if (o.threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+  const ThreadLimit limit(o.threads);  // 0: every core
   // Units mm: the file's numbers are kept as they are, so D and S are in the file's units.
   const Mesh mesh = read_stl(o.file);
   const DropGrid grid = grid_over(mesh.bbox, cutter.radius(), o.spacing);

@@ -4,11 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 
@@ -122,11 +119,10 @@ double mean_spacing(const CloudGrid& grid, size_t samples) {
   if (n < 2) return 0.0;
   const size_t m = std::min(n, samples);
   const double stride = double(n) / double(m);
-  const double sum = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, m, 256), 0.0,
-      [&](const tbb::blocked_range<size_t>& range, double acc) {
-        for (size_t k = range.begin(); k != range.end(); ++k)
-          acc += nearest_distance(grid, grid.points()[size_t(double(k) * stride)]);
+  const double sum = reduce_pieces(
+      size_t(0), m, size_t(256), 0.0,
+      [&](size_t begin, size_t end, double acc) {
+        for (size_t k = begin; k != end; ++k) acc += nearest_distance(grid, grid.points()[size_t(double(k) * stride)]);
         return acc;
       },
       [](double a, double b) { return a + b; });
@@ -139,8 +135,8 @@ double spacing_quantile(const CloudGrid& grid, double q, size_t samples) {
   const size_t m = std::min(n, samples);
   const double stride = double(n) / double(m);
   std::vector<double> d(m);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 256), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t k = range.begin(); k != range.end(); ++k) d[k] = nearest_distance(grid, grid.points()[size_t(double(k) * stride)]);
+  for_each_piece<size_t>(0, m, 256, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k != end; ++k) d[k] = nearest_distance(grid, grid.points()[size_t(double(k) * stride)]);
   });
   const size_t at = std::min(m - 1, size_t(std::clamp(q, 0.0, 1.0) * double(m - 1)));
   std::nth_element(d.begin(), d.begin() + at, d.end());
@@ -159,8 +155,8 @@ double sampling_radius(const CloudGrid& grid, const CloudGrid& coarse, double q,
   if (inside.empty() || grid.size() < 2) return 0.0;
   const size_t m = std::max<size_t>(samples, 1);
   std::vector<double> d(m);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, m, 256), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t k = range.begin(); k != range.end(); ++k) {
+  for_each_piece<size_t>(0, m, 256, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k != end; ++k) {
       const size_t cell = inside[k % inside.size()];
       const double x = coarse.x0() + (double(cell % size_t(coarse.nx())) + radical_inverse(k + 1, 2)) * coarse.cell();
       const double y = coarse.y0() + (double(cell / size_t(coarse.nx())) + radical_inverse(k + 1, 3)) * coarse.cell();

@@ -5,12 +5,10 @@
 #include <limits>
 #include <memory>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
+#include "rosmill/cloud/cloud_sweep.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/cloud/cloud_sweep.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -143,9 +141,9 @@ Drop CloudSurface::drop_hinted(const CutterProfile& cp, const CutterProfile& lid
 
 void CloudSurface::drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const {
   const CutterProfile cp(supported(cutter)), lid_cp(cutter);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 512), [&](const tbb::blocked_range<size_t>& range) {
+  for_each_piece<size_t>(0, n, 512, [&](size_t begin, size_t end) {
     const GridPoint* hint = nullptr;
-    for (size_t i = range.begin(); i != range.end(); ++i) out[i] = drop_hinted(cp, lid_cp, xy[i].x(), xy[i].y(), hint);
+    for (size_t i = begin; i != end; ++i) out[i] = drop_hinted(cp, lid_cp, xy[i].x(), xy[i].y(), hint);
   });
 }
 

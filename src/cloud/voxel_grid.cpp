@@ -9,11 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -21,10 +18,10 @@ namespace {
 // The cloud's box; throws Error on a point that is not finite (no float-to-integer cast of a NaN below).
 Box3 bounds(const std::vector<Vec3>& points) {
   std::atomic<bool> finite{true};
-  const Box3 box = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, points.size(), 1 << 14), Box3(),
-      [&](const tbb::blocked_range<size_t>& r, Box3 part) {
-        for (size_t i = r.begin(); i != r.end(); ++i)
+  const Box3 box = reduce_pieces(
+      size_t(0), points.size(), size_t(1) << 14, Box3(),
+      [&](size_t begin, size_t end, Box3 part) {
+        for (size_t i = begin; i != end; ++i)
           if (points[i].allFinite())
             part.add(points[i]);
           else
@@ -68,7 +65,7 @@ void sort_by_cell(std::vector<Keyed<Key>>& keyed, int bits) {
   const auto chunk_range = [&](size_t c) { return std::pair<size_t, size_t>(c * n / chunks, (c + 1) * n / chunks); };
   for (int shift = 0; shift < bits; shift += kDigit) {
     const auto digit = [&](const Keyed<Key>& k) { return size_t(k.cell >> shift) & (kBuckets - 1); };
-    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+    for_each_index(size_t(0), chunks, [&](size_t c) {
       offsets[c].fill(0);
       const auto [begin, end] = chunk_range(c);
       for (size_t i = begin; i < end; ++i) ++offsets[c][digit(keyed[i])];
@@ -76,7 +73,7 @@ void sort_by_cell(std::vector<Keyed<Key>>& keyed, int bits) {
     size_t sum = 0;  // bucket by bucket, chunk by chunk: a stable order
     for (size_t b = 0; b < kBuckets; ++b)
       for (size_t c = 0; c < chunks; ++c) sum += std::exchange(offsets[c][b], sum);
-    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+    for_each_index(size_t(0), chunks, [&](size_t c) {
       const auto [begin, end] = chunk_range(c);
       for (size_t i = begin; i < end; ++i) scattered[offsets[c][digit(keyed[i])]++] = keyed[i];
     });
@@ -88,8 +85,8 @@ void sort_by_cell(std::vector<Keyed<Key>>& keyed, int bits) {
 template <class Key>
 std::vector<Vec3> cell_centroids(const std::vector<Vec3>& points, const Grid& g) {
   std::vector<Keyed<Key>> keyed(points.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t i = r.begin(); i != r.end(); ++i) {
+  for_each_piece<size_t>(0, points.size(), 1 << 14, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i != end; ++i) {
       const Vec3 c = ((points[i] - g.origin) * g.inverse).array().floor();
       // The largest coordinate may round up to the cell past the end: it belongs to the last one.
       const uint64_t x = std::min(uint64_t(c.x()), g.nx - 1), y = std::min(uint64_t(c.y()), g.ny - 1),
@@ -103,8 +100,8 @@ std::vector<Vec3> cell_centroids(const std::vector<Vec3>& points, const Grid& g)
     if (i == 0 || keyed[i].cell != keyed[i - 1].cell) starts.push_back(i);
   starts.push_back(keyed.size());
   std::vector<Vec3> out(starts.size() - 1);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, out.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t c = r.begin(); c != r.end(); ++c) {
+  for_each_piece<size_t>(0, out.size(), 4096, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c != end; ++c) {
       Vec3 sum = Vec3::Zero();  // relative to the corner: millimetre clouds far from their origin keep precision
       for (size_t k = starts[c]; k < starts[c + 1]; ++k) sum += points[keyed[k].index] - g.origin;
       out[c] = g.origin + sum / double(starts[c + 1] - starts[c]);

@@ -6,10 +6,6 @@
 #include <optional>
 #include <utility>
 
-#include <tbb/parallel_invoke.h>
-#include <tbb/task_arena.h>
-#include <tbb/task_group.h>
-
 #include "adaptive_regions.hpp"
 #include "body_guard.hpp"
 #include "rosmill/cutter/chip_thinning.hpp"
@@ -17,6 +13,7 @@
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/dubins.hpp"
 #include "rosmill/geometry/region_lookup.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/plan/level_material.hpp"
 #include "rosmill/plan/levels.hpp"
 
@@ -157,7 +154,7 @@ class AdaptivePlanner {
     };
     // The first level's walls first. Meanwhile the level maps' memory is made the process's own on the other core:
     // a virtual machine's host faults each fresh page in (heap_reuse.hpp), and the maps are megabytes.
-    tbb::task_group maps;
+    TaskGroup maps;
     maps.run([&] { reserve_maps(); });
     walls(0, 1);
     maps.wait();
@@ -171,7 +168,7 @@ class AdaptivePlanner {
     };
     // The other levels' walls and regions are found on the other core while the first level is planned (one core:
     // a pass follows the last), and are waited for only after it.
-    tbb::task_group others;
+    TaskGroup others;
     others.run([&] {
       walls(1, levels.size());
       for (size_t i = 1; i < levels.size(); ++i) regions_of(i);
@@ -250,8 +247,8 @@ class AdaptivePlanner {
     const Vec2 big_lo = map_lo(), big_hi = map_hi();
     // The material map and the lookup of where the cutter may go, side by side (isolated: waiting for the other,
     // this thread takes none of the other levels' walls, which may be being found meanwhile).
-    tbb::this_task_arena::isolate([&] {
-      tbb::parallel_invoke(
+    isolated([&] {
+      run_both(
           [&] {
             material_.reset(big_lo, big_hi, cell_);
             material_.fill(clip::subtract(clip::rectangle(big_lo, big_hi), r.material), LevelMaterial::kAir);

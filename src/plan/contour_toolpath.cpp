@@ -1,11 +1,10 @@
 #include "rosmill/plan/contour_toolpath.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/work_bound.hpp"
 
 namespace rosmill::core {
@@ -86,7 +85,7 @@ Toolpath contour_toolpath(const Mesh& mesh, const Tool& tool, const ContourOptio
   for (size_t k = 0; k < z.size(); ++k)
     shadow[k] = k == 0 ? union_regions({}, sections[0].contours) : union_regions(shadow[k - 1], sections[k].contours);
   std::vector<std::vector<OffsetLoop>> loops(z.size());
-  tbb::parallel_for(size_t(0), z.size(), [&](size_t k) {
+  for_each_index(size_t(0), z.size(), [&](size_t k) {
     loops[k] = offset_region(shadow[k], distance, options.arc_tolerance);
     // Climb milling with a clockwise spindle keeps the material on the cutter's right: clockwise around material,
     // counter-clockwise inside holes, i.e. every offset loop reversed.

@@ -5,8 +5,7 @@
 #include <limits>
 #include <numeric>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -51,7 +50,7 @@ MeshSurface::MeshSurface(const Mesh& mesh) : bounds_(mesh.bbox) {
   // The tree is built over a permutation of compact face boxes; the (large) contact records are then made once,
   // directly in leaf order, on both cores.
   std::vector<FaceBox> boxes(n);
-  tbb::parallel_for(size_t(0), n, [&](size_t f) {
+  for_each_index(size_t(0), n, [&](size_t f) {
     const Vec3 &a = mesh.corner(f, 0), &b = mesh.corner(f, 1), &c = mesh.corner(f, 2);
     boxes[f] = {std::min({a.x(), b.x(), c.x()}), std::max({a.x(), b.x(), c.x()}), std::min({a.y(), b.y(), c.y()}),
                 std::max({a.y(), b.y(), c.y()}), std::max({a.z(), b.z(), c.z()})};
@@ -63,7 +62,7 @@ MeshSurface::MeshSurface(const Mesh& mesh) : bounds_(mesh.bbox) {
   build(0, 0, static_cast<uint32_t>(n), boxes, order);
   const std::vector<unsigned char> own = ownership(mesh);
   tris_.resize(n);
-  tbb::parallel_for(size_t(0), n, [&](size_t i) {
+  for_each_index(size_t(0), n, [&](size_t i) {
     const uint32_t f = order[i];
     tris_[i] = make_contact_triangle(mesh.corner(f, 0).data(), mesh.corner(f, 1).data(), mesh.corner(f, 2).data(),
                                      own[f]);
@@ -252,9 +251,9 @@ Drop MeshSurface::drop(const Cutter& cutter, double x, double y) const {
 
 void MeshSurface::drop_many(const Cutter& cutter, const Vec2* xy, size_t n, Drop* out) const {
   const CutterProfile cp(cutter);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& range) {
+  for_each_piece<size_t>(0, n, 256, [&](size_t begin, size_t end) {
     uint32_t hint = kNone;
-    for (size_t i = range.begin(); i != range.end(); ++i) out[i] = drop_hinted(cp, xy[i].x(), xy[i].y(), hint);
+    for (size_t i = begin; i != end; ++i) out[i] = drop_hinted(cp, xy[i].x(), xy[i].y(), hint);
   });
 }
 

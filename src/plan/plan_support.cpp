@@ -5,10 +5,10 @@
 #include <cstdio>
 
 #include <Eigen/Geometry>
-#include <tbb/parallel_for.h>
 
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 
@@ -269,7 +269,7 @@ void parallel_blocks(size_t n, const PlanProgress& progress, double from, double
   const size_t block = std::max<size_t>(1, n / 50);
   for (size_t start = 0; start < n; start += block) {
     const size_t end = std::min(n, start + block);
-    tbb::parallel_for(start, end, [&](size_t i) { f(i); });
+    for_each_index(start, end, [&](size_t i) { f(i); });
     check_cancel(progress, from + (to - from) * double(end) / double(n));
   }
 }

@@ -5,9 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include <tbb/parallel_for.h>
-
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/slice/slicer.hpp"
 
 namespace rosmill::core {
@@ -65,7 +64,7 @@ void check_stock_mesh(const Mesh& stock, const Mesh* part) {
                            "along " + std::string(1, "xyz"[k]));
   const size_t n = part->vertices.size(), stride = std::max<size_t>(1, n / 2000);
   std::atomic<size_t> outside{n};
-  tbb::parallel_for(size_t(0), (n + stride - 1) / stride, [&](size_t i) {
+  for_each_index(size_t(0), (n + stride - 1) / stride, [&](size_t i) {
     if (outside.load() != n) return;
     if (!inside_closed_mesh(stock, part->vertices[i * stride])) outside = i * stride;
   });
@@ -100,7 +99,7 @@ StockReach::StockReach(const Mesh& stock, const std::vector<double>& levels, dou
   // Grown by the radius plus the arc tolerance: Clipper's round joins are chords inside the true arcs, so the
   // loops then hold every point within the radius of material.
   loops_.resize(levels.size());
-  tbb::parallel_for(size_t(0), levels.size(), [&](size_t i) {
+  for_each_index(size_t(0), levels.size(), [&](size_t i) {
     std::vector<Contour> slab;
     for (double z : heights[i]) slab = union_regions(slab, section(z));
     loops_[i] = offset_region(slab, radius + arc_tolerance, arc_tolerance);

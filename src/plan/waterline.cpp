@@ -5,9 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
+#include "rosmill/parallel.hpp"
 #include "rosmill/plan/levels.hpp"
 #include "rosmill/plan/raster.hpp"
 
@@ -69,7 +67,7 @@ class LevelContour {
     std::vector<bool> closed;
     trace_chains(edges, first, closed);
     std::vector<Vec3> points(edges.size());
-    tbb::parallel_for(size_t(0), edges.size(), [&](size_t k) { points[k] = crossing(edges[k]); });
+    for_each_index(size_t(0), edges.size(), [&](size_t k) { points[k] = crossing(edges[k]); });
     std::vector<WallContour> out;
     for (size_t c = 0; c + 1 < first.size(); ++c) {
       const Loop chain(points.begin() + first[c], points.begin() + first[c + 1]);
@@ -181,9 +179,8 @@ class LevelContour {
     const size_t chords = closed ? loop.size() : loop.size() - 1;
     std::vector<Loop> inserted(chords);
     std::vector<char> broken(chords, 0);
-    tbb::parallel_for(size_t(0), chords, [&](size_t i) {
-      broken[i] = !split(loop[i], loop[(i + 1) % loop.size()], 0, inserted[i]);
-    });
+    for_each_index(size_t(0), chords,
+                   [&](size_t i) { broken[i] = !split(loop[i], loop[(i + 1) % loop.size()], 0, inserted[i]); });
     std::vector<WallContour> out(1);
     out.back().closed = closed;
     for (size_t i = 0; i < loop.size(); ++i) {
@@ -250,7 +247,7 @@ class LevelContour {
   double z_;
   bool floor_in_;   // the part's floor (plus allowance) is above the level: everything is material
   double held_z_;   // held_threshold of the level
-  mutable tbb::enumerable_thread_specific<std::unique_ptr<LevelProbe>> probes_;  // one per thread
+  mutable PerThread<std::unique_ptr<LevelProbe>> probes_;  // one per thread
   std::unordered_map<uint64_t, std::array<uint64_t, 2>> adj_;
 };
 

@@ -8,13 +8,11 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/QR>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
-#include "rosmill/number_text.hpp"
-#include "rosmill/seconds_since.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/number_text.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/scan/covered_share.hpp"
 #include "rosmill/scan/design_symmetry.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
@@ -24,6 +22,7 @@
 #include "rosmill/scan/surface_normals.hpp"
 #include "rosmill/scan/surface_sample.hpp"
 #include "rosmill/scan/thinning.hpp"
+#include "rosmill/seconds_since.hpp"
 
 namespace rosmill::core::scan {
 namespace {
@@ -45,8 +44,8 @@ Fit measure(const MeshDistance& design, const std::vector<Vec3>& in_design, cons
   SurfaceDistance outlier;
   outlier.face = kNone;
   nearest.assign(in_design.size(), outlier);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, in_design.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i)
+  for_each_piece<size_t>(0, in_design.size(), 256, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i != end; ++i)
       if (!design.query_within(in_design[i], inlier_distance, nearest[i])) nearest[i].face = kNone;
   });
   double sum_sq = 0;
@@ -108,7 +107,7 @@ std::vector<Fit> race_candidates(const PlaneIcp& icp, const NearSurfaceCells& ce
     for (size_t i = 0; i < runners.size(); ++i)
       if (runners[i].running) running.push_back(i);
     if (running.empty()) break;
-    tbb::parallel_for(size_t(0), running.size(), [&](size_t k) {
+    for_each_index(size_t(0), running.size(), [&](size_t k) {
       Runner& c = runners[running[k]];
       IcpOutcome outcome;
       const int steps = std::min(kRound, kStageSteps - c.steps);
@@ -126,8 +125,8 @@ std::vector<Fit> race_candidates(const PlaneIcp& icp, const NearSurfaceCells& ce
       if (c.share < best - kTrail) c.running = false;
   }
   std::vector<Fit> fits(runners.size());
-  tbb::parallel_for(size_t(0), runners.size(),
-                    [&](size_t i) { fits[i] = measure(distance, coarse, runners[i].pose, leaf); });
+  for_each_index(size_t(0), runners.size(),
+                 [&](size_t i) { fits[i] = measure(distance, coarse, runners[i].pose, leaf); });
   return fits;
 }
 

@@ -7,9 +7,9 @@
 #include <numeric>
 
 #include <Eigen/Geometry>
-#include <tbb/parallel_for.h>
 
 #include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/scan/near_surface_cells.hpp"
 #include "rosmill/scan/thinning.hpp"
 
@@ -83,7 +83,7 @@ std::vector<Eigen::Matrix4d> design_symmetries(const Mesh& design, const Surface
   // Motions that move the design's points by more than a few cells only: a smaller one is the identity's neighbour.
   const double least_deg = 4 * step_deg;
   std::vector<double> share(motions.size(), 0);
-  tbb::parallel_for(size_t(0), motions.size(), [&](size_t i) {
+  for_each_index(size_t(0), motions.size(), [&](size_t i) {
     if (rotation_angle_deg(motions[i]) >= least_deg) share[i] = cells.share_near(points, motions[i]);
   });
   std::vector<size_t> order(motions.size());

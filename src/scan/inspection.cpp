@@ -5,10 +5,9 @@
 #include <cstdio>
 #include <sstream>
 
-#include <tbb/parallel_for.h>
-
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/scan/mesh_distance.hpp"
 
 namespace rosmill::core::scan {
@@ -39,8 +38,8 @@ InspectionReport inspect_registered(const Mesh& design, const std::vector<Vec3>&
   InspectionReport r;
   r.points = points;
   r.deviations.resize(points.size());
-  tbb::parallel_for(size_t(0), points.size(),
-                    [&](size_t i) { r.deviations[i] = distance.query(points[i]).signed_distance; });
+  for_each_index(size_t(0), points.size(),
+                 [&](size_t i) { r.deviations[i] = distance.query(points[i]).signed_distance; });
   double sum = 0, sum_sq = 0;
   size_t most = 0, least = 0;
   for (size_t i = 0; i < points.size(); ++i) {

@@ -5,9 +5,9 @@
 #include <limits>
 
 #include <nanoflann.hpp>
-#include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core::scan {
 
@@ -160,9 +160,9 @@ SurfaceDistance MeshDistance::query(const Vec3& p) const {
 
 std::vector<double> MeshDistance::distances(const std::vector<Vec3>& points, double limit) const {
   std::vector<double> out(points.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+  for_each_piece<size_t>(0, points.size(), 256, [&](size_t begin, size_t end) {
     SurfaceDistance s;
-    for (size_t i = range.begin(); i != range.end(); ++i)
+    for (size_t i = begin; i != end; ++i)
       out[i] = query_within(points[i], limit, s) ? std::abs(s.signed_distance)
                                                  : std::numeric_limits<double>::infinity();
   });

@@ -7,12 +7,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include "rosmill/error.hpp"
 #include "rosmill/geometry/rigid_transform.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/scan/point_index.hpp"
 
 namespace rosmill::core::scan {
@@ -115,10 +113,10 @@ Eigen::Matrix4d PlaneIcp::align(const std::vector<Vec3>& moving, const Eigen::Ma
     const Eigen::Matrix3d r = pose.topLeftCorner<3, 3>();
     const Vec3 t = pose.topRightCorner<3, 1>();
     // A deterministic reduction: the same sums in the same order whatever the number of threads.
-    const NormalEquations e = tbb::parallel_deterministic_reduce(
-        tbb::blocked_range<size_t>(0, moving.size(), 512), NormalEquations(),
-        [&](const tbb::blocked_range<size_t>& range, NormalEquations sum) {
-          for (size_t i = range.begin(); i != range.end(); ++i) {
+    const NormalEquations e = reduce_pieces_deterministic(
+        size_t(0), moving.size(), size_t(512), NormalEquations(),
+        [&](size_t begin, size_t end, NormalEquations sum) {
+          for (size_t i = begin; i != end; ++i) {
             const Vec3 q = r * moving[i] + t;
             size_t j;
             double sq;
@@ -167,8 +165,8 @@ std::vector<PlanePair> PlaneIcp::pairs(const std::vector<Vec3>& moving, const st
   std::vector<PlanePair> out(moving.size());
   std::vector<char> found(moving.size(), 0);
   std::vector<size_t> pair_of(moving.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, moving.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
-    for (size_t i = range.begin(); i != range.end(); ++i) {
+  for_each_piece<size_t>(0, moving.size(), 512, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i != end; ++i) {
       const Vec3 q = r * moving[i] + t;
       size_t j;
       double sq;
@@ -194,11 +192,11 @@ std::vector<PlanePair> PlaneIcp::pairs(const std::vector<Vec3>& moving, const st
   std::vector<Vec3> moved(moving.size());
   for (size_t i = 0; i < moving.size(); ++i) moved[i] = r * moving[i] + t + impl_->origin;
   const PointIndex seen(moved);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, moving.size(), 512), [&](const tbb::blocked_range<size_t>& range) {
+  for_each_piece<size_t>(0, moving.size(), 512, [&](size_t begin, size_t end) {
     constexpr size_t kLook = 16;
     size_t near[kLook];
     double sq[kLook];
-    for (size_t i = range.begin(); i != range.end(); ++i) {
+    for (size_t i = begin; i != end; ++i) {
       PlanePair& p = out[i];
       if (!found[i] || !p.outline || (!impl_->creases.empty() && impl_->creases[pair_of[i]])) continue;
       const Vec3 on_face = p.point - p.residual * p.normal;  // the point's foot on its pair's tangent plane

@@ -3,10 +3,9 @@
 #include <algorithm>
 
 #include <Eigen/Eigenvalues>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/scan/point_index.hpp"
 
 namespace rosmill::core::scan {
@@ -17,10 +16,10 @@ std::vector<Vec3> estimate_normals(const std::vector<Vec3>& points, int neighbou
   const PointIndex index(points);
   std::vector<Vec3> out(points.size());
   if (variation) variation->assign(points.size(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+  for_each_piece<size_t>(0, points.size(), 256, [&](size_t begin, size_t end) {
     std::vector<size_t> near(static_cast<size_t>(neighbours));
     std::vector<double> sq(static_cast<size_t>(neighbours));
-    for (size_t i = range.begin(); i != range.end(); ++i) {
+    for (size_t i = begin; i != end; ++i) {
       const size_t found = index.nearest_k(points[i], near.size(), near.data(), sq.data());
       // The covariance about the neighbours' centroid, taken relative to the point itself so that a millimetre
       // cloud far from its origin keeps its precision.

@@ -1,11 +1,8 @@
 // Phase 2 laid out patch by patch: the whole patches keep their phase 1 records, the split patches bring their
 // parts, and both are numbered by first facet, with the neighbours across patches linked at the end.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include <algorithm>
 
+#include "rosmill/parallel.hpp"
 #include "setup_steps.hpp"
 
 namespace rosmill::core::segment::detail {
@@ -57,12 +54,9 @@ void write_labels(const SurfacePatches& patches, const std::vector<PatchParts>& 
   labels = patches.labels();
   const uint32_t* of_patch = number.of_patch.data();
   uint32_t* label = labels.data();
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, labels.size(), 20000),
-      [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t f = r.begin(); f < r.end(); ++f) label[f] = of_patch[label[f]];
-      },
-      tbb::auto_partitioner());
+  for_each_piece<size_t>(0, labels.size(), 20000, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) label[f] = of_patch[label[f]];
+  });
   for (uint32_t s = 0; s < split.size(); ++s)
     for (const Patch& part : split[s].parts)
       for (uint32_t i = part.first_facet; i < part.first_facet + part.facet_count; ++i)

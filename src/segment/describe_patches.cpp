@@ -1,13 +1,10 @@
 // Patch records from a label per facet: facets grouped by patch (a counting sort), area, area-weighted mean
 // normal, neighbouring patches and the boundary loops. Only the edges that may separate patches are visited
 // for neighbours and loops, so the cost is one pass over the facets plus the patch borders.
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include <algorithm>
 
 #include "labelling.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core::segment::detail {
 namespace {
@@ -151,9 +148,8 @@ void describe_patches(const Mesh& mesh, const std::vector<uint32_t>& labels, uin
     chain_loops(half.data() + group_start[l], half.data() + group_start[l + 1], s.head, s.link, patches[l].loops);
   };
   if (half.size() > 20000 && count >= 16) {  // one patch at a time to whichever core is free
-    tbb::enumerable_thread_specific<Scratch> scratch(fresh);
-    tbb::parallel_for(
-        uint32_t(0), count, [&](uint32_t l) { loops_of(l, scratch.local()); }, tbb::simple_partitioner());
+    PerThread<Scratch> scratch(fresh);
+    for_each_chunk(count, [&](uint32_t l) { loops_of(l, scratch.local()); });
   } else {
     Scratch scratch = fresh();
     for (uint32_t l = 0; l < count; ++l) loops_of(l, scratch);

@@ -1,15 +1,13 @@
 // Near-equal-area direction bins and the per-patch Extended Gaussian Images.
 #include "rosmill/segment/egi.hpp"
 
-#include <algorithm>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core::segment {
 namespace {
@@ -165,10 +163,8 @@ EgiSet::EgiSet(const SurfacePatches& patches, const EgiBins& bins) : patches_(&p
   };
   auto fresh = [&] { return Scratch{std::vector<double>(bins_.size(), 0.0), {}}; };
   if (mesh.face_count() > 20000) {
-    tbb::enumerable_thread_specific<Scratch> scratch(fresh);
-    tbb::parallel_for(
-        size_t(0), chunks.size(), [&](size_t c) { histogram(chunks[c], scratch.local(), partial[c]); },
-        tbb::simple_partitioner());
+    PerThread<Scratch> scratch(fresh);
+    for_each_chunk(chunks.size(), [&](size_t c) { histogram(chunks[c], scratch.local(), partial[c]); });
   } else {
     Scratch scratch = fresh();
     for (size_t c = 0; c < chunks.size(); ++c) histogram(chunks[c], scratch, partial[c]);

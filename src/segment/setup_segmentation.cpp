@@ -3,16 +3,12 @@
 // patches keep their phase 1 records; only the split patches are described anew.
 #include "rosmill/segment/setup_segmentation.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "labelling.hpp"
 #include "patch_parts.hpp"
+#include "rosmill/parallel.hpp"
 #include "setup_steps.hpp"
 
 namespace rosmill::core::segment {
@@ -84,13 +80,9 @@ template <typename Test>
 void fill_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict, const Test& test,
                 std::vector<uint8_t>& reach) {
   const Mesh& mesh = patches.mesh();
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, mesh.face_count(), 20000),
-      [&](const tbb::blocked_range<size_t>& r) {
-        reach_of_facets(r.begin(), r.end(), patches.labels().data(), verdict.data(), mesh.normals.data(), test,
-                        reach.data());
-      },
-      tbb::auto_partitioner());
+  for_each_piece<size_t>(0, mesh.face_count(), 20000, [&](size_t begin, size_t end) {
+    reach_of_facets(begin, end, patches.labels().data(), verdict.data(), mesh.normals.data(), test, reach.data());
+  });
 }
 
 std::vector<uint8_t> facet_reach(const SurfacePatches& patches, const std::vector<Verdict>& verdict,
@@ -129,9 +121,8 @@ bool split_mixed_patches(const SurfacePatches& patches, const std::vector<Verdic
   };
   // One patch at a time to whichever core is free, when there are 20,000 facets to split in two patches or more.
   if (mixed_facets > 20000 && mixed.size() > 1) {
-    tbb::enumerable_thread_specific<detail::PartsScratch> scratch;
-    tbb::parallel_for(
-        size_t(0), mixed.size(), [&](size_t i) { split_one(i, scratch.local()); }, tbb::simple_partitioner());
+    PerThread<detail::PartsScratch> scratch;
+    for_each_chunk(mixed.size(), [&](size_t i) { split_one(i, scratch.local()); });
   } else {
     detail::PartsScratch scratch;
     for (size_t i = 0; i < mixed.size(); ++i) split_one(i, scratch);

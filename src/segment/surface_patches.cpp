@@ -2,17 +2,13 @@
 // (both cores),
 // then a union-find joins the facets across the edges that pass. A patch is then exactly the set of facets a
 // flood from any of its facets reaches, including facets first rejected through another edge (figs. 6, 7).
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
-#include <tbb/partitioner.h>
-
 #include <cmath>
 #include <functional>
 #include <string>
 
 #include "labelling.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "union_find.hpp"
 
 namespace rosmill::core::segment {
@@ -73,12 +69,12 @@ EdgeCounts classify_edges(const Mesh& mesh, double t2, size_t first, size_t last
 std::vector<uint8_t> soft_edges(const Mesh& mesh, double threshold, MeshNotes& notes) {
   const double t2 = threshold * threshold;
   std::vector<uint8_t> soft(mesh.edges.size());
-  const EdgeCounts counts = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, mesh.edges.size(), kParallelFrom), EdgeCounts{},
-      [&](const tbb::blocked_range<size_t>& r, const EdgeCounts& c) {
-        return c + classify_edges(mesh, t2, r.begin(), r.end(), soft.data());
+  const EdgeCounts counts = reduce_pieces(
+      size_t(0), mesh.edges.size(), kParallelFrom, EdgeCounts{},
+      [&](size_t begin, size_t end, const EdgeCounts& c) {
+        return c + classify_edges(mesh, t2, begin, end, soft.data());
       },
-      std::plus<EdgeCounts>(), tbb::auto_partitioner());
+      std::plus<EdgeCounts>());
   notes.open_edges = counts.open;
   notes.nonmanifold_edges = counts.nonmanifold;
   notes.inconsistent_edges = counts.inconsistent;
@@ -171,7 +167,7 @@ std::vector<std::array<uint32_t, 3>> inner_neighbours(const Mesh& mesh, const st
   // Both loops on both cores when the facets are many (the edges, about 1.5 per facet, follow the facets' choice).
   auto each = [parallel = n > int64_t(kParallelFrom)](int64_t count, const auto& body) {
     if (parallel)
-      tbb::parallel_for(int64_t(0), count, body, tbb::auto_partitioner());
+      for_each_index(int64_t(0), count, body);
     else
       for (int64_t i = 0; i < count; ++i) body(i);
   };

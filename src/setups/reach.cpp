@@ -1,15 +1,13 @@
 #include "rosmill/setups/reach.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
 
+#include "height_bound.hpp"
 #include "rosmill/cutter/contact.hpp"
 #include "rosmill/error.hpp"
-#include "height_bound.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/plan/mesh_surface.hpp"
 
 namespace rosmill::core::setups {
@@ -146,7 +144,7 @@ std::vector<Reach> reach_along(const Mesh& part, const SurfaceSamples& samples, 
     on_fixture = std::make_unique<ReachProbe>(build_mesh(fixture_corners), tool, spacing, false);
   const double facing = std::cos(max_angle_deg * M_PI / 180.0) - 1e-9;
   std::vector<Reach> out(samples.size(), Reach::FacesAway);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+  for_each_piece<size_t>(0, samples.size(), 1024, [&](size_t begin, size_t end) {
     uint32_t hints[6] = {0, 0, 0, 0, 0, 0};
     // Clear of the probe's surface: nothing over the sample, the shank's and the holder's way free.
     const auto clear = [&](const ReachProbe& s, const Vec3& p, const Vec3& n, const ToolAt& at, uint32_t* hint) {
@@ -157,14 +155,17 @@ std::vector<Reach> reach_along(const Mesh& part, const SurfaceSamples& samples, 
         return false;
       return !s.above(s.holder(), at.axis.x(), at.axis.y(), at.tip + tool.stick_out, hint[2]);
     };
-    for (size_t k = r.begin(); k < r.end(); ++k) {
+    for (size_t k = begin; k < end; ++k) {
       const Vec3 n = setup.direction_to_setup(samples.normals[k]);
       if (n.z() < facing) continue;
       const Vec3 p = setup.to_setup_frame(samples.points[k]);
       const ToolAt at = tool_at(tool, p, n);
-      if (!clear(on_part, p, n, at, hints)) out[k] = Reach::Hidden;
-      else if (on_fixture && !clear(*on_fixture, p, n, at, hints + 3)) out[k] = Reach::Fixture;
-      else out[k] = Reach::Reached;
+      if (!clear(on_part, p, n, at, hints))
+        out[k] = Reach::Hidden;
+      else if (on_fixture && !clear(*on_fixture, p, n, at, hints + 3))
+        out[k] = Reach::Fixture;
+      else
+        out[k] = Reach::Reached;
     }
   });
   return out;

@@ -1,11 +1,11 @@
 #include "edge_links.hpp"
 
-#include <algorithm>
 #include <Eigen/Geometry>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
+#include <algorithm>
 
 #include <cmath>
+
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core::slice_detail {
 namespace {
@@ -81,18 +81,17 @@ bool link_manifold(const Mesh& mesh, uint32_t e, std::vector<uint32_t>& links) {
 std::vector<uint32_t> build_edge_links(const Mesh& mesh) {
   std::vector<uint32_t> links(3 * mesh.faces.size(), kNone);
   // Each edge writes only its own half-edges' links, so edges are linked in parallel.
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(mesh.edges.size()), 16384),
-                    [&](const tbb::blocked_range<uint32_t>& r) {
-                      std::vector<uint32_t> half;
-                      std::vector<Fan> fan;
-                      for (uint32_t e = r.begin(); e < r.end(); ++e) {
-                        const MeshEdge& edge = mesh.edges[e];
-                        if (edge.a == edge.b || edge.face_count < 2) continue;
-                        if (edge.face_count == 2 && link_manifold(mesh, e, links)) continue;
-                        collect_half_edges(mesh, e, half);
-                        pair_fan(mesh, edge, half, links, fan);
-                      }
-                    });
+  for_each_piece<uint32_t>(0, uint32_t(mesh.edges.size()), 16384, [&](uint32_t begin, uint32_t end) {
+    std::vector<uint32_t> half;
+    std::vector<Fan> fan;
+    for (uint32_t e = begin; e < end; ++e) {
+      const MeshEdge& edge = mesh.edges[e];
+      if (edge.a == edge.b || edge.face_count < 2) continue;
+      if (edge.face_count == 2 && link_manifold(mesh, e, links)) continue;
+      collect_half_edges(mesh, e, half);
+      pair_fan(mesh, edge, half, links, fan);
+    }
+  });
   return links;
 }
 

@@ -1,13 +1,11 @@
 #include "rosmill/slice/slicer.hpp"
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "contour_nesting.hpp"
 #include "edge_links.hpp"
+#include "rosmill/parallel.hpp"
 
 namespace rosmill::core {
 namespace {
@@ -52,7 +50,7 @@ PlaneBuckets bucket_faces(const Mesh& mesh, const std::vector<double>& h) {
   std::vector<size_t> counts(chunks * planes, 0);
   std::vector<PlaneRun> runs(n);
   const double zmin = mesh.bbox.min.z();
-  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+  for_each_index(size_t(0), chunks, [&](size_t c) {
     size_t* count = &counts[c * planes];
     for (size_t f = c * n / chunks, end = (c + 1) * n / chunks; f < end; ++f) {
       runs[f] = plane_run(mesh, uint32_t(f), h, zmin);
@@ -72,7 +70,7 @@ PlaneBuckets bucket_faces(const Mesh& mesh, const std::vector<double>& h) {
   }
   b.offsets[planes] = total;
   b.faces.resize(total);
-  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+  for_each_index(size_t(0), chunks, [&](size_t c) {
     size_t* pos = &counts[c * planes];
     for (size_t f = c * n / chunks, end = (c + 1) * n / chunks; f < end; ++f)
       for (uint32_t j = runs[f].first; j < runs[f].last; ++j) b.faces[pos[j]++] = uint32_t(f);
@@ -232,16 +230,15 @@ std::vector<SliceLayer> slice_mesh(const Mesh& mesh, const std::vector<double>& 
     return layers;
   }
   std::vector<double> vertex_z(mesh.vertices.size());
-  tbb::parallel_for(size_t(0), vertex_z.size(), [&](size_t v) { vertex_z[v] = mesh.vertices[v].z(); });
+  for_each_index(size_t(0), vertex_z.size(), [&](size_t v) { vertex_z[v] = mesh.vertices[v].z(); });
   const PlaneBuckets buckets = bucket_faces(mesh, planes);
   const std::vector<uint32_t> links = build_edge_links(mesh);
   const FlatFaces flat = flat_faces(mesh);
   const double zmin = mesh.bbox.min.z();
-  tbb::enumerable_thread_specific<std::vector<uint32_t>> visited_per_thread(
-      [&] { return std::vector<uint32_t>(mesh.faces.size(), 0); });
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, planes.size()), [&](const tbb::blocked_range<size_t>& r) {
+  PerThread<std::vector<uint32_t>> visited_per_thread([&] { return std::vector<uint32_t>(mesh.faces.size(), 0); });
+  for_each_piece<size_t>(0, planes.size(), 1, [&](size_t begin, size_t end) {
     std::vector<uint32_t>& visited = visited_per_thread.local();
-    for (size_t j = r.begin(); j < r.end(); ++j) {
+    for (size_t j = begin; j < end; ++j) {
       SliceLayer& layer = layers[j];
       PlaneWalker walker(mesh, vertex_z, links, visited, uint32_t(j + 1), PlaneRule{planes[j], planes[j] <= zmin});
       walker.run(buckets.faces.data() + buckets.offsets[j], buckets.offsets[j + 1] - buckets.offsets[j],

@@ -1,16 +1,14 @@
 #include "rosmill/stock/in_process_stock.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "grid_walk.hpp"
 #include "rosmill/error.hpp"
-#include "rosmill/toolpath/canon_arc.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/stock/design_height.hpp"
+#include "rosmill/toolpath/canon_arc.hpp"
 
 namespace rosmill::core::stock {
 namespace {
@@ -239,8 +237,8 @@ HeightField InProcessStock::view(const SetupFrame& setup) const {
   const Envelope* env = envelope_if(setup);
   hf.bottom = turned_bounds(setup).min.z();
   const GridSpec& g = hf.grid;
-  tbb::parallel_for(tbb::blocked_range<int>(0, g.ny), [&](const tbb::blocked_range<int>& rows) {
-    for (int j = rows.begin(); j < rows.end(); ++j)
+  for_each_piece<int>(0, g.ny, 1, [&](int begin, int end) {
+    for (int j = begin; j < end; ++j)
       for (int i = 0; i < g.nx; ++i) {
         const double t = top_at(setup, env, g, i, j);
         hf.top[g.index(i, j)] = t == -kInf ? kNoMaterial : static_cast<float>(t);

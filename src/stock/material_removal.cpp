@@ -1,8 +1,5 @@
 #include "rosmill/stock/material_removal.hpp"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -12,6 +9,7 @@
 #include <string>
 
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "sweep_kernels.hpp"
 
 // How a chain of moves is swept without visiting each move's whole footprint.
@@ -376,8 +374,8 @@ SimulationResult simulate(const MachineProgram& prog, HeightField& stock, const 
     visited[b] = sweep.cells_visited();
   };
   if (options.parallel) {
-    tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int b = r.begin(); b < r.end(); ++b) run_band(b);
+    for_each_piece<int>(0, bands, 1, [&](int begin, int end) {
+      for (int b = begin; b < end; ++b) run_band(b);
     });
   } else {
     for (int b = 0; b < bands; ++b) run_band(b);

@@ -6,11 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include "recent_path.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/parallel.hpp"
 #include "rosmill/stock/material_removal.hpp"
 #include "rosmill/toolpath/canon_arc.hpp"
 
@@ -281,7 +279,7 @@ std::vector<size_t> chunk_starts(const stock::MachineProgram& program, const sto
   const size_t copy = stock.top.size() * (sizeof(float) + sizeof(uint32_t));
   size_t total = 0;
   for (const CanonMove& m : program.moves) total += samples_of(m, step);
-  size_t chunks = std::min<size_t>(tbb::this_task_arena::max_concurrency(), total / kLeastSamples);
+  size_t chunks = std::min<size_t>(max_threads(), total / kLeastSamples);
   chunks = std::max<size_t>(1, std::min(chunks, kCopyBudget / std::max<size_t>(1, copy)));
   std::vector<size_t> starts{0};
   size_t done = 0;
@@ -364,7 +362,7 @@ EngagementReport measure_engagement(const stock::MachineProgram& program, stock:
   std::vector<stock::HeightField> copies(chunks - 1, stock);
   std::vector<std::unique_ptr<Measurer>> measurers(chunks);
   r.move_deg.assign(program.moves.size(), 0.0f);
-  tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+  for_each_index(size_t(0), chunks, [&](size_t c) {
     stock::HeightField& field = c + 1 == chunks ? stock : copies[c];
     measurers[c] = std::make_unique<Measurer>(program, field, options, step);
     Measurer& m = *measurers[c];
