@@ -4,8 +4,23 @@
 # In `scripts/test --sanitize` (and CI) each target also runs for a short fixed time from its seeds, as a test.
 add_custom_target(rosmill_fuzz)
 set(ROSMILL_FUZZ_TEST_SECONDS 6 CACHE STRING "seconds each fuzz target runs as a test")
+# The areas whose code reads the fuzzed inputs (files, tables, programs, controller replies), and the reader of
+# the verifier, carry libFuzzer's coverage feedback (cmake/sanitize.cmake). clang refuses a precompiled header
+# made without it, so they compile without one.
+foreach(area io yaml cutter fixture toolpath machine gcode control planner job)
+  target_compile_options(rosmill_${area} PRIVATE ${ROSMILL_FUZZ_COVERAGE})
+  set_target_properties(rosmill_${area} PROPERTIES DISABLE_PRECOMPILE_HEADERS ON)
+endforeach()
+# The meshes and placements the readers build (not the geometric kernels beside them).
+set_source_files_properties(src/geometry/input_file.cpp src/geometry/mesh.cpp src/geometry/mesh_report.cpp
+  src/geometry/placement.cpp src/geometry/rigid_transform.cpp src/geometry/setup_frame.cpp src/geometry/units.cpp
+  src/geometry/value_range.cpp src/geometry/vertex_welder.cpp src/verify/gcode_reader.cpp
+  PROPERTIES COMPILE_OPTIONS "${ROSMILL_FUZZ_COVERAGE}" SKIP_PRECOMPILE_HEADERS ON)
+
 function(rosmill_fuzz_target name)
   add_executable(fuzz_${name} test/fuzz/fuzz_${name}.cpp ${ARGN})
+  target_compile_options(fuzz_${name} PRIVATE ${ROSMILL_FUZZ_COVERAGE})
+  set_target_properties(fuzz_${name} PROPERTIES DISABLE_PRECOMPILE_HEADERS ON)
   target_link_options(fuzz_${name} PRIVATE -fsanitize=fuzzer)
   target_compile_definitions(fuzz_${name} PRIVATE ROSMILL_SOURCE_DIR="${CMAKE_CURRENT_SOURCE_DIR}")
   set_target_properties(fuzz_${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/fuzz)
