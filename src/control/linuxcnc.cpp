@@ -122,7 +122,6 @@ void LinuxcncController::start(const std::vector<std::string>& program, const Se
   set("run");
   status_.state = RunState::Running;
   seen_running_ = false;
-  started_ = Clock::now();
 }
 
 size_t LinuxcncController::program_line_of(size_t file_line) const {
@@ -171,7 +170,10 @@ ControllerStatus LinuxcncController::poll(double timeout_s) {
       } else if (run == "PAUSED") {
         seen_running_ = true;
         status_.state = RunState::Paused;
-      } else if (run == "IDLE" && (seen_running_ || std::chrono::duration<double>(Clock::now() - started_).count() > 1.0)) {
+      } else if (run == "IDLE" && (seen_running_ || status_.current_line > 0)) {
+        // Idle after the program was seen running, or after its lines were read: finished. Idle before either is
+        // a start not yet taken up (a loaded machine takes seconds): still running, never finished by the clock,
+        // or a program that never ran would be reported done.
         status_.state = RunState::Finished;
         status_.acknowledged_line = status_.total_lines;
       }

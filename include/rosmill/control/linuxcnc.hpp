@@ -44,7 +44,6 @@ class LinuxcncController : public Controller {
   ControllerStatus status_;
   size_t preamble_lines_ = 0, from_line_ = 1;
   bool seen_running_ = false;
-  std::chrono::steady_clock::time_point started_{};
   int file_counter_ = 0;
 };
 
