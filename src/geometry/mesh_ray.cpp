@@ -12,12 +12,17 @@ namespace {
 constexpr uint32_t kLeafFacets = 8;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The ray's parameter range inside a box (slab test), empty when t0 > t1.
-bool through_box(const double* lo, const double* hi, const Vec3& o, const Vec3& inv, double& t0, double& t1) {
+// The ray's parameter range inside a box (slab test), empty when t0 > t1. A ray parallel to a slab (d zero along
+// its axis, of either sign: -0 turns 1 / d into -infinity) is inside it or not at all, whatever t: decided by the
+// origin alone, so that a ray along a box's face (a raster line over a symmetric part's middle) is not lost.
+bool through_box(const double* lo, const double* hi, const Vec3& o, const Vec3& d, const Vec3& inv, double& t0,
+                 double& t1) {
   for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return false;
+      continue;
+    }
     double n = (lo[a] - o[a]) * inv[a], f = (hi[a] - o[a]) * inv[a];
-    if (std::isnan(n)) n = -kInf;  // a ray in the slab's plane (0 * inf): inside along this axis
-    if (std::isnan(f)) f = kInf;
     if (n > f) std::swap(n, f);
     t0 = std::max(t0, n);
     t1 = std::min(t1, f);
@@ -25,19 +30,34 @@ bool through_box(const double* lo, const double* hi, const Vec3& o, const Vec3& 
   return t0 <= t1;
 }
 
-// Moller-Trumbore: the ray's parameter at the triangle, +infinity when it misses.
+// The ray's parameter at the triangle, +infinity when it misses: Woop, Benthin and Wald's "Watertight Ray/Triangle
+// Intersection" (JCGT 2013). The corners are sheared into a frame where the ray runs along +z through the origin;
+// the signed areas the ray makes with each edge are then the same products for the two facets that share the edge,
+// negated, so a ray through an edge or a corner of a closed mesh meets at least one of its facets (Moller and
+// Trumbore's test can miss both where rounding puts it a hair outside each).
 double triangle_hit(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& o, const Vec3& d) {
-  const Vec3 e1 = b - a, e2 = c - a, p = d.cross(e2);
-  const double det = e1.dot(p);
+  int kz = 0;
+  d.cwiseAbs().maxCoeff(&kz);
+  if (!(d[kz] != 0)) return kInf;  // no direction
+  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  if (d[kz] < 0) std::swap(kx, ky);  // keeps the corners' winding
+  const double sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1.0 / d[kz];
+  const Vec3 pa = a - o, pb = b - o, pc = c - o;
+  const double ax = pa[kx] - sx * pa[kz], ay = pa[ky] - sy * pa[kz];
+  const double bx = pb[kx] - sx * pb[kz], by = pb[ky] - sy * pb[kz];
+  const double cx = pc[kx] - sx * pc[kz], cy = pc[ky] - sy * pc[kz];
+  double u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+  if (u == 0 || v == 0 || w == 0) {  // on an edge to double precision: decided in extended precision
+    using L = long double;
+    u = double(L(cx) * L(by) - L(cy) * L(bx));
+    v = double(L(ax) * L(cy) - L(ay) * L(cx));
+    w = double(L(bx) * L(ay) - L(by) * L(ax));
+  }
+  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return kInf;
+  const double det = u + v + w;
   if (det == 0) return kInf;  // the ray runs in the triangle's plane
-  const double inv = 1.0 / det;
-  const Vec3 s = o - a;
-  const double u = s.dot(p) * inv;
-  if (u < 0 || u > 1) return kInf;
-  const Vec3 q = s.cross(e1);
-  const double v = d.dot(q) * inv;
-  if (v < 0 || u + v > 1) return kInf;
-  return e2.dot(q) * inv;
+  const double t = (u * sz * pa[kz] + v * sz * pb[kz] + w * sz * pc[kz]) / det;
+  return std::isfinite(t) ? t : kInf;
 }
 
 }  // namespace
@@ -94,7 +114,7 @@ double MeshRays::walk(const Vec3& o, const Vec3& d, double grow, double t_min, d
     double lo[3], hi[3];
     for (int a = 0; a < 3; ++a) lo[a] = node.lo[a] - grow, hi[a] = node.hi[a] + grow;
     double t0 = t_min, t1 = std::min(t_max, best);
-    if (!through_box(lo, hi, o, inv, t0, t1)) continue;
+    if (!through_box(lo, hi, o, d, inv, t0, t1)) continue;
     if (node.count > 0) {
       for (uint32_t k = node.first; k < node.first + node.count; ++k) best = std::min(best, leaf(order_[k], best));
       if (best == t_min) return best;  // nothing comes before the start

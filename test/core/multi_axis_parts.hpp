@@ -20,7 +20,10 @@ inline Mesh dome_on_plate(double r, double w, double t, int segments = 144, int 
   std::vector<Vec3> c;
   auto tri = [&](const Vec3& a, const Vec3& b, const Vec3& d) { c.insert(c.end(), {a, b, d}); };
   auto at = [&](int i, int j) {  // i round, j up from the equator
-    const double phi = 2 * M_PI * i / segments, th = 0.5 * M_PI * j / rings;
+    // The seam: the last meridian is the first, and the pole one point, to the bit (a sliver between them would
+    // open the mesh).
+    if (j == rings) return Vec3(0, 0, r);
+    const double phi = 2 * M_PI * (i % segments) / segments, th = 0.5 * M_PI * j / rings;
     return Vec3(r * std::cos(th) * std::cos(phi), r * std::cos(th) * std::sin(phi), r * std::sin(th));
   };
   for (int i = 0; i < segments; ++i)

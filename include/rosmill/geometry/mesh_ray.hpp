@@ -1,6 +1,7 @@
 // Rays against a triangle mesh: the first facet a ray meets, through a bounding volume hierarchy over the facets
 // (boxes split at the median of their centroids along their longest side, eight facets or fewer a leaf), each facet
-// tested by Moller and Trumbore's "Fast, minimum storage ray-triangle intersection" (1997). What the account of the
+// tested by Woop, Benthin and Wald's watertight ray/triangle intersection (2013): a ray through a shared edge or
+// corner of a closed mesh does not slip between its facets. What the account of the
 // material left on a part needs: how far a line off a face runs before it meets the part again; and a ball swept
 // along a tilted tool's axis, where five-axis finishing puts its cutter locations.
 #pragma once
