@@ -64,7 +64,7 @@ InProcessStock InProcessStock::from_cloud(const PointCloud& cloud, double table_
 size_t InProcessStock::bytes() const {
   size_t n = material_.bytes() + raw_.bytes();
   for (const Envelope& e : envelopes_) n += e.field.top.capacity() * sizeof(float) + e.moves.bytes();
-  return n;
+  return n + swept_.bytes();
 }
 
 bool InProcessStock::raw_at(const Vec3& p) const {
@@ -83,7 +83,7 @@ bool InProcessStock::removed_at(const Vec3& p) const {
     const Vec3 q = e.setup.to_setup_frame(p);
     if (e.moves.removes(q.x(), q.y(), q.z())) return true;
   }
-  return false;
+  return swept_.reaches(p);
 }
 
 bool InProcessStock::cut_near(const Vec3& p) const {
@@ -91,7 +91,7 @@ bool InProcessStock::cut_near(const Vec3& p) const {
     const Vec3 q = e.setup.to_setup_frame(p);
     if (e.moves.comes_near(q.x(), q.y(), q.z())) return true;
   }
-  return false;
+  return swept_.reaches(p, kNearCut);
 }
 
 double InProcessStock::near_distance() const { return kNearCut; }
@@ -117,7 +117,7 @@ bool StockProbe::removed_at(const Vec3& p) {
     const Vec3 q = env.setup.to_setup_frame(p);
     if (env.moves.removes_among(moves_[e], q.x(), q.y(), q.z())) return true;
   }
-  return false;
+  return stock_.swept_.reaches(p);
 }
 
 bool StockProbe::cut_near(const Vec3& p) {
@@ -127,7 +127,7 @@ bool StockProbe::cut_near(const Vec3& p) {
     const Vec3 q = env.setup.to_setup_frame(p);
     if (env.moves.comes_near_among(moves_[e], q.x(), q.y(), q.z())) return true;
   }
-  return false;
+  return stock_.swept_.reaches(p, kNearCut);
 }
 
 double InProcessStock::raw_extent(const Vec3& p, const Vec3& d, double t_max) const {
@@ -332,6 +332,114 @@ RemovalReport InProcessStock::remove(const MachineProgram& program, const SetupF
   r.rapid_cut_cells = sim.rapid_cut_cells;
   r.first_rapid_move = sim.first_rapid_cut;
   if (sim.first_rapid_cut != HeightField::kNoMove) r.first_rapid_source = program.moves[sim.first_rapid_cut].source;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// Clips the material's dexels by the swept triangles from `first_triangle` on, each cell's in the order of their
+// moves, so that a move which finds only air where an earlier one cut is not marked as cutting.
+void InProcessStock::clip_swept(size_t first_triangle, const MultiAxisProgram& program, std::vector<uint8_t>& moves_cut,
+                                RemovalReport& r) {
+  const GridSpec& g = material_.grid;
+  struct Row {
+    std::vector<Span> spans;
+    std::vector<uint32_t> ends;  // per cell of the row: its spans end here
+    std::vector<uint32_t> cut;   // moves that cut in the row
+    size_t cut_cells = 0, rapid_cells = 0;
+  };
+  std::vector<Row> rows(static_cast<size_t>(g.ny));
+  for_each_piece<int>(0, g.ny, 1, [&](int begin, int end) {
+    std::vector<Span> now, next;
+    std::vector<Range> one(1);
+    for (int j = begin; j < end; ++j) {
+      Row& row = rows[static_cast<size_t>(j)];
+      for (int i = 0; i < g.nx; ++i) {
+        const size_t c = g.index(i, j);
+        now.assign(material_.begin(c), material_.end(c));
+        bool cut = false, rapid = false;
+        if (!now.empty())
+          swept_.at(g.cx(i), g.cy(j), [&](size_t k) {
+            if (k < first_triangle || now.empty()) return;
+            const SweptTriangle& t = swept_.triangle(k);
+            double lo, hi;
+            if (!vertical_interval(t, g.cx(i), g.cy(j), lo, hi)) return;
+            const bool meets =
+                std::any_of(now.begin(), now.end(), [&](const Span& s) { return s.lo < hi && s.hi > lo; });
+            if (!meets) return;
+            one[0] = {lo, hi};
+            next.clear();
+            subtract(now.data(), now.data() + now.size(), one, next);
+            now.swap(next);
+            if (row.cut.empty() || row.cut.back() != t.move) row.cut.push_back(t.move);
+            cut = true;
+            rapid = rapid || program.moves[t.move].rapid;
+          });
+        row.cut_cells += cut;
+        row.rapid_cells += rapid;
+        row.spans.insert(row.spans.end(), now.begin(), now.end());
+        row.ends.push_back(static_cast<uint32_t>(row.spans.size()));
+      }
+    }
+  });
+  Dexels out;
+  out.grid = g;
+  out.z_min = material_.z_min;
+  out.z_max = material_.z_max;
+  out.first.assign(g.cells() + 1, 0);
+  size_t total = 0;
+  for (const Row& row : rows) total += row.spans.size();
+  out.spans.reserve(total);
+  for (int j = 0; j < g.ny; ++j) {
+    const Row& row = rows[static_cast<size_t>(j)];
+    const uint32_t base = static_cast<uint32_t>(out.spans.size());
+    out.spans.insert(out.spans.end(), row.spans.begin(), row.spans.end());
+    for (int i = 0; i < g.nx; ++i) out.first[g.index(i, j) + 1] = base + row.ends[static_cast<size_t>(i)];
+    for (uint32_t m : row.cut) moves_cut[m] = 1;
+    r.cut_cells += row.cut_cells;
+    r.rapid_cut_cells += row.rapid_cells;
+  }
+  material_ = std::move(out);
+}
+
+RemovalReport InProcessStock::remove(const MultiAxisProgram& program) {
+  const auto start = std::chrono::steady_clock::now();
+  RemovalReport r;
+  r.moves = program.moves.size();
+  const size_t first_triangle = swept_.size();
+  const double step = 0.5 * material_.grid.cell;
+  for (size_t k = 0; k < program.moves.size(); ++k) {
+    const AxisMove& m = program.moves[k];
+    const std::string where = "program move " + std::to_string(m.source);
+    if (m.tool >= program.tools.size()) throw Error(where, "names a tool the program does not have");
+    const Cutter& cutter = program.tools[m.tool].cutter;
+    if (cutter.type != CutterType::BallEnd)
+      throw Error(where, "only ball-end mills are simulated along multi-axis moves (tool " +
+                             std::to_string(program.tools[m.tool].id) + " is not one)");
+    try {
+      swept_.add_move(m.from, m.axis_from, m.to, m.axis_to, cutter.radius(), cutter.flute_length, step,
+                      static_cast<uint32_t>(k));
+    } catch (const Error& e) {
+      throw Error(where, e.what());
+    }
+  }
+  swept_.index();
+  const double before = volume();
+  std::vector<uint8_t> cut(program.moves.size(), 0);
+  clip_swept(first_triangle, program, cut, r);
+  r.removed_mm3 = std::max(0.0, before - volume());
+  for (size_t k = 0; k < program.moves.size(); ++k) {
+    const AxisMove& m = program.moves[k];
+    if (m.rapid) {
+      if (cut[k] && r.first_rapid_move == HeightField::kNoMove) {
+        r.first_rapid_move = static_cast<uint32_t>(k);
+        r.first_rapid_source = m.source;
+      }
+      continue;
+    }
+    const double length = (m.to - m.from).norm();
+    r.feed_mm += length;
+    if (!cut[k]) r.air_feed_mm += length;
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

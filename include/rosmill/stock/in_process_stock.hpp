@@ -22,6 +22,8 @@
 #include "rosmill/stock/dexels.hpp"
 #include "rosmill/stock/height_field.hpp"
 #include "rosmill/stock/material_removal.hpp"
+#include "rosmill/stock/multi_axis_program.hpp"
+#include "rosmill/stock/multi_axis_sweep.hpp"
 #include "rosmill/stock/program.hpp"
 #include "rosmill/stock/swept_moves.hpp"
 
@@ -60,6 +62,10 @@ class InProcessStock {
   // Removes what `program` (in the frame of `setup`) cuts; a rapid that cuts material is reported with its source.
   RemovalReport remove(const MachineProgram& program, const SetupFrame& setup = {},
                        const SimulationOptions& options = {});
+  // Removes what a multi-axis program (workpiece frame, the tool axis turning along its moves) cuts with ball-end
+  // mills: their flutes' sweep (multi_axis_sweep.hpp), in steps of half a cell, kept for the exact point queries
+  // too. A flat or bull-nose tool is refused (Error naming the move); so is an axis that is not a direction.
+  RemovalReport remove(const MultiAxisProgram& program);
 
   // The top of material seen from a setup, per cell of the setup's grid (a grid over the stock turned into the
   // setup's frame, at the stock's resolution): kNoMaterial where a cell has none; `bottom` is the lowest material.
@@ -114,11 +120,14 @@ class InProcessStock {
   double top_along(const SetupFrame& setup, double u, double v) const;
   double top_at(const SetupFrame& setup, const Envelope* env, const GridSpec& g, int i, int j) const;
   void clip(const Envelope& e);
+  void clip_swept(size_t first_triangle, const MultiAxisProgram& program, std::vector<uint8_t>& moves_cut,
+                  RemovalReport& r);
 
   Dexels material_;
   Dexels raw_;                    // the raw stock, as it was read
   std::optional<Box3> raw_box_;   // a box stock's own box (exact where its dexels round to their cells)
   std::vector<Envelope> envelopes_;
+  MultiAxisSweep swept_;  // what multi-axis programs cut, in the workpiece frame
 };
 
 // The stock's exact point queries, many of them near one another (a line followed out from a face): each setup's
