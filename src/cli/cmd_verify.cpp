@@ -1,12 +1,15 @@
 // rosmill verify DESIGN (PROGRAM.ngc|toolpath.json) [--stock box|x0,y0,z0,x1,y1,z1|STOCK.stl] [--resolution MM]
 //   [--tool SPEC]... [--tools FILE] [--units U] [--tolerance MM] [--stepover MM] [--engagement-cell MM] [--json]
 //   [--image deviation.png]
-//   [--machine MACHINE.yaml --on-table X,Y,Z]
+//   [--machine MACHINE.yaml [--on-table X,Y,Z]]
 // Simulates the program on the stock and compares the result with the design (an STL or a cloud): the deepest
 // gouge and the line that made it, the material left, the scallop, the area never reached; and the cutter's radial
 // engagement along the program with the material removal rate (verify/engagement.hpp). With a trunnion machine
 // (a machine file with `rotary:`), a 3+2 program is followed through its A/C indexing (verify/indexed.hpp): the
-// design stands on the table at --on-table (where `rosmill job --json` says, workpiece_on_table).
+// design stands on the table at --on-table (where `rosmill job --json` says, workpiece_on_table). A toolpath file
+// of a multi-axis finish (`rosmill plan --strategy five-axis|four-axis -o finish.json`) is followed with its tool
+// axes (verify/multi_axis.hpp): the material left and any gouge over the whole of the design's surface; so is a
+// program for the trunnion's tool-centre-point control (M428) with --machine, its A and C giving the tool axis.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +32,7 @@
 #include "rosmill/verify/engagement_json.hpp"
 #include "rosmill/verify/gcode_reader.hpp"
 #include "rosmill/verify/indexed.hpp"
+#include "rosmill/verify/multi_axis.hpp"
 #include "rosmill/verify/verify.hpp"
 
 namespace rosmill::core::cli {
@@ -147,6 +151,88 @@ void print_indexed(const VerifyArgs& a, const IndexedVerifyResult& r) {
   std::printf("seconds    %.3f\n", r.seconds);
 }
 
+void print_multi_axis(const VerifyArgs& a, const MultiAxisVerifyResult& r) {
+  if (a.json) {
+    nlohmann::ordered_json j;
+    j["multi_axis"] = true;
+    j["moves"] = r.moves;
+    j["samples"] = r.samples;
+    j["area_mm2"] = r.area_mm2;
+    j["max_gouge_mm"] = r.max_gouge_mm;
+    j["gouge_at"] = r.gouge_source ? nlohmann::ordered_json::array({r.gouge_at.x(), r.gouge_at.y(), r.gouge_at.z()})
+                                   : nlohmann::ordered_json();
+    j["gouge_move"] = r.gouge_source ? nlohmann::ordered_json(r.gouge_source) : nlohmann::ordered_json();
+    j["gouged_area_mm2"] = r.gouged_area_mm2;
+    j["max_rest_mm"] = r.max_rest_mm;
+    j["mean_rest_mm"] = r.mean_rest_mm;
+    j["limit_mm"] = r.limit_mm;
+    j["above_area_mm2"] = r.above_area_mm2;
+    j["unreached_area_mm2"] = r.unreached_area_mm2;
+    j["rapid_into_material_move"] =
+        r.removal.collided() ? nlohmann::ordered_json(r.removal.first_rapid_source) : nlohmann::ordered_json();
+    j["removed_mm3"] = r.removal.removed_mm3;
+    j["stock_mm3"] = r.stock_mm3;
+    j["left_mm3"] = r.left_mm3;
+    j["seconds"] = r.seconds;
+    std::printf("%s\n", j.dump().c_str());
+    return;
+  }
+  std::printf(
+      "verify %s with %s (multi-axis, the tool axis at every move): %zu moves, %zu samples of the design's "
+      "%.1f mm2\n",
+      a.design.c_str(), a.program.c_str(), r.moves, r.samples, r.area_mm2);
+  if (r.gouge_source)
+    std::printf("gouge      %.4f mm deep at (%.3f, %.3f, %.3f), move %u; %.2f mm2 deeper than %g mm\n", r.max_gouge_mm,
+                r.gouge_at.x(), r.gouge_at.y(), r.gouge_at.z(), r.gouge_source, r.gouged_area_mm2, a.tolerance);
+  else
+    std::printf("gouge      none deeper than %g mm\n", a.tolerance);
+  std::printf("rest       max %.4f mm, mean %.4f mm over the surface\n", r.max_rest_mm, r.mean_rest_mm);
+  std::printf(
+      "above      %.2f mm2 left above %.4f mm (the tolerance%s), %.2f mm2 of it where no tool came within 1 mm\n",
+      r.above_area_mm2, r.limit_mm, a.stepover > 0 || r.limit_mm > a.tolerance ? " and the scallop" : "",
+      r.unreached_area_mm2);
+  if (r.removal.collided()) std::printf("RAPID INTO MATERIAL: first at move %u\n", r.removal.first_rapid_source);
+  std::printf("removed    %.0f mm3; %.0f mm3 of stock left\n", r.removal.removed_mm3, r.stock_mm3);
+  std::printf("seconds    %.3f\n", r.seconds);
+}
+
+// The moves of a G-code program made under tool-centre-point kinematics, with the tool axis A and C give them on
+// the trunnion; none when it has no such move. A program that also cuts in 3+2 runs is refused: each part would be
+// in its own frame.
+std::optional<stock::MultiAxisProgram> tool_centre_point_program(const MachineProgram& p, const machine::Trunnion& t) {
+  if (std::none_of(p.moves.begin(), p.moves.end(), [](const CanonMove& m) { return m.tool_centre_point; }))
+    return std::nullopt;
+  stock::MultiAxisProgram out;
+  out.tools = p.tools;
+  for (const CanonMove& m : p.moves) {
+    const std::string where = "line " + std::to_string(m.source);
+    if (!m.tool_centre_point)
+      throw Error(where,
+                  "cuts outside tool-centre-point kinematics in a program that also cuts under it (M428): "
+                  "verify its 3+2 runs and its simultaneous moves as programs of their own");
+    if (m.is_arc()) throw Error(where, "an arc under tool-centre-point kinematics is not followed by the verifier");
+    if (m.known_rotary != 3) throw Error(where, "A and C are not known here: the tool axis is not");
+    stock::AxisMove am;
+    am.from = m.from;
+    am.to = m.to;
+    am.axis_from = t.tool_axis(m.a_from, m.c_from);
+    am.axis_to = t.tool_axis(m.a_to, m.c_to);
+    am.tool = m.tool;
+    am.rapid = m.rapid;
+    am.source = m.source;
+    out.moves.push_back(am);
+  }
+  return out;
+}
+
+// A toolpath file whose passes carry a tool axis per move: its job, else none.
+std::optional<std::vector<Toolpath>> multi_axis_toolpaths(const VerifyArgs& a) {
+  if (!is_toolpath_path(a.program)) return std::nullopt;
+  std::vector<Toolpath> job = read_toolpath_file(a.program);
+  if (std::none_of(job.begin(), job.end(), [](const Toolpath& tp) { return tp.multi_axis(); })) return std::nullopt;
+  return job;
+}
+
 void run(const VerifyArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   VerifyOptions o;
@@ -161,13 +247,23 @@ void run(const VerifyArgs& a) {
   if (!a.machine.empty()) {
     trunnion = gcode::load_machine_limits(a.machine).trunnion;
     if (!trunnion) throw Error("--machine " + a.machine, "has no rotary axes: verify a 3-axis program without it");
-    if (a.on_table.empty())
-      throw Error("--on-table", "missing: where the design stands on the table at A = C = 0, x,y,z (mm; `rosmill job "
-                                "--json` gives it as workpiece_on_table)");
   } else if (!a.on_table.empty()) {
     throw Error("--on-table", "is for a trunnion machine: give --machine too");
   }
-  const MachineProgram program = read_program(a, trunnion.has_value());
+  const std::optional<std::vector<Toolpath>> multi_axis = multi_axis_toolpaths(a);
+  if (multi_axis && trunnion)
+    throw Error("--machine", "a multi-axis toolpath file is in the workpiece frame: verify it without --machine");
+  if (multi_axis && !a.tool.empty())
+    throw Error("--tool", "a toolpath file names its own tools; --tool is for G-code programs");
+  const MachineProgram program = multi_axis ? MachineProgram{} : read_program(a, trunnion.has_value());
+  // A program for tool-centre-point kinematics (M428): its X Y Z are the tip in the design's frame (G54 where the
+  // design's origin stands), its A and C the tool axis.
+  const std::optional<stock::MultiAxisProgram> tool_centre_point =
+      trunnion ? tool_centre_point_program(program, *trunnion) : std::nullopt;
+  if (trunnion && !tool_centre_point && a.on_table.empty())
+    throw Error("--on-table",
+                "missing: where the design stands on the table at A = C = 0, x,y,z (mm; `rosmill job "
+                "--json` gives it as workpiece_on_table)");
 
   Mesh stock_mesh;
   StockSpec stock;
@@ -181,6 +277,20 @@ void run(const VerifyArgs& a) {
     stock.mesh = &stock_mesh;
   }
 
+  if (multi_axis || tool_centre_point) {
+    if (is_cloud_file(a.design)) throw Error(a.design, "a multi-axis program is verified against an STL design");
+    if (!a.image.empty()) throw Error("--image", "the deviation map is drawn for 3-axis programs only");
+    if (tool_centre_point && !a.on_table.empty())
+      throw Error("--on-table", "a program for tool-centre-point kinematics is in the design's frame: no --on-table");
+    StlReadOptions so;
+    if (!a.units.empty()) so.units = parse_units(a.units, "--units");
+    const double stepover = a.stepover > 0 ? a.stepover : multi_axis ? multi_axis->back().tool.stepover : 0.0;
+    const MultiAxisVerifyResult r = verify_multi_axis(
+        read_stl(a.design, so), multi_axis ? multi_axis_program_from_job(*multi_axis) : *tool_centre_point, stock, o,
+        stepover);
+    print_multi_axis(a, r);
+    return;
+  }
   if (trunnion) {
     if (is_cloud_file(a.design)) throw Error(a.design, "a 3+2 program is verified against an STL design");
     StlReadOptions so;
@@ -237,7 +347,8 @@ CommandRegistration reg([](CLI::App& app) {
   cmd->add_flag("--json", a->json, "print one JSON object");
   cmd->add_option("--image", a->image, "write the deviation map as a PNG picture");
   cmd->add_option("--machine", a->machine,
-                  "a trunnion machine file (rotary:): follow a 3+2 program through its A/C indexing");
+                  "a trunnion machine file (rotary:): follow a 3+2 program through its A/C indexing, or a program for "
+                  "tool-centre-point control (M428) with its tool axes");
   cmd->add_option("--on-table", a->on_table,
                   "with --machine: x,y,z (mm) where the design's origin stands on the table at A = C = 0");
   cmd->callback([a] { run(*a); });

@@ -347,6 +347,13 @@ Vec3 as_written(const Vec3& p, int decimals) {
   return q;
 }
 
+// A and C as the program writes them (rounded), which the controller turns between.
+machine::Index as_written(const machine::Index& i) {
+  const double scale = static_cast<double>(decimal_scale(kAngleDecimals));
+  return {static_cast<double>(to_fixed(i.a, kAngleDecimals)) / scale,
+          static_cast<double>(to_fixed(i.c, kAngleDecimals)) / scale};
+}
+
 // The minutes a move of a tool-centre-point program takes: the longest of the tip's length at the feed (none for a
 // rapid), the program axes' travel at their speeds (X Y Z on the table, A, C) and the joints' (machine::sweep_joints).
 double tool_centre_point_minutes(const machine::Trunnion& t, const Vec3& origin, const Vec3& from, const Vec3& to,
@@ -416,10 +423,11 @@ void write_tool_centre_point(Writer& w, const Dialect& d, const Job& job, const 
       for (size_t k = 0; k < moves.size(); ++k, ++flat) {
         const int kk = static_cast<int>(k);
         const double feed = moves[k].type == MoveType::Rapid ? 0.0 : moves[k].feed;
-        // From the numbers as written (rounded), which the controller moves between.
+        // From the numbers as written (rounded), which the controller moves between: on a short move near the
+        // pole A's last decimal is a part in a thousand of the joints' travel.
         const double minutes =
             tool_centre_point_minutes(trunnion, table_origin, from, as_written(moves[k].to, o.decimals),
-                                      (*turns)[flat - 1], (*turns)[flat], feed, o);
+                                      as_written((*turns)[flat - 1]), as_written((*turns)[flat]), feed, o);
         w.move(1, moves[k].to, 1.0 / minutes, LineOrigin{ti, static_cast<int>(p), kk, kk}, nullptr, &(*turns)[flat]);
         from = as_written(moves[k].to, o.decimals);
       }

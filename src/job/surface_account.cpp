@@ -12,16 +12,12 @@
 #include "rosmill/plan/plan_params.hpp"
 #include "rosmill/plan/tool_body_surface.hpp"
 #include "rosmill/segment/surface_patches.hpp"
+#include "rosmill/stock/material_along.hpp"
 
 namespace rosmill::core::job {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// Just off the face: where the material left on it begins (mm).
-constexpr double kOff = 1e-5;
-// A gouge is looked for this far inside the part at most (mm); deeper than that the verifier has long refused.
-constexpr double kDeepestGouge = 20.0;
-constexpr double kResolution = 1e-4;  // mm: how finely a run of material is found
 // How near to one another the stock's point queries are read from one gathering of the moves (StockProbe): about a
 // march step, so that a run followed out gathers once a step and its halving reads from the last.
 constexpr double kProbeRadius = 0.25;
@@ -116,52 +112,14 @@ class Sampler {
  public:
   Sampler(const AccountInput& in, const MeshRays& rays) : in_(in), rays_(rays), asks_(asks_of(in)) {}
 
-  // How far the material runs from the face along n (up to where it must end: the raw stock's box or the part).
-  // More than the limit counts only as far as the material is more than a sliver: along a ray that runs inside the
-  // few micrometres a cutter leaves in a facet's corner, the material is that sliver's width, not the ray's length.
+  // How far the material runs from the face along n (stock/material_along.hpp).
   double thickness(const Vec3& p, const Vec3& n, double probe, stock::StockProbe& stock) const {
-    const stock::InProcessStock& s = *in_.stock;
-    const double box = s.raw_extent(p, n, 1e6);
-    const double end = std::min(box, rays_.first_hit(p, n, kOff, box));
-    const auto material = [&](const Vec3& q) { return stock.material_at(q); };
-    const double left = run_of(material, p, n, probe, end);
-    if (left <= probe) return left;
-    const auto solid = [&](const Vec3& q) { return stock.solid_at(q); };
-    return std::min(left, run_of(solid, p, n, 0.0, end) + s.near_distance());
-  }
-
-  // How far from p along n `inside` holds, up to `end`: probed at `probe` first (a run shorter than that is found by
-  // halving alone), then followed out a march step at a time and halved.
-  template <class Inside>
-  double run_of(const Inside& inside, const Vec3& p, const Vec3& n, double probe, double end) const {
-    if (end <= kOff || !inside(p + kOff * n)) return 0.0;
-    double lo = kOff, hi = std::min(std::max(probe, kOff), end);
-    if (inside(p + hi * n)) {
-      lo = hi;
-      for (;;) {
-        hi = std::min(lo + in_.march_step, end);
-        if (!inside(p + hi * n)) break;
-        if (hi >= end) return end;
-        lo = hi;
-      }
-    }
-    while (hi - lo > kResolution) {
-      const double mid = 0.5 * (lo + hi);
-      (inside(p + mid * n) ? lo : hi) = mid;
-    }
-    return hi;
+    return stock::material_thickness(stock, *in_.stock, rays_, p, n, probe, in_.march_step);
   }
 
   // How deep a cut went into the part under p (0: none beyond `tolerance`).
   double gouge(const Vec3& p, const Vec3& n, double tolerance, stock::StockProbe& s) const {
-    if (!s.removed_at(p - tolerance * n)) return 0.0;
-    double lo = tolerance, hi = tolerance;
-    while (hi < kDeepestGouge && s.removed_at(p - hi * n)) lo = hi, hi += in_.march_step;
-    while (hi - lo > kResolution) {
-      const double mid = 0.5 * (lo + hi);
-      (s.removed_at(p - mid * n) ? lo : hi) = mid;
-    }
-    return lo;
+    return stock::gouge_under(s, p, n, tolerance, in_.march_step);
   }
 
   SampleLeft sample(size_t k, const std::vector<SetupSolids>& solids, stock::StockProbe& stock) const {

@@ -224,6 +224,7 @@ Job FiveAxisFinish::run(const PlanProgress& progress, PlanReport* report) {
   Toolpath tp;
   tp.strategy = "five-axis";
   tp.tool = tool_;
+  tp.tool.stepover = stepover;  // the passes' own, which a verifier's scallop theory reads
   tp.safe_z = tp.clearance_z = clearance_;
   tp.tolerance = tol_;
   AxisFigures figures;

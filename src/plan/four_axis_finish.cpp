@@ -109,6 +109,7 @@ Job FourAxisFinish::run(const PlanProgress& progress, PlanReport* report) {
   Toolpath tp;
   tp.strategy = "four-axis";
   tp.tool = tool_;
+  tp.tool.stepover = stepover;  // the rings' own, which a verifier's scallop theory reads
   tp.clearance_z = tp.safe_z = contact_.free_bounds().max.z();
   tp.tolerance = tol_;
   AxisFigures figures;

@@ -406,7 +406,7 @@ RemovalReport InProcessStock::remove(const MultiAxisProgram& program) {
   RemovalReport r;
   r.moves = program.moves.size();
   const size_t first_triangle = swept_.size();
-  const double step = 0.5 * material_.grid.cell;
+  const double sagitta = 1e-3;  // mm: the steps' chords within a micrometre of the tool's arcs
   for (size_t k = 0; k < program.moves.size(); ++k) {
     const AxisMove& m = program.moves[k];
     const std::string where = "program move " + std::to_string(m.source);
@@ -416,7 +416,7 @@ RemovalReport InProcessStock::remove(const MultiAxisProgram& program) {
       throw Error(where, "only ball-end mills are simulated along multi-axis moves (tool " +
                              std::to_string(program.tools[m.tool].id) + " is not one)");
     try {
-      swept_.add_move(m.from, m.axis_from, m.to, m.axis_to, cutter.radius(), cutter.flute_length, step,
+      swept_.add_move(m.from, m.axis_from, m.to, m.axis_to, cutter.radius(), cutter.flute_length, sagitta,
                       static_cast<uint32_t>(k));
     } catch (const Error& e) {
       throw Error(where, e.what());

@@ -125,9 +125,9 @@ double distance_to_triangle(const SweptTriangle& t, const Vec3& p) {
 }
 
 void MultiAxisSweep::add_move(const Vec3& tip0, const Vec3& axis0, const Vec3& tip1, const Vec3& axis1, double r,
-                              double flutes, double step, uint32_t move) {
+                              double flutes, double sagitta, uint32_t move) {
   if (!tip0.allFinite() || !tip1.allFinite()) throw Error("multi-axis move", "a position is not finite");
-  if (!(r > 0) || !(step > 0)) throw Error("multi-axis move", "the ball radius and the step must be > 0 mm");
+  if (!(r > 0) || !(sagitta > 0)) throw Error("multi-axis move", "the ball radius and the sagitta must be > 0 mm");
   const Vec3 a0 = normalised(axis0, "the tool axis at its start"), a1 = normalised(axis1, "the tool axis at its end");
   const double reach =
       std::max(0.0, flutes - 2 * r);  // the top cap's centre above the ball's: its apex at the flutes' end
@@ -137,10 +137,11 @@ void MultiAxisSweep::add_move(const Vec3& tip0, const Vec3& axis0, const Vec3& t
     centre = tip + r * axis;
     top = centre + reach * axis;
   };
-  // The flute top's motion bounds the chord between steps: its straight part and what the turn adds.
+  // A turn of theta moves the flute top on an arc of radius at most `flutes` about the tip's line, whose chord
+  // strays flutes * theta^2 / 8 from it: steps of at most sqrt(8 sagitta / flutes) radians.
   const double turn = std::acos(std::clamp(a0.dot(a1), -1.0, 1.0));
-  const double travel = (tip1 - tip0).norm() + turn * flutes;
-  const int steps = std::clamp(static_cast<int>(std::ceil(travel / step)), 1, kMaxSteps);
+  const double most = std::sqrt(8 * sagitta / std::max(flutes, r));
+  const int steps = std::clamp(static_cast<int>(std::ceil(turn / most)), 1, kMaxSteps);
   Vec3 c0, t0;
   pose(0, c0, t0);
   for (int k = 1; k <= steps; ++k) {
@@ -148,8 +149,8 @@ void MultiAxisSweep::add_move(const Vec3& tip0, const Vec3& axis0, const Vec3& t
     pose(double(k) / steps, c1, t1);
     for (const auto& [p, q, s] : {std::tuple{c0, c1, t0}, std::tuple{t0, c1, t1}}) {
       SweptTriangle t{p, q, s, r, move, {}, {}};
-      t.lo = p.head<2>().cwiseMin(q.head<2>()).cwiseMin(s.head<2>()).array() - r;
-      t.hi = p.head<2>().cwiseMax(q.head<2>()).cwiseMax(s.head<2>()).array() + r;
+      t.lo = p.cwiseMin(q).cwiseMin(s).array() - r;
+      t.hi = p.cwiseMax(q).cwiseMax(s).array() + r;
       triangles_.push_back(t);
     }
     c0 = c1;
@@ -164,13 +165,13 @@ void MultiAxisSweep::index() {
   if (triangles_.empty()) return;
   Vec2 lo = Vec2::Constant(kInf), hi = Vec2::Constant(-kInf);
   for (const SweptTriangle& t : triangles_) {
-    lo = lo.cwiseMin(t.lo);
-    hi = hi.cwiseMax(t.hi);
+    lo = lo.cwiseMin(t.lo.head<2>());
+    hi = hi.cwiseMax(t.hi.head<2>());
   }
   lo.array() -= kMaxGrow;
   hi.array() += kMaxGrow;
   origin_ = lo;
-  bin_ = 4.0;
+  bin_ = 2.0;
   const Vec2 size = hi - lo;
   while ((std::floor(size.x() / bin_) + 1) * (std::floor(size.y() / bin_) + 1) > double(kMaxBins)) bin_ *= 2;
   nx_ = long(size.x() / bin_) + 1;
@@ -213,11 +214,24 @@ bool MultiAxisSweep::reaches(const Vec3& p, double grow) const {
   if (b < 0) return false;
   for (uint32_t i = first_[size_t(b)]; i < first_[size_t(b) + 1]; ++i) {
     const SweptTriangle& t = triangles_[items_[i]];
-    if (p.x() < t.lo.x() - grow || p.x() > t.hi.x() + grow || p.y() < t.lo.y() - grow || p.y() > t.hi.y() + grow)
-      continue;
+    if (((p - t.lo).array() < -grow).any() || ((p - t.hi).array() > grow).any()) continue;
     if (distance_to_triangle(t, p) <= t.r + grow) return true;
   }
   return false;
+}
+
+double MultiAxisSweep::depth(const Vec3& p, uint32_t* move) const {
+  double best = -kInf;
+  at(p.x(), p.y(), [&](size_t k) {
+    const SweptTriangle& t = triangles_[k];
+    if (p.z() < t.lo.z() || p.z() > t.hi.z()) return;
+    const double d = t.r - distance_to_triangle(t, p);
+    if (d > best) {
+      best = d;
+      if (move) *move = t.move;
+    }
+  });
+  return best;
 }
 
 size_t MultiAxisSweep::bytes() const {

@@ -54,6 +54,10 @@ bool simulated_m(int m) {
          (m >= 100 && m <= 199);
 }
 
+// M428 and M429: LinuxCNC's xyzac-trt switches to tool-centre-point kinematics and back (its configuration's
+// remaps); the reader follows which one holds.
+bool switches_kinematics(int m) { return m == 428 || m == 429; }
+
 constexpr uint32_t letters(std::string_view s) {
   uint32_t bits = 0;
   for (char c : s) bits |= 1u << (c - 'A');
@@ -86,7 +90,7 @@ void refuse_unsimulated(const Block& b, const gcode::Place& where, bool rotary) 
       throw Error(where.str(),
                   gcode::g_name(b.g[k]) + " is not supported by the verifier (it would change the motion)");
   for (int k = 0; k < b.m_count; ++k)
-    if (!simulated_m(b.m[k])) refuse_m(b.m[k], where);
+    if (!simulated_m(b.m[k]) && !(rotary && switches_kinematics(b.m[k]))) refuse_m(b.m[k], where);
 }
 
 // The one reader's canonical moves, with the tools of the setup, into the simulator's program.
@@ -113,6 +117,8 @@ class Reader {
       tool_words(b);
     }
     reader_.execute();
+    if (tools_.rotary && b.has_m(428)) tool_centre_point_ = true;
+    if (tools_.rotary && b.has_m(429)) tool_centre_point_ = false;
     if (b.has_m(6)) current_ = tool_index(reader_.state().tool, reader_.where());
     if (reader_.moved()) add(reader_.move());
     return !reader_.state().ended;
@@ -167,6 +173,7 @@ class Reader {
       throw Error(reader_.where(), "the program has more than " + std::to_string(kMaxProgramMoves) +
                                        " moves, more than the verifier holds: verify it in parts");
     CanonMove& m = program_.moves.emplace_back(move);
+    m.tool_centre_point = tool_centre_point_;
     if (!m.from_known()) {  // the first swept move starts at its own target
       m.from = m.to;
       m.known_from = m.known_to;
@@ -178,6 +185,7 @@ class Reader {
   gcode::Interpreter reader_;
   stock::MachineProgram program_;
   int current_ = -1;
+  bool tool_centre_point_ = false;  // after M428, until M429
 };
 
 }  // namespace

@@ -50,12 +50,6 @@ SetupFrame frame_at(const machine::Trunnion& t, const Placement& workpiece_on_ta
   return f;
 }
 
-stock::InProcessStock start_stock(const Mesh& design, const StockSpec& spec, const VerifyOptions& o) {
-  if (spec.kind == StockSpec::Kind::Mesh) return stock::InProcessStock::from_mesh(*spec.mesh, o.resolution, o.max_cells);
-  return stock::InProcessStock::box(spec.kind == StockSpec::Kind::Box ? spec.box : design.bbox, o.resolution,
-                                    o.max_cells);
-}
-
 }  // namespace
 
 IndexedVerifyResult verify_indexed(const Mesh& design, const stock::MachineProgram& program,
@@ -64,7 +58,7 @@ IndexedVerifyResult verify_indexed(const Mesh& design, const stock::MachineProgr
   const auto start = std::chrono::steady_clock::now();
   IndexedVerifyResult r;
   const std::vector<stock::MachineProgram> parts = split_runs(program, r.runs);
-  stock::InProcessStock stock = start_stock(design, stock_spec, options);
+  stock::InProcessStock stock = in_process_stock(design, stock_spec, options);
   std::vector<SetupFrame> frames;
   for (size_t k = 0; k < parts.size(); ++k) {
     IndexedRun& run = r.runs[k];

@@ -91,6 +91,14 @@ StockSpec StockSpec::parse_box(const std::string& text, const std::string& where
   return s;
 }
 
+stock::InProcessStock in_process_stock(const rosmill::core::Mesh& design, const StockSpec& spec,
+                                       const VerifyOptions& o) {
+  if (spec.kind == StockSpec::Kind::Mesh)
+    return stock::InProcessStock::from_mesh(*spec.mesh, o.resolution, o.max_cells);
+  return stock::InProcessStock::box(spec.kind == StockSpec::Kind::Box ? spec.box : design.bbox, o.resolution,
+                                    o.max_cells);
+}
+
 VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program,
                             const StockSpec& stock,
                             const VerifyOptions& options) {

@@ -1,17 +1,25 @@
 // The in-process stock cut by multi-axis moves (stock/multi_axis_sweep.hpp): known volumes, every point against a
 // brute-force sweep of the tool at a thousand poses per move (code of this file alone), a cut that leaves material
 // above it (what a height field cannot hold), and a five-axis finish of a dome: nothing of the part cut, the
-// dome's surface reached to its scallop.
+// dome's surface reached to its scallop. Then the verifier of multi-axis programs over the whole surface
+// (verify/multi_axis.hpp), in the core and as `rosmill verify` runs on a five-axis toolpath file.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <random>
 
+#include "cli_run.hpp"
 #include "multi_axis_parts.hpp"
 #include "rosmill/error.hpp"
+#include "rosmill/io/stl.hpp"
 #include "rosmill/plan/five_axis_finish.hpp"
 #include "rosmill/stock/in_process_stock.hpp"
 #include "rosmill/stock/multi_axis_program.hpp"
+#include "rosmill/verify/multi_axis.hpp"
 
 using namespace rosmill::core;
 using namespace rosmill::core::stock;
@@ -56,6 +64,17 @@ double brute_distance(const Vec3& p, const AxisMove& m, double r, double flutes,
     best = std::min(best, (p - (a + t * d)).norm() - r);
   }
   return best;
+}
+
+// A five-axis finish of a dome with a ball of 6 (24 mm of flutes) at 1 mm stepover, within a cone of 40 degrees.
+PlanParams dome_finish() {
+  PlanParams p;
+  p.tool = ball_tool(6, 24);
+  p.tool.feed = 1000;
+  p.stepover = 1.0;
+  p.tolerance = 0.002;
+  p.tool_axis.cone_deg = 40;
+  return p;
 }
 
 }  // namespace
@@ -179,12 +198,7 @@ TEST(MultiAxisStock, AFiveAxisFinishOfADomeCutsNothingOfItAndReachesItsSurfaceTo
   // finished with a ball of 6 at 1 mm stepover.
   const double R = 15;
   const Mesh dome = test_parts::dome_on_plate(R, 22, 4);
-  PlanParams p;
-  p.tool = ball_tool(6, 24);
-  p.tool.feed = 1000;
-  p.stepover = 1.0;
-  p.tolerance = 0.002;
-  p.tool_axis.cone_deg = 40;
+  const PlanParams p = dome_finish();
   PlanReport plan;
   const Job job = five_axis_finish(dome, p, {}, &plan);
   ASSERT_EQ(job.size(), 1u);
@@ -217,4 +231,126 @@ TEST(MultiAxisStock, AFiveAxisFinishOfADomeCutsNothingOfItAndReachesItsSurfaceTo
       reached += !stock.material_at((R + scallop + 0.01) * n);
     }
   EXPECT_GE(reached, 0.98 * samples);
+}
+
+TEST(MultiAxisVerify, ADomeFinishIsClearAndLeavesItsScallopAndTheSameToolpathLoweredGougesByThatMuch) {
+  // The dome's five-axis finish verified from the stock the dome grown by 0.3 mm (a closed mesh): no gouge; on the
+  // dome down to 60 degrees from its top nothing above the cusp of its passes; the most left, and all that no tool
+  // came near, at its foot (the concave corner with the plate that a ball of 3 mm cannot enter). Then the toolpath
+  // 0.05 mm lower: a gouge that deep, named by a move.
+  const double R = 15;
+  const Mesh dome = test_parts::dome_on_plate(R, 22, 4, 96, 32);
+  const Mesh grown = test_parts::dome_on_plate(R + 0.3, 22, 4, 96, 32);
+  ASSERT_TRUE(grown.closed());
+  const PlanParams p = dome_finish();
+  const Job job = five_axis_finish(dome, p, {});
+  ASSERT_EQ(job[0].tool.stepover, 1.0);
+  verify::StockSpec stock;
+  stock.kind = verify::StockSpec::Kind::Mesh;
+  stock.mesh = &grown;
+  verify::VerifyOptions o;
+  o.resolution = 0.25;
+  const verify::MultiAxisVerifyResult r =
+      verify::verify_multi_axis(dome, multi_axis_program_from_job(job), stock, o, 1.0);
+  EXPECT_EQ(r.max_gouge_mm, 0.0) << "at " << r.gouge_at.transpose() << ", move " << r.gouge_source;
+  EXPECT_FALSE(r.removal.collided());
+  EXPECT_GT(r.samples, 10000u);
+  EXPECT_NEAR(r.limit_mm, 0.01 + (3 - std::sqrt(9 - 0.25)), 1e-9);
+  const auto at_foot = [&](const Vec3& q) { return q.z() < 3.5 && q.head<2>().norm() < R + 1.5; };
+  EXPECT_TRUE(at_foot(r.max_rest_at)) << r.max_rest_at.transpose();
+  double dome_area = 0, foot_band = 0;
+  int on_dome = 0;
+  for (size_t k = 0; k < r.samples; ++k) {
+    const Vec3& q = r.surface.points[k];
+    if (at_foot(q) && q.z() >= -1e-9) foot_band += r.surface.weights[k];
+    const double th = std::acos(std::clamp(q.z() / q.norm(), -1.0, 1.0));
+    if (q.z() < 1 || std::abs(q.norm() - R) > 0.05 || th > 60 * kDeg) continue;
+    ++on_dome;
+    dome_area += r.surface.weights[k];
+    // Passes 1 mm apart in XY are 1 / cos(theta) apart on the sphere: cusps w^2 / 8 (1 / 3 + 1 / 15) high, over
+    // the facets that lie inside the sphere by up to R (1 - cos(pi / 96)) = 0.008 mm.
+    const double w = 1.0 / std::cos(th), cusp = w * w / 8 * (1.0 / 3 + 1.0 / R);
+    EXPECT_LE(r.rest[k], cusp + 0.008 + 0.01) << "at " << q.transpose();
+  }
+  EXPECT_GT(on_dome, 5000);
+  EXPECT_NEAR(dome_area, 2 * M_PI * R * R * 0.5, 0.02 * 2 * M_PI * R * R);  // the cap to 60 degrees: 2 pi R^2 (1 - cos)
+  EXPECT_LT(r.unreached_area_mm2, foot_band);
+  EXPECT_LT(r.above_area_mm2, foot_band + 0.02 * dome_area);
+  Job lower = job;
+  for (ToolpathPass& pass : lower[0].passes)
+    for (Move& m : pass.moves) m.to.z() -= 0.05;
+  const verify::MultiAxisVerifyResult g = verify::verify_multi_axis(dome, multi_axis_program_from_job(lower), stock, o);
+  EXPECT_NEAR(g.max_gouge_mm, 0.05, 0.01) << g.gouge_at.transpose() << " move " << g.gouge_source;
+  EXPECT_GT(g.gouge_source, 0u);
+  EXPECT_GT(g.gouged_area_mm2, 100.0);
+}
+
+TEST(MultiAxisVerify, RosmillVerifyFollowsAFiveAxisToolpathFileWithItsAxes) {
+  // As a user runs it: `rosmill plan dome.stl --strategy five-axis -o finish.json`, then `rosmill verify dome.stl
+  // finish.json --stock grown.stl`. Before, verify swept the file's cutter locations with a vertical tool.
+  const std::string dir = ::testing::TempDir() + "/rosmill_verify5_" + std::to_string(::getpid());
+  ASSERT_EQ(std::system(("mkdir -p '" + dir + "'").c_str()), 0);
+  write_stl(dir + "/dome.stl", test_parts::dome_on_plate(15, 22, 4, 96, 32));
+  write_stl(dir + "/grown.stl", test_parts::dome_on_plate(15.3, 22, 4, 96, 32));
+  const CliRun plan = run_rosmill_in(
+      dir, "plan dome.stl --strategy five-axis --tool ball:6@5 --stepover 1 --machine " ROSMILL_SOURCE_DIR
+           "/config/machine_xyzac_tcp.yaml -o finish.json 2>&1");
+  ASSERT_EQ(plan.status, 0) << plan.out;
+  const CliRun v = run_rosmill_in(dir, "verify dome.stl finish.json --stock grown.stl --resolution 0.25 --json 2>&1");
+  ASSERT_EQ(v.status, 0) << v.out;
+  const nlohmann::json j = nlohmann::json::parse(v.out);
+  EXPECT_TRUE(j.at("multi_axis").get<bool>());
+  EXPECT_EQ(j.at("max_gouge_mm").get<double>(), 0.0) << v.out;
+  EXPECT_TRUE(j.at("rapid_into_material_move").is_null()) << v.out;
+  EXPECT_GT(j.at("mean_rest_mm").get<double>(), 0.0);
+  EXPECT_LT(j.at("mean_rest_mm").get<double>(), 0.05);
+  EXPECT_NEAR(j.at("limit_mm").get<double>(), 0.01 + (3 - std::sqrt(9 - 0.25)), 1e-9);  // the file's stepover
+  const CliRun text = run_rosmill_in(dir, "verify dome.stl finish.json --stock grown.stl --resolution 0.5 2>&1");
+  EXPECT_EQ(text.status, 0) << text.out;
+  EXPECT_NE(text.out.find("multi-axis"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("gouge      none"), std::string::npos) << text.out;
+  const CliRun machine = run_rosmill_in(dir, "verify dome.stl finish.json --machine " ROSMILL_SOURCE_DIR
+                                             "/config/machine_xyzac.yaml --on-table 0,0,0 2>&1");
+  EXPECT_EQ(machine.status, 1);
+  EXPECT_NE(machine.out.find("without --machine"), std::string::npos) << machine.out;
+
+  // The same finish as G-code for the trunnion's tool-centre-point control (M428: X Y Z the tip, A C the axis):
+  // read back with the machine's kinematics, the same figures; with every Z under M428 0.05 mm lower, a gouge
+  // of 0.05 mm named by its line.
+  const std::string tcp = " --machine " ROSMILL_SOURCE_DIR "/config/machine_xyzac_tcp.yaml";
+  const CliRun post = run_rosmill_in(
+      dir, "plan dome.stl --strategy five-axis --tool ball:6@5 --stepover 1" + tcp + " -o finish.ngc 2>&1");
+  ASSERT_EQ(post.status, 0) << post.out;
+  const std::string verify_ngc =
+      "verify dome.stl finish.ngc --stock grown.stl --resolution 0.25 --tool 5=ball:6 --stepover 1 --json" + tcp;
+  const CliRun g = run_rosmill_in(dir, verify_ngc + " 2>&1");
+  ASSERT_EQ(g.status, 0) << g.out;
+  const nlohmann::json k = nlohmann::json::parse(g.out);
+  EXPECT_EQ(k.at("max_gouge_mm").get<double>(), 0.0) << g.out;
+  EXPECT_NEAR(k.at("mean_rest_mm").get<double>(), j.at("mean_rest_mm").get<double>(), 1e-3);
+  EXPECT_NEAR(k.at("max_rest_mm").get<double>(), j.at("max_rest_mm").get<double>(), 1e-2);
+  std::ifstream in(dir + "/finish.ngc");
+  std::ofstream out(dir + "/lower.ngc");
+  bool under = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("M428", 0) == 0) under = true;
+    if (line.rfind("M429", 0) == 0) under = false;
+    const size_t z = line.rfind('Z', 0) == 0                ? 0
+                     : line.find(" Z") == std::string::npos ? line.npos
+                                                            : line.find(" Z") + 1;
+    if (under && z != std::string::npos && line.find('(') == std::string::npos) {
+      const size_t end = line.find(' ', z);
+      const double v = std::stod(line.substr(z + 1, end - z - 1)) - 0.05;
+      line = line.substr(0, z) + "Z" + std::to_string(v) + (end == std::string::npos ? "" : line.substr(end));
+    }
+    out << line << "\n";
+  }
+  out.close();
+  const CliRun low = run_rosmill_in(
+      dir, "verify dome.stl lower.ngc --stock grown.stl --resolution 0.25 --tool 5=ball:6 --json" + tcp + " 2>&1");
+  ASSERT_EQ(low.status, 0) << low.out;
+  const nlohmann::json l = nlohmann::json::parse(low.out);
+  EXPECT_NEAR(l.at("max_gouge_mm").get<double>(), 0.05, 0.01) << low.out;
+  EXPECT_GT(l.at("gouge_move").get<int>(), 11) << "a line after M428";
+  std::system(("rm -rf '" + dir + "'").c_str());
 }

@@ -19,21 +19,14 @@
 #include "rosmill/cutter/cutter.hpp"
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/setup_frame.hpp"
+#include "rosmill/geometry/surface_samples.hpp"
 
 namespace rosmill::core::setups {
 
-// Points on the surface (workpiece frame), each standing for a piece of one facet: a facet larger than spacing^2
-// is cut into m x m similar triangles (m = ceil(sqrt(area) / spacing)) sampled at their centroids, a smaller one
-// is one sample. The weights of a facet's samples sum to its area.
-struct SurfaceSamples {
-  std::vector<Vec3> points, normals;
-  std::vector<double> weights;  // mm^2
-  std::vector<uint32_t> facets;
-  size_t size() const { return points.size(); }
-};
-SurfaceSamples sample_surface(const Mesh& mesh, double spacing);
-// A spacing that gives about `target` samples over the mesh's area (never below 0.05 mm).
-double sample_spacing(const Mesh& mesh, double target = 40000);
+// The surface's samples (geometry/surface_samples.hpp), as the setup choice has long named them.
+using rosmill::core::sample_spacing;
+using rosmill::core::sample_surface;
+using rosmill::core::SurfaceSamples;
 
 enum class Reach : uint8_t {
   Reached,

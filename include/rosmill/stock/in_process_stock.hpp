@@ -63,8 +63,9 @@ class InProcessStock {
   RemovalReport remove(const MachineProgram& program, const SetupFrame& setup = {},
                        const SimulationOptions& options = {});
   // Removes what a multi-axis program (workpiece frame, the tool axis turning along its moves) cuts with ball-end
-  // mills: their flutes' sweep (multi_axis_sweep.hpp), in steps of half a cell, kept for the exact point queries
-  // too. A flat or bull-nose tool is refused (Error naming the move); so is an axis that is not a direction.
+  // mills: their flutes' sweep (multi_axis_sweep.hpp), its steps' chords within a micrometre of the tool's arcs, kept
+  // for the exact point queries too. A flat or bull-nose tool is refused (Error naming the move); so is an axis that is
+  // not a direction.
   RemovalReport remove(const MultiAxisProgram& program);
 
   // The top of material seen from a setup, per cell of the setup's grid (a grid over the stock turned into the
@@ -103,6 +104,7 @@ class InProcessStock {
   const GridSpec& grid() const { return material_.grid; }
   size_t bytes() const;  // the model's memory
   size_t setups() const { return envelopes_.size(); }
+  const MultiAxisSweep& multi_axis_sweep() const { return swept_; }  // what multi-axis programs cut
 
  private:
   friend class StockProbe;

@@ -37,6 +37,9 @@ struct CanonMove {
   // for an indexing move (which then moves no linear axis). `known_rotary`: bit 0 A, bit 1 C given absolutely.
   double a_from = 0, c_from = 0, a_to = 0, c_to = 0;
   uint8_t known_rotary = 0;
+  // Under tool-centre-point kinematics (after M428 on a trunnion): X Y Z are the tool tip on the table and A, C turn
+  // the tool axis along the move; else X Y Z are the machine's axes with the tool along +Z.
+  bool tool_centre_point = false;
 
   bool is_arc() const { return shape != MoveShape::Line; }
   bool clockwise() const { return shape == MoveShape::ArcCW; }

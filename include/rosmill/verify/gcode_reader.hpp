@@ -8,7 +8,8 @@
 // rotary axes A/B/C, M70-M73) or a word the verifier does not know throws Error naming the file and line. On a
 // trunnion table (ToolSetup::rotary) A and C are read too, each move carrying them (verify/indexed.hpp follows them),
 // as is the G53 G0 retract before an indexing: the position it leaves is unknown, and the next move is swept from
-// its own target.
+// its own target. There M428 and M429 switch LinuxCNC's xyzac-trt to tool-centre-point kinematics and back: each
+// move says which held (CanonMove::tool_centre_point).
 #pragma once
 #include <map>
 #include <optional>

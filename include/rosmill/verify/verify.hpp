@@ -5,10 +5,11 @@
 
 #include "rosmill/geometry/mesh.hpp"
 #include "rosmill/geometry/point_cloud.hpp"
-#include "rosmill/verify/deviation.hpp"
-#include "rosmill/verify/engagement.hpp"
+#include "rosmill/stock/in_process_stock.hpp"
 #include "rosmill/stock/material_removal.hpp"
 #include "rosmill/stock/program.hpp"
+#include "rosmill/verify/deviation.hpp"
+#include "rosmill/verify/engagement.hpp"
 
 namespace rosmill::core::verify {
 
@@ -41,6 +42,11 @@ struct VerifyResult {
   EngagementReport engagement;  // with VerifyOptions::measure_engagement
   double seconds = 0.0;  // the whole verification (grid, design heights, simulation, comparison)
 };
+
+// The stock as an in-process stock (workpiece frame) at options.resolution: a stock mesh as it is, else the box
+// (the design's bounds by default). What the verifiers that follow a part through turns or tool axes cut.
+stock::InProcessStock in_process_stock(const rosmill::core::Mesh& design, const StockSpec& stock,
+                                       const VerifyOptions& options);
 
 VerifyResult verify_program(const rosmill::core::Mesh& design, const stock::MachineProgram& program,
                             const StockSpec& stock,
