@@ -261,6 +261,10 @@ void index_part(Writer& w, const Dialect& d, const Toolpath& tp, int index, bool
   if (!std::isfinite(o.index_safe_z))
     throw Error("post", "an indexed toolpath needs the machine's safe Z to retract to (index_safe_z)");
   if (!std::isfinite(tp.a) || !std::isfinite(tp.c)) throw Error("post", "an indexed toolpath's A or C is not finite");
+  if (first && o.select_identity) {
+    w.comment("identity kinematics: the program's X Y Z are the machine's axes");
+    w.line("M429", origin);
+  }
   w.comment("index the part: A " + fixed_text(tp.a, kAngleDecimals) + ", C " + fixed_text(tp.c, kAngleDecimals));
   if (change && !first) spindle_stop(w, origin, o);
   w.line("G53 G0 Z" + fixed_text(o.index_safe_z, o.decimals), origin);

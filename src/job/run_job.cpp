@@ -528,6 +528,7 @@ void write_programs(const JobSpec& job, const std::vector<Job>& planned, const m
     post.work_offset_note = setup_note(setup, index);
     if (report.indexed) {
       post.index_safe_z = machine.trunnion()->safe_z;
+      post.select_identity = machine.simultaneous();  // its programs may have left it in tool-centre-point kinematics
       post.work_offset_note = "at machine zero: identity kinematics, the program's X Y Z are the machine's axes "
                               "(the simulator starts in them, and LinuxCNC's rs274 reads the program as it runs)";
       post.title = "rosmill job " + job.source + ": " + std::to_string(report.setups.size()) +
@@ -696,6 +697,24 @@ std::vector<std::pair<size_t, size_t>> program_groups(const JobReport& report, b
   return groups;
 }
 
+// The job's stages follow a tool along +Z of each setup: the stock's removal and checks, the feeds, the 3+2 post.
+// An operation whose strategy tilts the tool at every move is refused before anything is planned, naming it,
+// rather than cut and checked as if the tool stood up.
+void refuse_multi_axis(const JobSpec& job, const std::vector<OperationSpec>& ops, const JobOptions& options) {
+  for (size_t k = 0; k < ops.size(); ++k) {
+    const OperationSpec& op = ops[k];
+    const std::string where = job.source + ":" + std::to_string(op.line) + " operations[" + std::to_string(k) + "]";
+    if (!plan_kind(op.strategy, options.presets, where + ".strategy").multi_axis) continue;
+    throw Error(
+        where + " (" + op.name + ")",
+        "strategy '" + op.strategy +
+            "' gives a tool axis at every move, and a job does not yet cut, check and "
+            "post such an operation: finish the part with `rosmill plan PART --strategy " +
+            op.strategy +
+            " --machine` a tool-centre-point machine file (config/machine_xyzac_tcp.yaml), then `rosmill verify`");
+  }
+}
+
 JobReport run_job(const JobSpec& job, const JobOptions& options) {
   const Mesh part = options.part ? *options.part : read_part(job);
   std::optional<Mesh> stock_mesh;
@@ -708,6 +727,7 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   check_tool_numbers(job.operations, options, job.source);
   const std::shared_ptr<const machine::Machine> machine = machine_of(options);
   const Setups setups = resolve_setups(job, part, stock, *machine, options);
+  refuse_multi_axis(job, setups.operations, options);
   if (options.operations_known) options.operations_known(setups.operations);
   refuse_two_registered_setups(job, setups, options);
   if (setups.faces) report_chosen_setups(job, setups, part, report);
@@ -716,10 +736,6 @@ JobReport run_job(const JobSpec& job, const JobOptions& options) {
   // A machine that turns the part holds it in one clamping through the setups (3+2): placed on its table once.
   std::optional<TableSetting> table;
   if (machine->turns_part()) {
-    if (machine->simultaneous())
-      throw Error(job.source, "jobs for tool-centre-point kinematics are not written yet (one five- or four-axis "
-                              "finish is: rosmill plan --strategy five-axis): give a machine file with rotary.mode "
-                              "identity for a 3+2 job");
     table = place_on_table(*machine, setups.specs.front().fixture, stock, options, job.source + " setups[0]");
     context.table = &*table;
     report.indexed = true;

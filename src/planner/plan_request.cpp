@@ -123,6 +123,7 @@ PlanKind plan_kind(const std::string& name, const PresetTable* presets, const st
     k.needs_mesh |= e->needs_mesh;
     k.roughing &= e->roughing;
     k.follows_material &= e->follows_material;
+    k.multi_axis |= e->multi_axis;
   }
   return k;
 }

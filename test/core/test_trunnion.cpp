@@ -404,3 +404,36 @@ TEST(Trunnion, ChosenSetupsOnTheTrunnionPlanNoGouge) {
   EXPECT_NEAR(mill.max_left_mm, 8.0, 0.01);  // the slot's corner, 8 mm deep
   std::filesystem::remove_all(dir);
 }
+
+TEST(Trunnion, TheSameJobOnTheToolCentrePointMachineSelectsIdentityKinematicsFirst) {
+  // config/machine_xyzac_tcp.yaml is the same simulator with tool-centre-point control: a 3+2 job there is the
+  // identity machine's, its program the same but for M429 before the first turn (a five-axis program run before it
+  // leaves LinuxCNC in M428). Before, the job was refused on that machine file.
+  const JobSpec spec = read_job(std::string(ROSMILL_SOURCE_DIR) + "/config/jobs/slotted_block_xyzac.yaml");
+  const std::string id_dir = job_test::scratch("trunnion_identity"), tcp_dir = job_test::scratch("trunnion_tcp");
+  const JobReport id = run_job(spec, job_test::options(id_dir, "machine_xyzac.yaml"));
+  const JobReport tcp = run_job(spec, job_test::options(tcp_dir, "machine_xyzac_tcp.yaml"));
+  ASSERT_TRUE(tcp.indexed);
+  EXPECT_EQ(tcp.surface.min_left_mm, id.surface.min_left_mm);
+  EXPECT_EQ(tcp.surface.max_left_mm, id.surface.max_left_mm);
+  EXPECT_EQ(tcp.time_s, id.time_s);
+  ASSERT_TRUE(tcp.program_check.done);
+  EXPECT_EQ(tcp.program_check.gouge_mm, 0.0);
+  std::vector<std::string> a = gcode::read_program_lines(id.setups[0].program);
+  const std::vector<std::string> b = gcode::read_program_lines(tcp.setups[0].program);
+  const auto first_turn =
+      std::find_if(a.begin(), a.end(), [](const std::string& l) { return l.rfind("G53 G0 Z", 0) == 0; });
+  ASSERT_NE(first_turn, a.end());
+  a.insert(a.insert(first_turn - 1, "M429"), "(identity kinematics: the program's X Y Z are the machine's axes)");
+  EXPECT_EQ(a, b);
+  EXPECT_TRUE(gcode::run_rs274(b).ok);
+  // A five-axis operation in a job is refused, naming it, on either machine.
+  JobSpec five = spec;
+  five.operations.back().strategy = "five-axis";
+  five.operations.back().tool = "2";  // the 6 mm ball
+  for (const char* machine : {"machine_xyzac.yaml", "machine_xyzac_tcp.yaml"}) {
+    const std::string e = error_of([&] { run_job(five, job_test::options("", machine)); });
+    EXPECT_NE(e.find("(" + five.operations.back().name + ")"), std::string::npos) << e;
+    EXPECT_NE(e.find("tool axis at every move"), std::string::npos) << e;
+  }
+}

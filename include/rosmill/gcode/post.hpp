@@ -35,6 +35,10 @@ struct PostOptions {
   std::string work_offset_note = "from the workpiece's pose on the table";  // the comment above the G10 block
   // Indexed toolpaths (a trunnion table): the machine Z (G53) the tool retracts to before the part turns.
   double index_safe_z = NAN;
+  // Indexed toolpaths on a trunnion that also runs tool-centre-point programs: the program selects identity
+  // kinematics (LinuxCNC's M429 on the xyzac-trt configuration) before its first turn, whatever the program before
+  // it left the machine in.
+  bool select_identity = false;
   // Multi-axis toolpaths (a tool axis per move): the trunnion with tool-centre-point control they are written for. The
   // program retracts and turns the table in identity kinematics, switches to tool-centre-point kinematics (LinuxCNC's
   // M428 on the xyzac-trt configuration), and writes the tip on the table with A and C at every move

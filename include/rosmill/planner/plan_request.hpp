@@ -54,6 +54,7 @@ void check_plan_name(const std::string& name, const PresetTable* presets, const 
 struct PlanKind {
   bool needs_mesh = false, roughing = true;
   bool follows_material = true;  // every stage cuts only what the job's material grid holds (StrategyEntry)
+  bool multi_axis = false;       // some stage gives a tool axis at every move
 };
 PlanKind plan_kind(const std::string& name, const PresetTable* presets, const std::string& where);
 
